@@ -1,0 +1,68 @@
+#include "app/progress_display.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace rtiow {
+namespace {
+
+void format_duration(char* out, std::size_t size, double seconds) {
+  if (seconds < 60.0) {
+    std::snprintf(out, size, "%.1fs", seconds);
+  } else {
+    const int total = int(seconds + 0.5);
+    std::snprintf(out, size, "%dm%02ds", total / 60, total % 60);
+  }
+}
+
+}  // namespace
+
+ProgressDisplay::ProgressDisplay(const RenderProgress& progress, std::uint64_t total_pixels)
+    : progress_(progress),
+      total_pixels_(total_pixels),
+      terminal_(::isatty(STDERR_FILENO) == 1),
+      start_(std::chrono::steady_clock::now()),
+      thread_([this] { run(); }) {}
+
+ProgressDisplay::~ProgressDisplay() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+  report(true);
+  if (terminal_) std::fputc('\n', stderr);
+}
+
+void ProgressDisplay::run() {
+  const auto period = terminal_ ? std::chrono::milliseconds(250) : std::chrono::milliseconds(1000);
+  std::unique_lock lock(mutex_);
+  while (!wake_.wait_for(lock, period, [this] { return stop_; })) report(false);
+}
+
+void ProgressDisplay::report(bool final_report) {
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double fraction = total_pixels_ ? double(progress_.pixels_done) / double(total_pixels_) : 1;
+  const double mrays = elapsed > 0 ? double(progress_.rays_traced) / elapsed * 1e-6 : 0.0;
+  char elapsed_text[32], eta_text[32] = "?";
+  format_duration(elapsed_text, sizeof elapsed_text, elapsed);
+  if (fraction > 0.0) format_duration(eta_text, sizeof eta_text, elapsed * (1 / fraction - 1));
+
+  if (terminal_) {
+    std::fprintf(stderr, "\r\033[K%5.1f%%  elapsed %s  ETA %s  %.1f Mrays/s", 100.0 * fraction,
+                 elapsed_text, eta_text, mrays);
+    std::fflush(stderr);
+    return;
+  }
+  // Not a terminal: one line per completed tenth, so a log stays short.
+  const int decile = int(fraction * 10.0);
+  if (final_report || decile <= last_decile_) return;
+  last_decile_ = decile;
+  std::fprintf(stderr, "progress: %3d%%  elapsed %s  ETA %s  %.1f Mrays/s\n", decile * 10,
+               elapsed_text, eta_text, mrays);
+}
+
+}  // namespace rtiow

@@ -1,0 +1,38 @@
+#pragma once
+// Progress on stderr while a render runs: a live line on a terminal, occasional plain
+// lines otherwise (logs, CI). Runs on its own thread and only reads the render's counters.
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+
+#include "core/render.h"
+
+namespace rtiow {
+
+class ProgressDisplay {
+ public:
+  ProgressDisplay(const RenderProgress& progress, std::uint64_t total_pixels);
+  ~ProgressDisplay();  // stops the thread and finishes the live line
+  ProgressDisplay(const ProgressDisplay&) = delete;
+  ProgressDisplay& operator=(const ProgressDisplay&) = delete;
+
+ private:
+  void run();
+  void report(bool final_report);
+
+  const RenderProgress& progress_;
+  const std::uint64_t total_pixels_;
+  const bool terminal_;
+  const std::chrono::steady_clock::time_point start_;
+  int last_decile_ = 0;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+}  // namespace rtiow

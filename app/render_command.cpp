@@ -1,0 +1,175 @@
+#include "app/render_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/progress_display.h"
+#include "core/builtin_scenes.h"
+#include "core/error.h"
+#include "core/image_output.h"
+#include "core/render.h"
+
+namespace rtiow {
+namespace {
+
+struct RenderOptions {
+  std::string scene = "cover";
+  std::uint64_t scene_seed = 1;
+  bool list_scenes = false;
+  std::string output;
+  std::optional<int> width, height, spp, depth;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  std::string accel = "embree";
+  bool quiet = false;
+  std::vector<double> lookfrom, lookat, vup;
+  std::optional<double> vfov, aperture, focus_distance;
+};
+
+Vec3d to_vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+// The scene's own camera and image settings, overridden by whatever the user gave.
+void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& settings) {
+  CameraSettings& cam = scene.camera;
+  if (!o.lookfrom.empty()) cam.lookfrom = to_vec3(o.lookfrom);
+  if (!o.lookat.empty()) cam.lookat = to_vec3(o.lookat);
+  if (!o.vup.empty()) cam.vup = to_vec3(o.vup);
+  if (o.vfov) cam.vfov_degrees = *o.vfov;
+  if (o.aperture) cam.aperture = *o.aperture;
+  if (o.focus_distance) cam.focus_distance = *o.focus_distance;
+
+  const ImageSettings& image = scene.image;
+  if (o.width && o.height) {
+    settings.width = *o.width, settings.height = *o.height;
+  } else if (o.height) {
+    settings.height = *o.height;
+    settings.width = std::max(1, int(std::lround(*o.height * image.aspect_ratio)));
+  } else {
+    settings.width = o.width.value_or(image.width);
+    settings.height = std::max(1, int(std::lround(settings.width / image.aspect_ratio)));
+  }
+  settings.samples_per_pixel = o.spp.value_or(image.samples_per_pixel);
+  settings.max_depth = o.depth.value_or(image.max_depth);
+  settings.seed = o.seed;
+  settings.threads = o.threads;
+}
+
+std::string default_output(const std::string& scene) {
+  std::string name = scene;
+  for (char& c : name) {
+    if (c == ':' || c == '/') c = '-';
+  }
+  return name + ".png";
+}
+
+void check_output_path(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent)) {
+    throw InvalidInput("output '" + path + "': directory '" + parent.string() +
+                       "' does not exist");
+  }
+  if (!is_writable_image_path(path)) {
+    throw InvalidInput("output '" + path +
+                       "': unknown image format (use .png, .exr, .ppm, .jpg, .tif, ...)");
+  }
+}
+
+int list_scenes() {
+  for (const auto& s : builtin_scenes()) std::printf("%-16s %s\n", s.name.c_str(), s.summary.c_str());
+  return 0;
+}
+
+Metadata make_metadata(const RenderOptions& o, const RenderSettings& s, const RenderResult& r) {
+  return {
+      {"scene", o.scene},
+      {"scene_seed", std::int64_t(o.scene_seed)},
+      {"spp", std::int64_t(s.samples_per_pixel)},
+      {"depth", std::int64_t(s.max_depth)},
+      {"seed", std::int64_t(s.seed)},
+      {"accelerator", to_string(s.accel)},
+      {"render_seconds", r.render_seconds},
+      {"rays_traced", std::int64_t(r.rays_traced)},
+  };
+}
+
+int run_render(const RenderOptions& o) {
+  if (o.list_scenes) return list_scenes();
+
+  Scene scene = make_builtin_scene(o.scene, o.scene_seed);
+  RenderSettings settings;
+  settings.accel = parse_accel(o.accel);
+  apply_overrides(o, scene, settings);
+  validate(settings);
+  validate(scene.camera);
+  const std::string output = o.output.empty() ? default_output(o.scene) : o.output;
+  check_output_path(output);
+
+  RenderProgress progress;
+  RenderResult result;
+  {
+    std::unique_ptr<ProgressDisplay> display;
+    if (!o.quiet) {
+      display = std::make_unique<ProgressDisplay>(
+          progress, std::uint64_t(settings.width) * std::uint64_t(settings.height));
+    }
+    result = render(scene, settings, &progress);
+  }
+  write_image(output, result.film, make_metadata(o, settings, result));
+
+  if (!o.quiet) {
+    const double rays = double(result.rays_traced);
+    std::fprintf(stderr,
+                 "rendered %s %dx%d, %d spp, depth %d, %s, %d threads: %.2f s, %.3g rays, "
+                 "%.2f Mrays/s -> %s\n",
+                 o.scene.c_str(), settings.width, settings.height, settings.samples_per_pixel,
+                 settings.max_depth, to_string(settings.accel).c_str(),
+                 settings.threads > 0 ? settings.threads : int(std::thread::hardware_concurrency()),
+                 result.render_seconds, rays, rays / result.render_seconds * 1e-6, output.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::function<int()> add_render_command(CLI::App& app) {
+  auto options = std::make_shared<RenderOptions>();
+  RenderOptions& o = *options;
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Render a scene to an image (with no options: the book's cover at its final "
+                "settings, to cover.png)");
+  cmd->add_option("--scene", o.scene, "Built-in scene to render (see --list-scenes)")
+      ->capture_default_str();
+  cmd->add_flag("--list-scenes", o.list_scenes, "List the built-in scenes and exit");
+  cmd->add_option("--scene-seed", o.scene_seed, "Seed of the cover scene's random layout")
+      ->capture_default_str();
+  cmd->add_option("-o,--output", o.output,
+                  "Output image; the format follows the extension (.png .exr .ppm .jpg .tif). "
+                  "Default: <scene>.png");
+  cmd->add_option("--width", o.width, "Image width in pixels (default: the scene's)");
+  cmd->add_option("--height", o.height,
+                  "Image height in pixels (default: from the width and the scene's aspect ratio)");
+  cmd->add_option("--spp", o.spp, "Samples per pixel (default: the scene's)");
+  cmd->add_option("--depth", o.depth, "Maximum rays per path (default: the scene's)");
+  cmd->add_option("--seed", o.seed, "Seed of the sample streams")->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--accel", o.accel, "Intersector: embree or naive (same image, other speed)")
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
+  cmd->add_option("--lookfrom", o.lookfrom, "Camera position x,y,z (overrides the scene)")
+      ->expected(3)->delimiter(',');
+  cmd->add_option("--lookat", o.lookat, "Point the camera looks at x,y,z")
+      ->expected(3)->delimiter(',');
+  cmd->add_option("--vup", o.vup, "Camera up vector x,y,z")->expected(3)->delimiter(',');
+  cmd->add_option("--vfov", o.vfov, "Vertical field of view in degrees, in (0, 180)");
+  cmd->add_option("--aperture", o.aperture, "Lens diameter (0: pinhole)");
+  cmd->add_option("--focus-dist", o.focus_distance, "Distance to the plane in focus");
+  return [options, cmd] { return cmd->parsed() ? run_render(*options) : -1; };
+}
+
+}  // namespace rtiow

@@ -1,0 +1,127 @@
+#include "core/image_output.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+namespace rtiow {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lowercase_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+std::string metadata_string(const MetadataValue& v) {
+  if (const auto* i = std::get_if<std::int64_t>(&v)) return std::to_string(*i);
+  if (const auto* d = std::get_if<double>(&v)) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.9g", *d);
+    return buffer;
+  }
+  return std::get<std::string>(v);
+}
+
+void add_metadata(OIIO::ImageSpec& spec, const Metadata& metadata, bool typed) {
+  for (const auto& [key, value] : metadata) {
+    const std::string name = "rtiow:" + key;
+    if (typed && std::holds_alternative<std::int64_t>(value)) {
+      // EXR has no 64-bit integer attribute: larger counts are stored as strings.
+      const auto i = std::get<std::int64_t>(value);
+      if (i >= INT32_MIN && i <= INT32_MAX) {
+        spec.attribute(name, int(i));
+      } else {
+        spec.attribute(name, std::to_string(i));
+      }
+    } else if (typed && std::holds_alternative<double>(value)) {
+      spec.attribute(name, float(std::get<double>(value)));
+    } else {
+      spec.attribute(name, metadata_string(value));
+    }
+  }
+  spec.attribute("Software", "rtiow");
+}
+
+}  // namespace
+
+bool is_writable_image_path(const std::string& path) {
+  auto out = OIIO::ImageOutput::create(path);
+  return out != nullptr;
+}
+
+bool is_float_format(const std::string& path) {
+  const std::string ext = lowercase_extension(path);
+  return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
+}
+
+std::uint8_t encode_gamma2_8bit(float linear) {
+  const float v = std::sqrt(std::clamp(std::isnan(linear) ? 0.0f : linear, 0.0f, 1.0f));
+  return static_cast<std::uint8_t>(std::lround(v * 255.0f));
+}
+
+void write_image(const std::string& path, const Film& film, const Metadata& metadata) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) {
+    throw std::runtime_error("cannot write '" + path + "': no image format for extension '" +
+                             lowercase_extension(path) + "'");
+  }
+  const bool linear_float = is_float_format(path);
+  OIIO::ImageSpec spec(film.width(), film.height(), 3,
+                       linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  add_metadata(spec, metadata, linear_float);
+  if (!linear_float) spec.attribute("oiio:ColorSpace", "Gamma2.0");
+
+  std::vector<float> floats;
+  std::vector<std::uint8_t> bytes;
+  const void* data;
+  if (linear_float) {
+    floats.reserve(film.pixels().size() * 3);
+    for (const Color& c : film.pixels()) floats.insert(floats.end(), {c.x, c.y, c.z});
+    data = floats.data();
+  } else {
+    bytes.reserve(film.pixels().size() * 3);
+    for (const Color& c : film.pixels()) {
+      bytes.insert(bytes.end(),
+                   {encode_gamma2_8bit(c.x), encode_gamma2_8bit(c.y), encode_gamma2_8bit(c.z)});
+    }
+    data = bytes.data();
+  }
+
+  // The temporary keeps the extension (some writers look at it) and lives beside the
+  // target, so the final rename stays on one file system and is atomic.
+  const fs::path target(path);
+  std::string temporary_name = ".";
+  temporary_name.append(target.stem().string())
+      .append(".tmp-")
+      .append(std::to_string(::getpid()))
+      .append(target.extension().string());
+  const fs::path temporary = target.parent_path() / temporary_name;
+  const OIIO::TypeDesc format = linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+  const bool written = out->open(temporary.string(), spec) && out->write_image(format, data) &&
+                       out->close();
+  if (!written) {
+    const std::string reason = out->geterror();
+    out.reset();
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw std::runtime_error("cannot write '" + path + "': " + reason);
+  }
+  std::error_code error;
+  fs::rename(temporary, target, error);
+  if (error) {
+    fs::remove(temporary, error);
+    throw std::runtime_error("cannot write '" + path + "': " + error.message());
+  }
+}
+
+}  // namespace rtiow

@@ -1,0 +1,33 @@
+#pragma once
+// Writing a film through OpenImageIO. The format follows the file extension: float formats
+// (.exr, .hdr, .pfm) get linear values, 8-bit formats (.png, .jpg, .ppm, .tif, ...) the
+// book's gamma 2. Writes go to a temporary file in the target directory that is renamed
+// over the target only when complete, so a failed write never leaves a truncated image.
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "core/film.h"
+
+namespace rtiow {
+
+// Metadata stored with the image: typed where the format allows, as strings otherwise.
+using MetadataValue = std::variant<std::int64_t, double, std::string>;
+using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
+
+// True if the extension names a format OpenImageIO can write.
+bool is_writable_image_path(const std::string& path);
+
+// True if the format of `path` stores linear floating-point pixels.
+bool is_float_format(const std::string& path);
+
+// Throws std::runtime_error with OIIO's reason on failure; the target is then untouched.
+void write_image(const std::string& path, const Film& film, const Metadata& metadata);
+
+// The book's gamma 2 and 8-bit quantisation, applied to one linear value.
+std::uint8_t encode_gamma2_8bit(float linear);
+
+}  // namespace rtiow

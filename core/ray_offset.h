@@ -1,0 +1,59 @@
+#pragma once
+// Where a hit lies and where the next ray starts. Instead of the book's fixed
+// t_min = 0.001 (wrong at large and small scales), the hit point is re-projected onto the
+// sphere, its floating-point error is bounded, and the spawned ray starts just outside that
+// error box on the side it leaves to (Woop/Wächter & Binder, Ray Tracing Gems ch. 6;
+// pbrt-v4 OffsetRayOrigin). The offset scales with the hit point, so it holds at any scale.
+
+#include <cmath>
+#include <limits>
+
+#include "core/hit.h"
+#include "core/ray.h"
+#include "core/sphere_set.h"
+#include "core/surface_hit.h"
+
+namespace rtiow {
+
+// gamma(n) bounds the relative error of n chained float operations (Higham).
+constexpr float float_error_gamma(int n) {
+  constexpr float u = std::numeric_limits<float>::epsilon() * 0.5f;
+  return float(n) * u / (1.0f - float(n) * u);
+}
+
+inline SurfaceHit make_surface_hit(const SphereSet& spheres, const Ray& ray, const Hit& hit) {
+  const Vec3 center = spheres.center(hit.sphere);
+  const float radius = spheres.radius[hit.sphere];
+  // Re-projection removes the error the ray parameter t carries along the ray.
+  Vec3 offset = ray.at(hit.t) - center;
+  const float dist = length(offset);
+  if (dist > 0.0f) offset *= std::abs(radius) / dist;
+  SurfaceHit s;
+  s.point = center + offset;
+  // Bound on |computed - exact|: a handful of roundings of quantities no larger than
+  // |center| and |offset|, componentwise.
+  s.point_error = float_error_gamma(7) * (abs(center) + abs(offset));
+  const Vec3 outward = offset / radius;  // negative radius flips it: hollow spheres
+  s.front_face = dot(ray.direction, outward) < 0.0f;
+  s.normal = s.front_face ? outward : -outward;
+  s.material = spheres.material[hit.sphere];
+  return s;
+}
+
+// A ray leaving the surface in `direction`, with an origin outside the hit point's error box.
+inline Ray spawn_ray(const SurfaceHit& s, const Vec3& direction) {
+  const float d = dot(abs(s.normal), s.point_error);
+  Vec3 offset = d * s.normal;
+  if (dot(direction, s.normal) < 0.0f) offset = -offset;
+  Vec3 origin = s.point + offset;
+  // Round away from the surface so rounding in the addition cannot pull the origin back.
+  auto away = [](float p, float o) {
+    if (o > 0.0f) return std::nextafter(p, std::numeric_limits<float>::infinity());
+    if (o < 0.0f) return std::nextafter(p, -std::numeric_limits<float>::infinity());
+    return p;
+  };
+  origin = {away(origin.x, offset.x), away(origin.y, offset.y), away(origin.z, offset.z)};
+  return Ray{origin, direction};
+}
+
+}  // namespace rtiow

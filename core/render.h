@@ -1,0 +1,52 @@
+#pragma once
+// One render: a scene, settings and a seed in, a film out. The result is a pure function
+// of (scene, settings without `threads`, seed): identical for any thread count and for
+// either accelerator.
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+
+#include "core/film.h"
+#include "core/scene.h"
+
+namespace rtiow {
+
+enum class AccelKind { Embree, Naive };
+
+std::string to_string(AccelKind kind);
+AccelKind parse_accel(const std::string& name);  // throws InvalidInput
+
+struct RenderSettings {
+  int width = 0;
+  int height = 0;
+  int samples_per_pixel = 1;
+  int max_depth = 50;
+  std::uint64_t seed = 0;
+  int threads = 0;  // 0: all cores
+  AccelKind accel = AccelKind::Embree;
+};
+
+// Throws InvalidInput naming the setting: non-positive size or spp, negative depth,
+// an image too large to hold in memory, negative threads.
+void validate(const RenderSettings& settings);
+
+// Read by another thread while the render runs (the progress display).
+struct RenderProgress {
+  std::atomic<std::uint64_t> pixels_done{0};
+  std::atomic<std::uint64_t> rays_traced{0};
+};
+
+struct RenderResult {
+  Film film;
+  double build_seconds = 0.0;   // accelerator construction
+  double render_seconds = 0.0;  // the sample loop
+  std::uint64_t rays_traced = 0;
+};
+
+// Validates the scene's camera and the settings (throwing InvalidInput before any work),
+// builds the accelerator and renders.
+RenderResult render(const Scene& scene, const RenderSettings& settings,
+                    RenderProgress* progress = nullptr);
+
+}  // namespace rtiow

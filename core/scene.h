@@ -1,0 +1,36 @@
+#pragma once
+// A scene: what the renderer models and nothing more. Spheres with materials, a
+// background, a camera, and the image settings the scene was composed for.
+
+#include <string>
+#include <vector>
+
+#include "core/background.h"
+#include "core/camera.h"
+#include "core/sphere_set.h"
+#include "materials/material.h"
+
+namespace rtiow {
+
+struct ImageSettings {
+  int width = 400;
+  double aspect_ratio = 16.0 / 9.0;  // height = round(width / aspect_ratio) unless given
+  int samples_per_pixel = 100;
+  int max_depth = 50;
+};
+
+struct Scene {
+  std::string name;
+  SphereSet spheres;
+  std::vector<Material> materials;
+  Background background;
+  CameraSettings camera;
+  ImageSettings image;
+
+  std::uint32_t add_material(const Material& m) {
+    materials.push_back(m);
+    return static_cast<std::uint32_t>(materials.size() - 1);
+  }
+};
+
+}  // namespace rtiow

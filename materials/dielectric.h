@@ -1,0 +1,34 @@
+#pragma once
+// Dielectric (glass, water, a bubble): reflects with Schlick's probability, refracts
+// otherwise by Snell's law, and reflects totally past the critical angle. Nothing is absorbed.
+
+#include <cmath>
+
+#include "core/rng.h"
+#include "core/surface_hit.h"
+#include "materials/fresnel.h"
+
+namespace rtiow {
+
+struct Dielectric {
+  float ior = 1.5f;  // index of refraction inside, relative to outside
+};
+
+inline bool scatter(const Dielectric& m, const Vec3& in_direction, const SurfaceHit& hit,
+                    SampleStream& rng, Color& attenuation, Vec3& out_direction) {
+  attenuation = Color{1.0f, 1.0f, 1.0f};
+  const float eta = hit.front_face ? 1.0f / m.ior : m.ior;
+  const Vec3 unit = normalize(in_direction);
+  const float cos_theta = std::min(dot(-unit, hit.normal), 1.0f);
+  const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+  const bool total_internal_reflection = eta * sin_theta > 1.0f;
+  const float u = rng.next_1d();  // drawn always, so the stream does not depend on the branch
+  if (total_internal_reflection || schlick_reflectance(cos_theta, eta) > u) {
+    out_direction = reflect(unit, hit.normal);
+  } else {
+    out_direction = refract(unit, hit.normal, eta);
+  }
+  return true;
+}
+
+}  // namespace rtiow

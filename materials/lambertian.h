@@ -1,0 +1,25 @@
+#pragma once
+// Lambertian (ideal diffuse) reflection as in the book: the scattered direction is the
+// normal plus a uniform unit vector, which is cosine-distributed about the normal.
+
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "core/surface_hit.h"
+
+namespace rtiow {
+
+struct Lambertian {
+  Color albedo;
+};
+
+inline bool scatter(const Lambertian& m, const Vec3& /*in_direction*/, const SurfaceHit& hit,
+                    SampleStream& rng, Color& attenuation, Vec3& out_direction) {
+  const float u1 = rng.next_1d(), u2 = rng.next_1d();
+  out_direction = hit.normal + sample_unit_vector(u1, u2);
+  // The unit vector can cancel the normal; a zero direction would give NaNs downstream.
+  if (near_zero(out_direction)) out_direction = hit.normal;
+  attenuation = m.albedo;
+  return true;
+}
+
+}  // namespace rtiow
