@@ -27,6 +27,7 @@ struct RenderOptions {
   int threads = 0;
   std::string accel = "embree";
   bool quiet = false;
+  bool reproducible = false;
   std::vector<double> lookfrom, lookat, vup;
   std::optional<double> vfov, aperture, focus_distance;
 };
@@ -86,16 +87,17 @@ int list_scenes() {
 }
 
 Metadata make_metadata(const RenderOptions& o, const RenderSettings& s, const RenderResult& r) {
-  return {
+  Metadata metadata{
       {"scene", o.scene},
       {"scene_seed", std::int64_t(o.scene_seed)},
       {"spp", std::int64_t(s.samples_per_pixel)},
       {"depth", std::int64_t(s.max_depth)},
       {"seed", std::int64_t(s.seed)},
       {"accelerator", to_string(s.accel)},
-      {"render_seconds", r.render_seconds},
       {"rays_traced", std::int64_t(r.rays_traced)},
   };
+  if (!o.reproducible) metadata.emplace_back("render_seconds", r.render_seconds);
+  return metadata;
 }
 
 int run_render(const RenderOptions& o) {
@@ -130,7 +132,8 @@ int run_render(const RenderOptions& o) {
                  o.scene.c_str(), settings.width, settings.height, settings.samples_per_pixel,
                  settings.max_depth, to_string(settings.accel).c_str(),
                  settings.threads > 0 ? settings.threads : int(std::thread::hardware_concurrency()),
-                 result.render_seconds, rays, rays / result.render_seconds * 1e-6, output.c_str());
+                 result.render_seconds, rays, rays / result.render_seconds * 1e-6,
+                 std::filesystem::absolute(output).c_str());
   }
   return 0;
 }
@@ -161,6 +164,9 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--accel", o.accel, "Intersector: embree or naive (same image, other speed)")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
+  cmd->add_flag("--reproducible", o.reproducible,
+                "Leave wall-clock metadata (render time) out of the file, so the same scene, "
+                "settings and seed give a byte-identical file");
   cmd->add_option("--lookfrom", o.lookfrom, "Camera position x,y,z (overrides the scene)")
       ->expected(3)->delimiter(',');
   cmd->add_option("--lookat", o.lookat, "Point the camera looks at x,y,z")

@@ -1,0 +1,65 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/builtin_scenes.h"
+#include "core/embree_accel.h"
+#include "core/naive_accel.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+
+namespace rtiow {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Rays from random points in and around the cover scene in random directions: both
+// accelerators must report the same sphere at the same t, bit for bit.
+TEST(Accelerators, EmbreeAndNaiveFindIdenticalHits) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  const EmbreeAccel embree(scene.spheres);
+  const NaiveAccel naive(scene.spheres);
+  Pcg32 rng(3, 4);
+  int hits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 origin{-15 + 30 * rng.next_float(), 0.01f + 4 * rng.next_float(),
+                      -15 + 30 * rng.next_float()};
+    const Ray ray{origin, sample_unit_vector(rng.next_float(), rng.next_float())};
+    Hit a{}, b{};
+    const bool found_embree = embree.intersect(ray, kInf, a);
+    const bool found_naive = naive.intersect(ray, kInf, b);
+    ASSERT_EQ(found_embree, found_naive) << "ray " << i;
+    if (!found_embree) continue;
+    ++hits;
+    ASSERT_EQ(a.sphere, b.sphere) << "ray " << i;
+    ASSERT_EQ(a.t, b.t) << "ray " << i;
+    EXPECT_EQ(embree.occluded(ray, kInf), true);
+    EXPECT_EQ(naive.occluded(ray, a.t * 0.5f), embree.occluded(ray, a.t * 0.5f));
+  }
+  EXPECT_GT(hits, 5000);
+}
+
+TEST(Accelerators, RespectTMax) {
+  SphereSet spheres;
+  spheres.add({0, 0, -5}, 1.0f, 0);
+  const EmbreeAccel embree(spheres);
+  const NaiveAccel naive(spheres);
+  const Ray ray{{0, 0, 0}, {0, 0, -1}};
+  Hit h{};
+  EXPECT_TRUE(embree.intersect(ray, 4.5f, h));
+  EXPECT_FLOAT_EQ(h.t, 4.0f);
+  EXPECT_FALSE(embree.intersect(ray, 3.5f, h));
+  EXPECT_FALSE(naive.intersect(ray, 3.5f, h));
+  EXPECT_FALSE(embree.occluded(ray, 3.5f));
+  EXPECT_TRUE(embree.occluded(ray, 4.5f));
+}
+
+TEST(Accelerators, EmptySceneHitsNothing) {
+  SphereSet spheres;
+  const EmbreeAccel embree(spheres);
+  Hit h{};
+  EXPECT_FALSE(embree.intersect(Ray{{0, 0, 0}, {1, 0, 0}}, kInf, h));
+}
+
+}  // namespace
+}  // namespace rtiow

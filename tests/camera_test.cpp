@@ -1,0 +1,98 @@
+#include "core/camera.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
+namespace rtiow {
+namespace {
+
+CameraSettings cover_like() {
+  CameraSettings c;
+  c.lookfrom = {13, 2, 3};
+  c.lookat = {0, 0, 0};
+  c.vfov_degrees = 20;
+  c.focus_distance = 10;
+  return c;
+}
+
+TEST(Camera, CentrePixelRayPointsAtLookat) {
+  const CameraSettings c = cover_like();
+  const Camera camera(c, 301, 201);
+  const Ray ray = camera.generate_ray(0.5f, 0.5f, 0.0f, 0.0f);
+  const Vec3 to_target = normalize(Vec3(c.lookat - c.lookfrom));
+  EXPECT_NEAR(dot(normalize(ray.direction), to_target), 1.0f, 1e-6f);
+  EXPECT_EQ(ray.origin, Vec3(c.lookfrom));
+}
+
+TEST(Camera, FilmCornersSpanTheFieldOfView) {
+  CameraSettings c;  // at the origin looking down -z, vfov 90
+  const Camera camera(c, 200, 100);
+  const Vec3 top = normalize(camera.generate_ray(0.5f, 0.0f, 0, 0).direction);
+  const Vec3 bottom = normalize(camera.generate_ray(0.5f, 1.0f, 0, 0).direction);
+  EXPECT_NEAR(std::acos(dot(top, bottom)) * 180.0f / 3.14159265f, 90.0f, 1e-3f);
+  EXPECT_GT(top.y, 0.0f) << "film t = 0 is the top row";
+  const Vec3 right = camera.generate_ray(1.0f, 0.5f, 0, 0).direction;
+  EXPECT_GT(right.x, 0.0f) << "film s = 1 is the right edge";
+  EXPECT_NEAR(right.x, 2.0f, 1e-5f) << "aspect 2 at focus distance 1";
+}
+
+TEST(Camera, LensRaysConvergeOnTheFocusPlane) {
+  CameraSettings c = cover_like();
+  c.aperture = 2.0;
+  const Camera camera(c, 64, 64);
+  ASSERT_TRUE(camera.has_lens());
+  const Ray pinhole = camera.generate_ray(0.3f, 0.7f, 0.5f, 0.5f);  // the lens centre
+  for (float u : {0.0f, 0.25f, 0.9f}) {
+    const Ray r = camera.generate_ray(0.3f, 0.7f, u, 1.0f - u);
+    EXPECT_GT(length(r.origin - pinhole.origin), 0.0f);
+    const Vec3 focus_point = r.at(1.0f), pinhole_focus = pinhole.at(1.0f);
+    EXPECT_LT(length(focus_point - pinhole_focus), 1e-4f * length(pinhole_focus));
+  }
+}
+
+void expect_refused(CameraSettings c, const std::string& needle) {
+  try {
+    validate(c);
+    ADD_FAILURE() << "accepted a camera that should be refused (" << needle << ")";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+TEST(Camera, RefusesDegenerateSettings) {
+  CameraSettings c = cover_like();
+  c.lookat = c.lookfrom;
+  expect_refused(c, "lookfrom equals lookat");
+  c = cover_like();
+  c.vup = c.lookat - c.lookfrom;
+  expect_refused(c, "vup is parallel");
+  c = cover_like();
+  c.vup = {0, 0, 0};
+  expect_refused(c, "vup is the zero vector");
+  for (double vfov : {0.0, -5.0, 180.0, 200.0}) {
+    c = cover_like();
+    c.vfov_degrees = vfov;
+    expect_refused(c, "vfov");
+  }
+  c = cover_like();
+  c.aperture = -1;
+  expect_refused(c, "aperture");
+  c = cover_like();
+  c.focus_distance = 0;
+  expect_refused(c, "focus distance");
+  c = cover_like();
+  c.lookfrom.x = std::numeric_limits<double>::quiet_NaN();
+  expect_refused(c, "lookfrom is not finite");
+}
+
+TEST(Camera, AcceptsExtremeButValidFieldsOfView) {
+  CameraSettings c = cover_like();
+  c.vfov_degrees = 1e-3;
+  EXPECT_NO_THROW(validate(c));
+  c.vfov_degrees = 179.9;
+  EXPECT_NO_THROW(validate(c));
+}
+
+}  // namespace
+}  // namespace rtiow

@@ -1,0 +1,150 @@
+// The rtiow executable as a user meets it: exit codes, one-line errors, no file written
+// on refusal, the file and its metadata on success.
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int exit_code;
+  std::string stdout_text;
+  std::string stderr_text;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// CTest runs the tests of this file in parallel processes: each test gets its own files.
+std::string test_name() {
+  return ::testing::UnitTest::GetInstance()->current_test_info()->name();
+}
+
+CommandResult run_rtiow(const std::string& args) {
+  const fs::path dir = RTIOW_TEST_OUTPUT_DIR;
+  const fs::path out = dir / (test_name() + ".stdout"), err = dir / (test_name() + ".stderr");
+  const std::string command = std::string(RTIOW_BINARY) + " " + args + " > " + out.string() +
+                              " 2> " + err.string();
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+fs::path output_path(const std::string& name) {
+  const fs::path p = fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + "-" + name);
+  fs::remove(p);
+  return p;
+}
+
+int count_lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+
+void expect_refused(const std::string& args, const std::string& needle) {
+  const fs::path out = output_path("refused.png");
+  const CommandResult r = run_rtiow("render -q -o " + out.string() + " " + args);
+  EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.stderr_text;
+  EXPECT_EQ(count_lines(r.stderr_text), 1) << "one-line error expected: " << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find(needle), std::string::npos) << r.stderr_text;
+  EXPECT_FALSE(fs::exists(out)) << "a refused render wrote " << out;
+}
+
+TEST(Cli, HelpIsAvailableAndTrue) {
+  const CommandResult top = run_rtiow("--help");
+  EXPECT_EQ(top.exit_code, 0);
+  EXPECT_NE(top.stdout_text.find("render"), std::string::npos);
+  const CommandResult render = run_rtiow("render --help");
+  EXPECT_EQ(render.exit_code, 0);
+  for (const char* option : {"--scene", "--output", "--width", "--height", "--spp", "--depth",
+                             "--seed", "--threads", "--quiet", "--accel", "--list-scenes"}) {
+    EXPECT_NE(render.stdout_text.find(option), std::string::npos) << option;
+  }
+}
+
+TEST(Cli, ListsTheBuiltinScenes) {
+  const CommandResult r = run_rtiow("render --list-scenes");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* scene : {"materials", "wide-angle", "viewpoint", "defocus", "cover"}) {
+    EXPECT_NE(r.stdout_text.find(scene), std::string::npos) << scene;
+  }
+}
+
+TEST(Cli, RefusesBadCamerasAndSettingsWithOneLineAndExitTwo) {
+  expect_refused("--scene materials --lookfrom 0,0,-1", "lookfrom equals lookat");
+  expect_refused("--scene materials --vup 0,0,-1", "vup is parallel");
+  expect_refused("--vfov 0", "vfov");
+  expect_refused("--vfov 180", "vfov");
+  expect_refused("--width 0", "width");
+  expect_refused("--spp 0", "spp");
+  expect_refused("--spp -4", "spp");
+  expect_refused("--scene nowhere", "unknown scene 'nowhere'");
+  expect_refused("--accel magic", "unknown accelerator");
+  expect_refused("--width ten", "--width");
+  expect_refused("--no-such-option", "no-such-option");
+}
+
+TEST(Cli, RefusesUnwritableOutputsBeforeRendering) {
+  const CommandResult bad_ext = run_rtiow("render -q --spp 1 --width 8 -o " +
+                                output_path("image.nosuchformat").string());
+  EXPECT_EQ(bad_ext.exit_code, 2);
+  EXPECT_NE(bad_ext.stderr_text.find("unknown image format"), std::string::npos);
+  const CommandResult bad_dir = run_rtiow("render -q --spp 1 --width 8 -o /nonexistent-dir/x.png");
+  EXPECT_EQ(bad_dir.exit_code, 2);
+  EXPECT_NE(bad_dir.stderr_text.find("does not exist"), std::string::npos);
+}
+
+TEST(Cli, WritesTheImageWithMetadataAndSaysWhere) {
+  const fs::path out = output_path("cli_materials.exr");
+  const CommandResult r = run_rtiow("render --scene materials --width 32 --spp 2 --depth 5 --seed 9 -o " +
+                          out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find(out.string()), std::string::npos) << "summary names the file";
+  EXPECT_NE(r.stderr_text.find("Mrays/s"), std::string::npos);
+
+  auto in = OIIO::ImageInput::open(out.string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec& spec = in->spec();
+  EXPECT_EQ(spec.width, 32);
+  EXPECT_EQ(spec.height, 18);
+  EXPECT_EQ(spec.format, OIIO::TypeDesc::FLOAT);
+  EXPECT_EQ(spec.get_int_attribute("rtiow:spp"), 2);
+  EXPECT_EQ(spec.get_int_attribute("rtiow:depth"), 5);
+  EXPECT_EQ(spec.get_int_attribute("rtiow:seed"), 9);
+  EXPECT_EQ(spec.get_string_attribute("rtiow:scene"), "materials");
+  EXPECT_EQ(spec.get_string_attribute("rtiow:accelerator"), "embree");
+  EXPECT_GT(spec.get_int_attribute("rtiow:rays_traced"), 0);
+  EXPECT_GT(spec.get_float_attribute("rtiow:render_seconds"), 0.0f);
+}
+
+TEST(Cli, EveryAdvertisedFormatIsWritten) {
+  for (const char* ext : {".png", ".exr", ".ppm", ".jpg", ".tif"}) {
+    const fs::path out = output_path(std::string("format") + ext);
+    const CommandResult r = run_rtiow("render -q --scene wide-angle --width 16 --spp 1 -o " + out.string());
+    EXPECT_EQ(r.exit_code, 0) << ext << ": " << r.stderr_text;
+    auto in = OIIO::ImageInput::open(out.string());
+    ASSERT_TRUE(in) << ext;
+    EXPECT_EQ(in->spec().width, 16) << ext;
+  }
+}
+
+TEST(Cli, ReproducibleFilesAreByteIdenticalAcrossThreadCounts) {
+  const fs::path one = output_path("threads1.png"), two = output_path("threads2.png");
+  const std::string common = "render -q --reproducible --scene cover --width 40 --spp 3 ";
+  ASSERT_EQ(run_rtiow(common + "--threads 1 -o " + one.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow(common + "--threads 2 -o " + two.string()).exit_code, 0);
+  const std::string a = slurp(one), b = slurp(two);
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a, b) << "files differ between 1 and 2 threads";
+}
+
+}  // namespace

@@ -1,0 +1,114 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "materials/material.h"
+
+namespace rtiow {
+namespace {
+
+SurfaceHit hit_facing_up(bool front_face) {
+  SurfaceHit h{};
+  h.point = {0, 0, 0};
+  h.normal = {0, 1, 0};
+  h.front_face = front_face;
+  return h;
+}
+
+TEST(Fresnel, SchlickAtNormalIncidenceIsR0) {
+  for (float n : {1.0f, 1.33f, 1.5f, 2.4f}) {
+    const float r0 = ((1 - n) / (1 + n)) * ((1 - n) / (1 + n));
+    EXPECT_FLOAT_EQ(schlick_reflectance(1.0f, n), r0);
+    EXPECT_FLOAT_EQ(schlick_reflectance(1.0f, 1.0f / n), r0) << "R0 is symmetric in eta";
+  }
+  EXPECT_NEAR(schlick_reflectance(1.0f, 1.5f), 0.04f, 1e-6f);
+  EXPECT_FLOAT_EQ(schlick_reflectance(0.0f, 1.5f), 1.0f) << "grazing incidence reflects fully";
+}
+
+TEST(Dielectric, TotalInternalReflectionBeyondTheCriticalAngle) {
+  // From inside glass (n = 1.5) the critical angle is asin(1/1.5) = 41.8 degrees.
+  const Material glass = Dielectric{1.5f};
+  const float theta = 60.0f * 3.14159265f / 180.0f;
+  const Vec3 in{std::sin(theta), -std::cos(theta), 0};
+  for (std::uint64_t i = 0; i < 200; ++i) {
+    SampleStream rng(1, 0, 0, i);
+    Color attenuation;
+    Vec3 out;
+    ASSERT_TRUE(scatter(glass, in, hit_facing_up(false), rng, attenuation, out));
+    EXPECT_NEAR(out.y, -in.y, 1e-6f) << "always reflected";
+    EXPECT_EQ(attenuation, (Color{1, 1, 1}));
+  }
+}
+
+TEST(Dielectric, ReflectsWithSchlicksProbability) {
+  const Material glass = Dielectric{1.5f};
+  const Vec3 in{0, -1, 0};  // normal incidence: reflect with probability 0.04
+  int reflected = 0;
+  const int n = 100000;
+  for (int i = 0; i < n; ++i) {
+    SampleStream rng(2, 0, 0, std::uint64_t(i));
+    Color attenuation;
+    Vec3 out;
+    scatter(glass, in, hit_facing_up(true), rng, attenuation, out);
+    if (out.y > 0) ++reflected;
+  }
+  // Binomial(n, 0.04): sd = 62; 5 sd.
+  EXPECT_NEAR(reflected, 0.04 * n, 310);
+}
+
+TEST(Dielectric, IndexOneIsInvisible) {
+  const Material air = Dielectric{1.0f};
+  const Vec3 in = normalize(Vec3{0.3f, -1, 0.2f});
+  SampleStream rng(3, 0, 0, 0);
+  Color attenuation;
+  Vec3 out;
+  scatter(air, in, hit_facing_up(true), rng, attenuation, out);
+  EXPECT_NEAR(length(out - in), 0.0f, 1e-6f);
+}
+
+TEST(Metal, PolishedMetalReflectsExactly) {
+  const Material mirror = make_metal({0.9f, 0.8f, 0.7f}, 0.0f);
+  SampleStream rng(4, 0, 0, 0);
+  Color attenuation;
+  Vec3 out;
+  ASSERT_TRUE(scatter(mirror, Vec3{1, -1, 0}, hit_facing_up(true), rng, attenuation, out));
+  EXPECT_NEAR(length(out - normalize(Vec3{1, 1, 0})), 0.0f, 1e-6f);
+  EXPECT_EQ(attenuation, (Color{0.9f, 0.8f, 0.7f}));
+}
+
+TEST(Metal, FuzzIsClampedToOneAndAbsorbsBelowTheSurface) {
+  EXPECT_EQ(make_metal({1, 1, 1}, 3.0f).fuzz, 1.0f);
+  const Material rough = make_metal({1, 1, 1}, 1.0f);
+  const Vec3 grazing = normalize(Vec3{1, -0.05f, 0});
+  int absorbed = 0;
+  for (std::uint64_t i = 0; i < 1000; ++i) {
+    SampleStream rng(5, 0, 0, i);
+    Color attenuation;
+    Vec3 out;
+    if (!scatter(rough, grazing, hit_facing_up(true), rng, attenuation, out)) {
+      ++absorbed;
+      EXPECT_LE(dot(out, Vec3{0, 1, 0}), 0.0f);
+    }
+  }
+  EXPECT_GT(absorbed, 100) << "fuzz 1 at grazing incidence sends many rays below";
+}
+
+TEST(Lambertian, ScattersIntoTheUpperHemisphere) {
+  const Material diffuse = Lambertian{{0.5f, 0.5f, 0.5f}};
+  double mean_cos = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    SampleStream rng(6, 0, 0, std::uint64_t(i));
+    Color attenuation;
+    Vec3 out;
+    ASSERT_TRUE(scatter(diffuse, Vec3{0, -1, 0}, hit_facing_up(true), rng, attenuation, out));
+    ASSERT_TRUE(is_finite(out));
+    ASSERT_GE(out.y, 0.0f);
+    mean_cos += normalize(out).y;
+  }
+  // Cosine-distributed directions have E[cos theta] = 2/3.
+  EXPECT_NEAR(mean_cos / n, 2.0 / 3.0, 0.01);
+}
+
+}  // namespace
+}  // namespace rtiow
