@@ -1,6 +1,7 @@
 #include "core/camera.h"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -9,6 +10,12 @@
 
 namespace rtiow {
 namespace {
+
+std::string number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
 
 void require(bool ok, const std::string& message) {
   if (!ok) throw InvalidInput("camera: " + message);
@@ -29,11 +36,11 @@ void validate(const CameraSettings& s) {
           "vup is parallel to the view direction (lookat - lookfrom)");
   require(std::isfinite(s.vfov_degrees) && s.vfov_degrees > 0.0 && s.vfov_degrees < 180.0,
           "vfov must lie strictly between 0 and 180 degrees, got " +
-              std::to_string(s.vfov_degrees));
+              number(s.vfov_degrees));
   require(std::isfinite(s.aperture) && s.aperture >= 0.0,
-          "aperture must be finite and >= 0, got " + std::to_string(s.aperture));
+          "aperture must be finite and >= 0, got " + number(s.aperture));
   require(std::isfinite(s.focus_distance) && s.focus_distance > 0.0,
-          "focus distance must be finite and > 0, got " + std::to_string(s.focus_distance));
+          "focus distance must be finite and > 0, got " + number(s.focus_distance));
 }
 
 Camera::Camera(const CameraSettings& s, int image_width, int image_height) {
