@@ -7,6 +7,8 @@ endfunction()
 # rtiow_set_codegen(target): how hot code is compiled. No -ffast-math: renders must be
 # bit-identical across accelerators, and NaN checks must keep working.
 function(rtiow_set_codegen target)
+  # sqrt need not set errno: lets the naive loop vectorise, changes no result.
+  target_compile_options(${target} PRIVATE -fno-math-errno)
   if(RTIOW_NATIVE)
     target_compile_options(${target} PRIVATE -march=native)
   endif()

@@ -1,6 +1,9 @@
 #include "core/builtin_scenes.h"
 
+#include <charconv>
 #include <cmath>
+#include <cstring>
+#include <optional>
 #include <numbers>
 
 #include "core/error.h"
@@ -60,39 +63,8 @@ Scene defocus_scene() {
   return s;
 }
 
-// Chapter 13.1: the cover. A 22x22 grid of small spheres (80% diffuse, 15% metal, 5% glass)
-// around three big ones, drawn from the scene's own random stream in the book's order.
-Scene cover_scene(std::uint64_t scene_seed) {
-  Scene s;
-  Pcg32 rng(mix64(scene_seed), 0xc0ffee);
-  auto uniform = [&rng]() { return rng.next_float(); };
-  auto uniform_in = [&](float lo, float hi) { return lo + (hi - lo) * uniform(); };
-
-  s.spheres.reserve(22 * 22 + 4);
-  s.spheres.add({0.0f, -1000.0f, 0.0f}, 1000.0f, s.add_material(Lambertian{{0.5f, 0.5f, 0.5f}}));
-  const Vec3 keep_clear{4.0f, 0.2f, 0.0f};
-  for (int a = -11; a < 11; ++a) {
-    for (int b = -11; b < 11; ++b) {
-      const float choose_material = uniform();
-      const float x = float(a) + 0.9f * uniform();
-      const float z = float(b) + 0.9f * uniform();
-      const Vec3 center{x, 0.2f, z};
-      if (length(center - keep_clear) <= 0.9f) continue;
-      Material m;
-      if (choose_material < 0.8f) {
-        const Color c1{uniform(), uniform(), uniform()};
-        const Color c2{uniform(), uniform(), uniform()};
-        m = Lambertian{c1 * c2};
-      } else if (choose_material < 0.95f) {
-        const Color albedo{uniform_in(0.5f, 1.0f), uniform_in(0.5f, 1.0f),
-                           uniform_in(0.5f, 1.0f)};
-        m = make_metal(albedo, uniform_in(0.0f, 0.5f));
-      } else {
-        m = Dielectric{1.5f};
-      }
-      s.spheres.add(center, 0.2f, s.add_material(m));
-    }
-  }
+// The cover's three big spheres (glass, diffuse brown, polished metal) and its camera.
+void add_cover_big_spheres_and_camera(Scene& s) {
   s.spheres.add({0.0f, 1.0f, 0.0f}, 1.0f, s.add_material(Dielectric{1.5f}));
   s.spheres.add({-4.0f, 1.0f, 0.0f}, 1.0f, s.add_material(Lambertian{{0.4f, 0.2f, 0.1f}}));
   s.spheres.add({4.0f, 1.0f, 0.0f}, 1.0f, s.add_material(make_metal({0.7f, 0.6f, 0.5f}, 0.0f)));
@@ -104,6 +76,74 @@ Scene cover_scene(std::uint64_t scene_seed) {
   s.camera.aperture = 0.1;
   s.camera.focus_distance = 10.0;
   s.image = ImageSettings{1200, 3.0 / 2.0, 500, 50};
+}
+
+// A small sphere's material with the cover's odds, 80% diffuse, 15% metal, 5% glass, by
+// `choose` in [0,1), drawing its parameters from `rng` in the book's order.
+Material cover_material(float choose, Pcg32& rng) {
+  auto uniform = [&rng]() { return rng.next_float(); };
+  auto uniform_in = [&](float lo, float hi) { return lo + (hi - lo) * uniform(); };
+  if (choose < 0.8f) {
+    const Color c1{uniform(), uniform(), uniform()};
+    const Color c2{uniform(), uniform(), uniform()};
+    return Lambertian{c1 * c2};
+  }
+  if (choose < 0.95f) {
+    const Color albedo{uniform_in(0.5f, 1.0f), uniform_in(0.5f, 1.0f), uniform_in(0.5f, 1.0f)};
+    return make_metal(albedo, uniform_in(0.0f, 0.5f));
+  }
+  return Dielectric{1.5f};
+}
+
+// Chapter 13.1: the cover. A 22x22 grid of small spheres (80% diffuse, 15% metal, 5% glass)
+// around three big ones, drawn from the scene's own random stream in the book's order.
+Scene cover_scene(std::uint64_t scene_seed) {
+  Scene s;
+  Pcg32 rng(mix64(scene_seed), 0xc0ffee);
+  s.spheres.reserve(22 * 22 + 4);
+  s.spheres.add({0.0f, -1000.0f, 0.0f}, 1000.0f, s.add_material(Lambertian{{0.5f, 0.5f, 0.5f}}));
+  const Vec3 keep_clear{4.0f, 0.2f, 0.0f};
+  for (int a = -11; a < 11; ++a) {
+    for (int b = -11; b < 11; ++b) {
+      const float choose = rng.next_float();
+      const float x = float(a) + 0.9f * rng.next_float();
+      const float z = float(b) + 0.9f * rng.next_float();
+      const Vec3 center{x, 0.2f, z};
+      if (length(center - keep_clear) <= 0.9f) continue;
+      s.spheres.add(center, 0.2f, s.add_material(cover_material(choose, rng)));
+    }
+  }
+  add_cover_big_spheres_and_camera(s);
+  return s;
+}
+
+// The scaling family: the cover's ground, big spheres and camera, and exactly N small
+// spheres (radius 0.2, one per unit cell, the cover's material mix) filling cells outwards
+// from the origin, so density stays the cover's while the field grows as sqrt(N).
+Scene sphere_field_scene(std::uint64_t count, std::uint64_t scene_seed) {
+  Scene s;
+  Pcg32 rng(mix64(scene_seed), 0xf1e1d);
+  s.spheres.reserve(count + 4);
+  s.materials.reserve(count + 4);
+  s.spheres.add({0.0f, -1000.0f, 0.0f}, 1000.0f, s.add_material(Lambertian{{0.5f, 0.5f, 0.5f}}));
+
+  // Cells in rings of growing Chebyshev radius; skip those under the three big spheres.
+  auto blocked = [](int a, int b) { return b >= -2 && b <= 1 && (a >= -6 && a <= 5); };
+  std::uint64_t placed = 0;
+  for (int ring = 0; placed < count; ++ring) {
+    for (int a = -ring - 1; a <= ring && placed < count; ++a) {
+      for (int b = -ring - 1; b <= ring && placed < count; ++b) {
+        const bool on_ring = a == -ring - 1 || a == ring || b == -ring - 1 || b == ring;
+        if (!on_ring || blocked(a, b)) continue;
+        const float choose = rng.next_float();
+        const float x = float(a) + 0.1f + 0.8f * rng.next_float();
+        const float z = float(b) + 0.1f + 0.8f * rng.next_float();
+        s.spheres.add({x, 0.2f, z}, 0.2f, s.add_material(cover_material(choose, rng)));
+        ++placed;
+      }
+    }
+  }
+  add_cover_big_spheres_and_camera(s);
   return s;
 }
 
@@ -130,18 +170,40 @@ const std::vector<Entry>& registry() {
   return entries;
 }
 
+constexpr const char* kFieldPrefix = "spheres:";
+constexpr std::uint64_t kMaxFieldSpheres = 100'000'000;
+
+// N of "spheres:N", or nothing when `name` is not of that form; throws when N is bad.
+std::optional<std::uint64_t> sphere_field_count(const std::string& name) {
+  if (name.rfind(kFieldPrefix, 0) != 0) return std::nullopt;
+  const std::string digits = name.substr(std::strlen(kFieldPrefix));
+  std::uint64_t n = 0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || n < 1 ||
+      n > kMaxFieldSpheres) {
+    throw InvalidInput("scene '" + name + "': N must be a whole number from 1 to 100000000");
+  }
+  return n;
+}
+
 }  // namespace
 
 const std::vector<BuiltinScene>& builtin_scenes() {
   static const std::vector<BuiltinScene> infos = [] {
     std::vector<BuiltinScene> v;
     for (const auto& e : registry()) v.push_back(e.info);
+    v.push_back({"spheres:N", "N small spheres on the cover's ground, for scaling (e.g. spheres:100000)"});
     return v;
   }();
   return infos;
 }
 
 Scene make_builtin_scene(const std::string& name, std::uint64_t scene_seed) {
+  if (const auto count = sphere_field_count(name)) {
+    Scene s = sphere_field_scene(*count, scene_seed);
+    s.name = name;
+    return s;
+  }
   for (const auto& e : registry()) {
     if (e.info.name == name) {
       Scene s = e.make(scene_seed);

@@ -3,6 +3,8 @@
 // structure-of-arrays directly and calling the same sphere test as the Embree callback.
 // It is the honest baseline Embree is measured against, and the reference for its hits.
 
+#include <algorithm>
+#include <cstddef>
 #include <limits>
 
 #include "core/hit.h"
@@ -17,18 +19,29 @@ class NaiveAccel {
 
   static constexpr const char* name() { return "naive"; }
 
-  // Closest hit with 0 < t < t_max.
+  // Closest hit with 0 < t < t_max. Spheres go in blocks: a branch-free pass the
+  // compiler vectorises computes every distance of the block, then a scalar pass picks the
+  // nearest. The minimum is the same as a one-by-one loop's, bit for bit.
   bool intersect(const Ray& ray, float t_max, Hit& hit) const {
     const SphereSet& s = *spheres_;
     const std::size_t n = s.size();
     float closest = t_max;
     std::uint32_t found = kNone;
-    for (std::size_t i = 0; i < n; ++i) {
-      float t;
-      const Vec3 c{s.center_x[i], s.center_y[i], s.center_z[i]};
-      if (intersect_sphere(c, s.radius[i], ray, 0.0f, closest, t)) {
-        closest = t;
-        found = static_cast<std::uint32_t>(i);
+    alignas(64) float distance[kBlock];
+    for (std::size_t begin = 0; begin < n; begin += kBlock) {
+      const std::size_t count = std::min(kBlock, n - begin);
+      const float* cx = s.center_x.data() + begin;
+      const float* cy = s.center_y.data() + begin;
+      const float* cz = s.center_z.data() + begin;
+      const float* radius = s.radius.data() + begin;
+      for (std::size_t i = 0; i < count; ++i) {
+        distance[i] = sphere_hit_distance(Vec3{cx[i], cy[i], cz[i]}, radius[i], ray, 0.0f, closest);
+      }
+      for (std::size_t i = 0; i < count; ++i) {
+        if (distance[i] < closest) {
+          closest = distance[i];
+          found = static_cast<std::uint32_t>(begin + i);
+        }
       }
     }
     if (found == kNone) return false;
@@ -47,6 +60,7 @@ class NaiveAccel {
   }
 
  private:
+  static constexpr std::size_t kBlock = 256;
   static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   const SphereSet* spheres_;
 };

@@ -8,17 +8,21 @@
 // away, and the two roots come from q = -(b' + sign(b') sqrt(disc)) without subtracting
 // nearly equal numbers.
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/ray.h"
 
 namespace rtiow {
 
-// Nearest root t of the ray against the sphere with t_min < t < t_max. Negative radii
-// (the book's hollow spheres) intersect like their absolute value.
+// Distance to the nearest root t with t_min < t < t_max, or +infinity when there is none.
+// Written without branches (selects only) so that the naive loop vectorises it; the
+// vectorised and scalar evaluations perform the same IEEE operations and agree bit for bit.
+// Negative radii (the book's hollow spheres) intersect like their absolute value.
 template <typename T>
-inline bool intersect_sphere(const Vec3T<T>& center, T radius, const RayT<T>& ray, T t_min,
-                             T t_max, T& t_hit) {
+inline T sphere_hit_distance(const Vec3T<T>& center, T radius, const RayT<T>& ray, T t_min,
+                             T t_max) {
   const Vec3T<T> f = ray.origin - center;
   const Vec3T<T>& d = ray.direction;
   const T a = dot(d, d);
@@ -27,25 +31,29 @@ inline bool intersect_sphere(const Vec3T<T>& center, T radius, const RayT<T>& ra
 
   const Vec3T<T> perpendicular = f - (half_b / a) * d;
   const T r = std::abs(radius);
-  const T l = length(perpendicular);
+  const T l = std::sqrt(dot(perpendicular, perpendicular));
   const T quarter_disc = a * ((r - l) * (r + l));
-  if (!(quarter_disc >= T(0))) return false;  // also rejects NaN
 
+  // A negative discriminant makes the root NaN, and every comparison below false.
   const T root = std::sqrt(quarter_disc);
   const T q = half_b < T(0) ? root - half_b : -(half_b + root);
-  T t0 = q / a;
-  T t1 = c / q;
-  if (t0 > t1) std::swap(t0, t1);
+  const T ta = q / a;
+  const T tb = c / q;
+  const T t0 = std::min(ta, tb), t1 = std::max(ta, tb);
 
-  if (t0 > t_min && t0 < t_max) {
-    t_hit = t0;
-    return true;
-  }
-  if (t1 > t_min && t1 < t_max) {
-    t_hit = t1;
-    return true;
-  }
-  return false;
+  constexpr T kNone = std::numeric_limits<T>::infinity();
+  const T far = (t1 > t_min && t1 < t_max) ? t1 : kNone;
+  return (t0 > t_min && t0 < t_max) ? t0 : far;
+}
+
+// The same test for callers that branch: true and the distance when there is a hit.
+template <typename T>
+inline bool intersect_sphere(const Vec3T<T>& center, T radius, const RayT<T>& ray, T t_min,
+                             T t_max, T& t_hit) {
+  const T t = sphere_hit_distance(center, radius, ray, t_min, t_max);
+  if (!(t < std::numeric_limits<T>::infinity())) return false;
+  t_hit = t;
+  return true;
 }
 
 }  // namespace rtiow
