@@ -8,6 +8,7 @@
 #include <functional>
 #include <vector>
 
+#include "app/bench_command.h"
 #include "app/render_command.h"
 #include "core/error.h"
 
@@ -17,7 +18,8 @@ int main(int argc, char** argv) {
                "rtiow"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "rtiow 0.1.0");
-  std::vector<std::function<int()>> commands{rtiow::add_render_command(app)};
+  std::vector<std::function<int()>> commands{rtiow::add_render_command(app),
+                                             rtiow::add_bench_command(app)};
 
   try {
     app.parse(argc, argv);

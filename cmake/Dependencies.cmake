@@ -12,6 +12,7 @@ rtiow_require(embree libembree-dev 3)
 rtiow_require(TBB libtbb-dev)
 rtiow_require(OpenImageIO libopenimageio-dev)
 rtiow_require(CLI11 libcli11-dev)
+rtiow_require(nlohmann_json nlohmann-json3-dev)
 find_package(Threads REQUIRED)
 
 # Debian 12's OpenImageIO config lists /usr/include/opencv4 among its include directories

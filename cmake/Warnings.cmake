@@ -7,8 +7,11 @@ endfunction()
 # rtiow_set_codegen(target): how hot code is compiled. No -ffast-math: renders must be
 # bit-identical across accelerators, and NaN checks must keep working.
 function(rtiow_set_codegen target)
-  # sqrt need not set errno: lets the naive loop vectorise, changes no result.
-  target_compile_options(${target} PRIVATE -fno-math-errno)
+  # -ffp-contract=off: GCC fuses a*b+c into an FMA by default in C++ (even in ISO mode), and
+  # would do so differently where the same function is inlined into different loops; the
+  # Embree callback and the naive loop must round identically.
+  # -fno-math-errno: sqrt need not set errno, which lets the naive loop vectorise.
+  target_compile_options(${target} PRIVATE -ffp-contract=off -fno-math-errno)
   if(RTIOW_NATIVE)
     target_compile_options(${target} PRIVATE -march=native)
   endif()

@@ -19,15 +19,16 @@ class NaiveAccel {
 
   static constexpr const char* name() { return "naive"; }
 
-  // Closest hit with 0 < t < t_max. Spheres go in blocks: a branch-free pass the
-  // compiler vectorises computes every distance of the block, then a scalar pass picks the
-  // nearest. The minimum is the same as a one-by-one loop's, bit for bit.
+  // Closest hit with 0 < t < t_max. Spheres go in blocks: a branch-free pass that the
+  // compiler vectorises marks the few spheres whose line the ray comes near
+  // (sphere_may_hit), then the full sphere test runs on those alone. The answer is the one
+  // a sphere-by-sphere loop gives, bit for bit.
   bool intersect(const Ray& ray, float t_max, Hit& hit) const {
     const SphereSet& s = *spheres_;
     const std::size_t n = s.size();
     float closest = t_max;
     std::uint32_t found = kNone;
-    alignas(64) float distance[kBlock];
+    alignas(64) unsigned char candidate[kBlock];
     for (std::size_t begin = 0; begin < n; begin += kBlock) {
       const std::size_t count = std::min(kBlock, n - begin);
       const float* cx = s.center_x.data() + begin;
@@ -35,11 +36,14 @@ class NaiveAccel {
       const float* cz = s.center_z.data() + begin;
       const float* radius = s.radius.data() + begin;
       for (std::size_t i = 0; i < count; ++i) {
-        distance[i] = sphere_hit_distance(Vec3{cx[i], cy[i], cz[i]}, radius[i], ray, 0.0f, closest);
+        candidate[i] = sphere_may_hit(Vec3{cx[i], cy[i], cz[i]}, radius[i], ray);
       }
       for (std::size_t i = 0; i < count; ++i) {
-        if (distance[i] < closest) {
-          closest = distance[i];
+        if (!candidate[i]) continue;
+        const float t =
+            sphere_hit_distance(Vec3{cx[i], cy[i], cz[i]}, radius[i], ray, 0.0f, closest);
+        if (t < closest) {
+          closest = t;
           found = static_cast<std::uint32_t>(begin + i);
         }
       }

@@ -5,7 +5,9 @@
 // error box on the side it leaves to (Woop/Wächter & Binder, Ray Tracing Gems ch. 6;
 // pbrt-v4 OffsetRayOrigin). The offset scales with the hit point, so it holds at any scale.
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/hit.h"
@@ -19,6 +21,16 @@ namespace rtiow {
 constexpr float float_error_gamma(int n) {
   constexpr float u = std::numeric_limits<float>::epsilon() * 0.5f;
   return float(n) * u / (1.0f - float(n) * u);
+}
+
+// The next representable float above v (pbrt-v4 NextFloatUp), inline: std::nextafter is a
+// library call on the per-bounce path.
+inline float next_float_up(float v) {
+  if (std::isinf(v) && v > 0.0f) return v;
+  if (v == -0.0f) v = 0.0f;  // also catches +0: step from +0 to the smallest subnormal
+  std::uint32_t bits = std::bit_cast<std::uint32_t>(v);
+  bits = v >= 0.0f ? bits + 1 : bits - 1;
+  return std::bit_cast<float>(bits);
 }
 
 inline SurfaceHit make_surface_hit(const SphereSet& spheres, const Ray& ray, const Hit& hit) {
@@ -48,8 +60,8 @@ inline Ray spawn_ray(const SurfaceHit& s, const Vec3& direction) {
   Vec3 origin = s.point + offset;
   // Round away from the surface so rounding in the addition cannot pull the origin back.
   auto away = [](float p, float o) {
-    if (o > 0.0f) return std::nextafter(p, std::numeric_limits<float>::infinity());
-    if (o < 0.0f) return std::nextafter(p, -std::numeric_limits<float>::infinity());
+    if (o > 0.0f) return next_float_up(p);
+    if (o < 0.0f) return -next_float_up(-p);
     return p;
   };
   origin = {away(origin.x, offset.x), away(origin.y, offset.y), away(origin.z, offset.z)};

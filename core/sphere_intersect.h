@@ -46,6 +46,18 @@ inline T sphere_hit_distance(const Vec3T<T>& center, T radius, const RayT<T>& ra
   return (t0 > t_min && t0 < t_max) ? t0 : far;
 }
 
+// A cheap conservative pre-test for loops over many spheres: false only where
+// sphere_hit_distance certainly finds no hit, because the ray's line passes farther from the
+// centre than the radius by a margin far above rounding error (no square root, one
+// division). Callers run the full test where it says true, so results do not change.
+template <typename T>
+inline bool sphere_may_hit(const Vec3T<T>& center, T radius, const RayT<T>& ray) {
+  const Vec3T<T> f = ray.origin - center;
+  const Vec3T<T>& d = ray.direction;
+  const Vec3T<T> perpendicular = f - (dot(f, d) / dot(d, d)) * d;
+  return !(dot(perpendicular, perpendicular) > radius * radius * T(1.0001));
+}
+
 // The same test for callers that branch: true and the distance when there is a hit.
 template <typename T>
 inline bool intersect_sphere(const Vec3T<T>& center, T radius, const RayT<T>& ray, T t_min,

@@ -1,0 +1,284 @@
+#include "app/bench_command.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/bench_report.h"
+#include "app/trace_rate.h"
+#include "core/builtin_scenes.h"
+#include "core/error.h"
+#include "core/render.h"
+
+namespace rtiow {
+namespace {
+
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+struct BenchOptions {
+  int width = 400, height = 225, spp = 8, depth = 20;
+  int scaling_width = 400, scaling_height = 225, scaling_spp = 4, scaling_depth = 8;
+  std::uint64_t max_spheres = 1'000'000;
+  double naive_budget = 60.0;
+  int repeat = 3;
+  int threads = 0;
+  std::string json_path = "bench.json";
+  std::string plot_path = "bench.png";
+};
+
+struct PointOptions {
+  std::string scene;
+  std::string accel = "embree";
+  int width = 400, height = 225, spp = 2, depth = 8, repeat = 3, threads = 0;
+  double budget = 60.0;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int all_threads(int threads) {
+  return threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+// Resident memory now (VmRSS), to separate the shared libraries mapped at start-up
+// (OpenImageIO alone brings in some 250) from what a scene and its BVH cost.
+double current_rss_mb() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmRSS:") {
+      double kib = 0;
+      status >> kib;
+      return kib / 1024.0;
+    }
+  }
+  return 0.0;
+}
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
+}
+
+// Renders `repeat` times (fewer once `budget` seconds are spent) and reports medians.
+json measure_render(const Scene& scene, RenderSettings settings, int repeat, double budget) {
+  std::vector<double> build, seconds;
+  std::uint64_t rays = 0;
+  double spent = 0.0;
+  for (int i = 0; i < repeat && (i == 0 || spent < budget); ++i) {
+    const RenderResult r = render(scene, settings);
+    build.push_back(r.build_seconds);
+    seconds.push_back(r.render_seconds);
+    rays = r.rays_traced;
+    spent += r.build_seconds + r.render_seconds;
+  }
+  const double s = median(seconds);
+  return {{"accelerator", to_string(settings.accel)},
+          {"threads", all_threads(settings.threads)},
+          {"runs", seconds.size()},
+          {"build_seconds", median(build)},
+          {"render_seconds", s},
+          {"rays", rays},
+          {"mrays_per_second", double(rays) / s * 1e-6}};
+}
+
+int run_point(const PointOptions& o) {
+  const double baseline_mb = current_rss_mb();
+  const auto scene_start = Clock::now();
+  const Scene scene = make_builtin_scene(o.scene, 1);
+  const double scene_seconds = std::chrono::duration<double>(Clock::now() - scene_start).count();
+  RenderSettings settings;
+  settings.width = o.width, settings.height = o.height;
+  settings.samples_per_pixel = o.spp, settings.max_depth = o.depth;
+  settings.threads = o.threads;
+  settings.accel = parse_accel(o.accel);
+  json result = measure_render(scene, settings, o.repeat, o.budget);
+  result["scene"] = o.scene;
+  result["spheres"] = scene.spheres.size();
+  result["scene_seconds"] = scene_seconds;
+  result["peak_rss_mb"] = peak_rss_mb();
+  result["startup_rss_mb"] = baseline_mb;
+  std::printf("%s\n", result.dump().c_str());
+  return 0;
+}
+
+// Runs one scaling point in a child process and returns its JSON line.
+json run_point_in_child(const BenchOptions& o, std::uint64_t spheres, const std::string& accel,
+                        double budget) {
+  const std::string exe = std::filesystem::read_symlink("/proc/self/exe").string();
+  const std::string command =
+      exe + " bench-point --scene spheres:" + std::to_string(spheres) + " --accel " + accel +
+      " --width " + std::to_string(o.scaling_width) + " --height " +
+      std::to_string(o.scaling_height) + " --spp " + std::to_string(o.scaling_spp) +
+      " --depth " + std::to_string(o.scaling_depth) + " --repeat " + std::to_string(o.repeat) +
+      " --threads " + std::to_string(o.threads) + " --budget " + std::to_string(budget);
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  if (!pipe) throw std::runtime_error("bench: cannot start " + command);
+  std::string output;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe.get())) output += buffer;
+  const int status = pclose(pipe.release());
+  if (status != 0) {
+    throw std::runtime_error("bench: the point spheres:" + std::to_string(spheres) + " with " +
+                             accel + " failed (exit status " + std::to_string(status) + ")");
+  }
+  return json::parse(output);
+}
+
+json bench_cover(const BenchOptions& o) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  RenderSettings settings;
+  settings.width = o.width, settings.height = o.height;
+  settings.samples_per_pixel = o.spp, settings.max_depth = o.depth;
+  settings.threads = o.threads;
+
+  json cover = {{"scene", "cover"}, {"spheres", scene.spheres.size()}, {"width", o.width},
+                {"height", o.height}, {"spp", o.spp}, {"depth", o.depth}};
+  std::fprintf(stderr, "bench: cover scene, embree...\n");
+  cover["embree"] = measure_render(scene, settings, o.repeat, 1e9);
+  std::fprintf(stderr, "bench: cover scene, naive...\n");
+  settings.accel = AccelKind::Naive;
+  cover["naive"] = measure_render(scene, settings, o.repeat, 1e9);
+  std::fprintf(stderr, "bench: cover scene, embree on 1 thread...\n");
+  settings.accel = AccelKind::Embree;
+  settings.threads = 1;
+  cover["embree_1_thread"] = measure_render(scene, settings, o.repeat, 1e9);
+
+  std::fprintf(stderr, "bench: cover scene, raw rtcIntersect1 on the rays the render traced...\n");
+  settings.threads = o.threads;
+  const std::vector<Ray> rays = record_traced_rays(scene, settings);
+  std::vector<double> rates;
+  for (int i = 0; i < o.repeat; ++i) {
+    rates.push_back(measure_trace_rate(scene, rays, o.threads).mrays_per_second());
+  }
+  cover["trace"] = {{"rays", rays.size()}, {"threads", all_threads(o.threads)},
+                    {"mrays_per_second", median(rates)}};
+  return cover;
+}
+
+json bench_scaling(const BenchOptions& o) {
+  json points = json::array();
+  double last_naive_seconds = 0.0;
+  std::uint64_t last_naive_spheres = 0;
+  bool naive_running = true;
+  for (std::uint64_t n = 10; n <= o.max_spheres; n *= 10) {
+    json point = {{"n", n}};
+    std::fprintf(stderr, "bench: spheres:%llu, embree...\n", (unsigned long long)n);
+    point["embree"] = run_point_in_child(o, n, "embree", 1e9);
+    if (naive_running && last_naive_spheres > 0) {
+      // The naive loop's cost grows linearly with the sphere count.
+      const double predicted = last_naive_seconds * double(n + 4) / double(last_naive_spheres);
+      if (predicted > o.naive_budget) {
+        naive_running = false;
+        point["naive_skipped"] = "predicted " + std::to_string(int(predicted)) +
+                                 " s per render, over the budget of " +
+                                 std::to_string(int(o.naive_budget)) + " s";
+      }
+    }
+    if (naive_running) {
+      std::fprintf(stderr, "bench: spheres:%llu, naive...\n", (unsigned long long)n);
+      point["naive"] = run_point_in_child(o, n, "naive", o.naive_budget);
+      last_naive_seconds = point["naive"]["render_seconds"].get<double>();
+      last_naive_spheres = point["naive"]["spheres"].get<std::uint64_t>();
+    }
+    points.push_back(point);
+  }
+  return points;
+}
+
+int run_bench(const BenchOptions& o) {
+  if (o.repeat < 1) throw InvalidInput("--repeat must be >= 1");
+  if (o.naive_budget <= 0) throw InvalidInput("--naive-budget must be > 0");
+  if (o.max_spheres < 10) throw InvalidInput("--max-spheres must be >= 10");
+  for (const std::string& path : {o.json_path, o.plot_path}) {
+    const auto parent = std::filesystem::path(path).parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent)) {
+      throw InvalidInput("output '" + path + "': directory '" + parent.string() +
+                         "' does not exist");
+    }
+  }
+  RenderSettings check;
+  check.width = o.width, check.height = o.height, check.samples_per_pixel = o.spp;
+  check.max_depth = o.depth, check.threads = o.threads;
+  validate(check);
+
+  json results = {{"threads", all_threads(o.threads)}, {"repeat", o.repeat},
+                  {"scaling_settings",
+                   {{"width", o.scaling_width}, {"height", o.scaling_height},
+                    {"spp", o.scaling_spp}, {"depth", o.scaling_depth},
+                    {"naive_budget_seconds", o.naive_budget}}}};
+  results["cover"] = bench_cover(o);
+  results["scaling"] = bench_scaling(o);
+
+  print_bench_table(results);
+  write_bench_json(results, o.json_path);
+  std::printf("\nfigures: %s\n", std::filesystem::absolute(o.json_path).c_str());
+  plot_bench(o.json_path, o.plot_path);
+  return 0;
+}
+
+}  // namespace
+
+std::function<int()> add_bench_command(CLI::App& app) {
+  auto options = std::make_shared<BenchOptions>();
+  BenchOptions& o = *options;
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "Measure Embree against the naive loop: cover scene, scaling to 1M spheres, raw "
+               "rtcIntersect1 rate, thread scaling; prints a table, writes JSON and a PNG plot");
+  cmd->add_option("--width", o.width, "Cover scene width")->capture_default_str();
+  cmd->add_option("--height", o.height, "Cover scene height")->capture_default_str();
+  cmd->add_option("--spp", o.spp, "Cover scene samples per pixel")->capture_default_str();
+  cmd->add_option("--depth", o.depth, "Cover scene depth")->capture_default_str();
+  cmd->add_option("--scaling-width", o.scaling_width, "spheres:N width")->capture_default_str();
+  cmd->add_option("--scaling-height", o.scaling_height, "spheres:N height")
+      ->capture_default_str();
+  cmd->add_option("--scaling-spp", o.scaling_spp, "spheres:N samples per pixel")
+      ->capture_default_str();
+  cmd->add_option("--scaling-depth", o.scaling_depth, "spheres:N depth")->capture_default_str();
+  cmd->add_option("--max-spheres", o.max_spheres, "Largest N of the series 10, 100, ...")
+      ->capture_default_str();
+  cmd->add_option("--naive-budget", o.naive_budget,
+                  "Seconds one naive render may take; larger N are skipped")
+      ->capture_default_str();
+  cmd->add_option("--repeat", o.repeat, "Runs per measurement; the median is reported")
+      ->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--json", o.json_path, "Where to write the figures")->capture_default_str();
+  cmd->add_option("--plot", o.plot_path, "Where to draw the PNG plot")->capture_default_str();
+
+  auto point = std::make_shared<PointOptions>();
+  CLI::App* point_cmd = app.add_subcommand("bench-point", "One scaling point (used by bench)");
+  point_cmd->group("");  // hidden from --help
+  point_cmd->add_option("--scene", point->scene)->required();
+  point_cmd->add_option("--accel", point->accel);
+  point_cmd->add_option("--width", point->width);
+  point_cmd->add_option("--height", point->height);
+  point_cmd->add_option("--spp", point->spp);
+  point_cmd->add_option("--depth", point->depth);
+  point_cmd->add_option("--repeat", point->repeat);
+  point_cmd->add_option("--threads", point->threads);
+  point_cmd->add_option("--budget", point->budget);
+
+  return [options, point, cmd, point_cmd] {
+    if (cmd->parsed()) return run_bench(*options);
+    if (point_cmd->parsed()) return run_point(*point);
+    return -1;
+  };
+}
+
+}  // namespace rtiow

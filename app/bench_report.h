@@ -1,0 +1,18 @@
+#pragma once
+// What `rtiow bench` shows and keeps: a table on stdout, the figures as JSON, a PNG plot.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace rtiow {
+
+void print_bench_table(const nlohmann::json& results);
+
+// Atomic: written to a temporary beside `path`, then renamed.
+void write_bench_json(const nlohmann::json& results, const std::string& path);
+
+// Draws Mrays/s against N (log-log, one line per accelerator) with Debian's python3 and
+// matplotlib. Without them it says so and draws nothing; the figures are in the JSON.
+void plot_bench(const std::string& json_path, const std::string& plot_path);
+
+}  // namespace rtiow

@@ -1,0 +1,96 @@
+// Micro-benchmarks (Google Benchmark): the sphere test, one rtcIntersect1 on the cover
+// scene, and one scatter of each material. Not part of the test run:
+//   build/bin/rtiow_microbench --benchmark_repetitions=5 --benchmark_report_aggregates_only
+
+#include <benchmark/benchmark.h>
+
+#include <limits>
+#include <vector>
+
+#include "core/builtin_scenes.h"
+#include "core/embree_accel.h"
+#include "core/naive_accel.h"
+#include "core/sampling.h"
+#include "core/sphere_intersect.h"
+#include "materials/material.h"
+
+namespace rtiow {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Random rays from around the cover's camera towards the scene: a realistic mix of hits
+// and misses.
+std::vector<Ray> cover_like_rays(std::size_t count) {
+  Pcg32 rng(9, 9);
+  std::vector<Ray> rays;
+  rays.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec3 origin{13.0f + rng.next_float(), 2.0f + rng.next_float(), 3.0f + rng.next_float()};
+    const Vec3 target{-6 + 12 * rng.next_float(), 2 * rng.next_float(), -6 + 12 * rng.next_float()};
+    rays.push_back(Ray{origin, normalize(target - origin)});
+  }
+  return rays;
+}
+
+void BM_SphereTest(benchmark::State& state) {
+  const auto rays = cover_like_rays(1024);
+  const Vec3 center{0, 1, 0};
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(sphere_hit_distance(center, 1.0f, rays[i++ & 1023], 0.0f, kInf));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SphereTest);
+
+void BM_EmbreeIntersect1Cover(benchmark::State& state) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  const EmbreeAccel embree(scene.spheres);
+  const auto rays = cover_like_rays(4096);
+  std::size_t i = 0;
+  Hit hit;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(embree.intersect(rays[i++ & 4095], kInf, hit));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_EmbreeIntersect1Cover);
+
+void BM_NaiveIntersectCover(benchmark::State& state) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  const NaiveAccel naive(scene.spheres);
+  const auto rays = cover_like_rays(4096);
+  std::size_t i = 0;
+  Hit hit;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(naive.intersect(rays[i++ & 4095], kInf, hit));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_NaiveIntersectCover);
+
+template <typename M>
+void BM_Scatter(benchmark::State& state, M material) {
+  const Material m = material;
+  SurfaceHit hit{};
+  hit.normal = {0, 1, 0};
+  hit.front_face = true;
+  const Vec3 in = normalize(Vec3{0.3f, -1.0f, 0.1f});
+  SampleStream rng(1, 2, 3, 4);
+  Color attenuation;
+  Vec3 out;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(scatter(m, in, hit, rng, attenuation, out));
+    benchmark::DoNotOptimize(out);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK_CAPTURE(BM_Scatter, lambertian, Lambertian{{0.5f, 0.5f, 0.5f}});
+BENCHMARK_CAPTURE(BM_Scatter, metal_fuzz_0_3, make_metal({0.8f, 0.8f, 0.8f}, 0.3f));
+BENCHMARK_CAPTURE(BM_Scatter, dielectric, Dielectric{1.5f});
+
+}  // namespace
+}  // namespace rtiow
+
+BENCHMARK_MAIN();
