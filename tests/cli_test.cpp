@@ -148,3 +148,34 @@ TEST(Cli, ReproducibleFilesAreByteIdenticalAcrossThreadCounts) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Cli, BenchWritesFiguresAndPlot) {
+  const fs::path json_path = output_path("bench.json"), plot = output_path("bench.png");
+  const CommandResult r = run_rtiow(
+      "bench --width 32 --height 18 --spp 1 --depth 4 --scaling-width 24 --scaling-height 14 "
+      "--scaling-spp 1 --scaling-depth 3 --max-spheres 100 --repeat 1 --json " +
+      json_path.string() + " --plot " + plot.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text << r.stdout_text;
+  EXPECT_NE(r.stdout_text.find("embree / naive"), std::string::npos) << r.stdout_text;
+  EXPECT_NE(r.stdout_text.find("render / raw trace rate"), std::string::npos);
+  const std::string figures = slurp(json_path);
+  for (const char* key : {"\"cover\"", "\"scaling\"", "\"trace\"", "\"embree_1_thread\"",
+                          "\"peak_rss_mb\"", "\"build_seconds\""}) {
+    EXPECT_NE(figures.find(key), std::string::npos) << key;
+  }
+  EXPECT_TRUE(fs::exists(plot)) << r.stdout_text;
+}
+
+TEST(Cli, SphereFieldScenesRenderAndRefuseBadCounts) {
+  const fs::path out = output_path("field.png");
+  EXPECT_EQ(run_rtiow("render -q --scene spheres:1000 --width 24 --spp 1 -o " + out.string())
+                .exit_code,
+            0);
+  EXPECT_TRUE(fs::exists(out));
+  expect_refused("--scene spheres:0", "N must be a whole number");
+  expect_refused("--scene spheres:12x", "N must be a whole number");
+}
+
+}  // namespace

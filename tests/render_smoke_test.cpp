@@ -94,6 +94,19 @@ TEST(Render, CoverLayoutFollowsTheSceneSeed) {
   EXPECT_LE(a.spheres.size(), 488u);
 }
 
+TEST(Render, SphereFieldHasExactlyNSmallSpheres) {
+  for (std::uint64_t n : {1u, 10u, 999u, 20000u}) {
+    const Scene s = make_builtin_scene("spheres:" + std::to_string(n), 1);
+    EXPECT_EQ(s.spheres.size(), n + 4) << "N small + ground + 3 big";
+    // No small sphere intersects a big one.
+    for (std::size_t i = 1; i <= n; ++i) {
+      for (std::size_t big = n + 1; big < n + 4; ++big) {
+        ASSERT_GT(length(s.spheres.center(i) - s.spheres.center(big)), 1.2f);
+      }
+    }
+  }
+}
+
 TEST(Render, RefusesInvalidSettingsBeforeWork) {
   const Scene scene = make_builtin_scene("materials", 1);
   RenderSettings settings = tiny(scene);
