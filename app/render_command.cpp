@@ -126,13 +126,14 @@ int run_render(const RenderOptions& o) {
 
   if (!o.quiet) {
     const double rays = double(result.rays_traced);
+    const int threads =
+        settings.threads > 0 ? settings.threads : int(std::thread::hardware_concurrency());
     std::fprintf(stderr,
-                 "rendered %s %dx%d, %d spp, depth %d, %s, %d threads: %.2f s, %.3g rays, "
+                 "rendered %s %dx%d, %d spp, depth %d, %s, %d thread%s: %.2f s, %.3g rays, "
                  "%.2f Mrays/s -> %s\n",
                  o.scene.c_str(), settings.width, settings.height, settings.samples_per_pixel,
-                 settings.max_depth, to_string(settings.accel).c_str(),
-                 settings.threads > 0 ? settings.threads : int(std::thread::hardware_concurrency()),
-                 result.render_seconds, rays, rays / result.render_seconds * 1e-6,
+                 settings.max_depth, to_string(settings.accel).c_str(), threads,
+                 threads == 1 ? "" : "s", result.render_seconds, rays, rays / result.render_seconds * 1e-6,
                  std::filesystem::absolute(output).c_str());
   }
   return 0;
@@ -149,7 +150,7 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--scene", o.scene, "Built-in scene to render (see --list-scenes)")
       ->capture_default_str();
   cmd->add_flag("--list-scenes", o.list_scenes, "List the built-in scenes and exit");
-  cmd->add_option("--scene-seed", o.scene_seed, "Seed of the cover scene's random layout")
+  cmd->add_option("--scene-seed", o.scene_seed, "Seed of the random layout of cover and spheres:N")
       ->capture_default_str();
   cmd->add_option("-o,--output", o.output,
                   "Output image; the format follows the extension (.png .exr .ppm .jpg .tif). "
