@@ -124,9 +124,9 @@ json run_point_in_child(const BenchOptions& o, std::uint64_t spheres, const std:
   const std::string command =
       exe + " bench-point --scene spheres:" + std::to_string(spheres) + " --accel " + accel +
       " --width " + std::to_string(o.scaling_width) + " --height " +
-      std::to_string(o.scaling_height) + " --spp " + std::to_string(o.scaling_spp) +
-      " --depth " + std::to_string(o.scaling_depth) + " --repeat " + std::to_string(o.repeat) +
-      " --threads " + std::to_string(o.threads) + " --budget " + std::to_string(budget);
+      std::to_string(o.scaling_height) + " --spp " + std::to_string(o.scaling_spp) + " --depth " +
+      std::to_string(o.scaling_depth) + " --repeat " + std::to_string(o.repeat) + " --threads " +
+      std::to_string(o.threads) + " --budget " + std::to_string(budget);
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
   if (!pipe) throw std::runtime_error("bench: cannot start " + command);
   std::string output;
@@ -147,8 +147,9 @@ json bench_cover(const BenchOptions& o) {
   settings.samples_per_pixel = o.spp, settings.max_depth = o.depth;
   settings.threads = o.threads;
 
-  json cover = {{"scene", "cover"}, {"spheres", scene.spheres.size()}, {"width", o.width},
-                {"height", o.height}, {"spp", o.spp}, {"depth", o.depth}};
+  json cover = {{"scene", "cover"}, {"spheres", scene.spheres.size()},
+                {"width", o.width}, {"height", o.height},
+                {"spp", o.spp},     {"depth", o.depth}};
   std::fprintf(stderr, "bench: cover scene, embree...\n");
   cover["embree"] = measure_render(scene, settings, o.repeat, 1e9);
   std::fprintf(stderr, "bench: cover scene, naive...\n");
@@ -166,7 +167,8 @@ json bench_cover(const BenchOptions& o) {
   for (int i = 0; i < o.repeat; ++i) {
     rates.push_back(measure_trace_rate(scene, rays, o.threads).mrays_per_second());
   }
-  cover["trace"] = {{"rays", rays.size()}, {"threads", all_threads(o.threads)},
+  cover["trace"] = {{"rays", rays.size()},
+                    {"threads", all_threads(o.threads)},
                     {"mrays_per_second", median(rates)}};
   return cover;
 }
@@ -217,10 +219,13 @@ int run_bench(const BenchOptions& o) {
   check.max_depth = o.depth, check.threads = o.threads;
   validate(check);
 
-  json results = {{"threads", all_threads(o.threads)}, {"repeat", o.repeat},
+  json results = {{"threads", all_threads(o.threads)},
+                  {"repeat", o.repeat},
                   {"scaling_settings",
-                   {{"width", o.scaling_width}, {"height", o.scaling_height},
-                    {"spp", o.scaling_spp}, {"depth", o.scaling_depth},
+                   {{"width", o.scaling_width},
+                    {"height", o.scaling_height},
+                    {"spp", o.scaling_spp},
+                    {"depth", o.scaling_depth},
                     {"naive_budget_seconds", o.naive_budget}}}};
   results["cover"] = bench_cover(o);
   results["scaling"] = bench_scaling(o);
@@ -238,15 +243,15 @@ std::function<int()> add_bench_command(CLI::App& app) {
   auto options = std::make_shared<BenchOptions>();
   BenchOptions& o = *options;
   CLI::App* cmd = app.add_subcommand(
-      "bench", "Measure Embree against the naive loop: cover scene, scaling to 1M spheres, raw "
-               "rtcIntersect1 rate, thread scaling; prints a table, writes JSON and a PNG plot");
+      "bench",
+      "Measure Embree against the naive loop: cover scene, scaling to 1M spheres, raw "
+      "rtcIntersect1 rate, thread scaling; prints a table, writes JSON and a PNG plot");
   cmd->add_option("--width", o.width, "Cover scene width")->capture_default_str();
   cmd->add_option("--height", o.height, "Cover scene height")->capture_default_str();
   cmd->add_option("--spp", o.spp, "Cover scene samples per pixel")->capture_default_str();
   cmd->add_option("--depth", o.depth, "Cover scene depth")->capture_default_str();
   cmd->add_option("--scaling-width", o.scaling_width, "spheres:N width")->capture_default_str();
-  cmd->add_option("--scaling-height", o.scaling_height, "spheres:N height")
-      ->capture_default_str();
+  cmd->add_option("--scaling-height", o.scaling_height, "spheres:N height")->capture_default_str();
   cmd->add_option("--scaling-spp", o.scaling_spp, "spheres:N samples per pixel")
       ->capture_default_str();
   cmd->add_option("--scaling-depth", o.scaling_depth, "spheres:N depth")->capture_default_str();

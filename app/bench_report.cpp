@@ -63,9 +63,10 @@ void print_bench_table(const json& r) {
     }
   }
   if (!r["scaling"].empty()) {
-    std::printf("  peak MB is the process's peak resident memory; %.0f MB of it is there at start-up "
-                "(shared libraries)\n",
-                r["scaling"][0]["embree"]["startup_rss_mb"].get<double>());
+    std::printf(
+        "  peak MB is the process's peak resident memory; %.0f MB of it is there at start-up "
+        "(shared libraries)\n",
+        r["scaling"][0]["embree"]["startup_rss_mb"].get<double>());
   }
   for (const json& p : r["scaling"]) {
     if (p.contains("naive_skipped")) {
@@ -95,8 +96,8 @@ void plot_bench(const std::string& json_path, const std::string& plot_path) {
     std::printf("plot: skipped (%s or %s missing)\n", python, script.c_str());
     return;
   }
-  const std::string command = std::string(python) + " '" + script.string() + "' '" + json_path +
-                              "' '" + plot_path + "'";
+  const std::string command =
+      std::string(python) + " '" + script.string() + "' '" + json_path + "' '" + plot_path + "'";
   if (std::system(command.c_str()) != 0) {
     std::printf("plot: skipped (%s failed; is python3-matplotlib installed?)\n", script.c_str());
     return;

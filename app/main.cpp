@@ -13,9 +13,10 @@
 #include "core/error.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"rtiow: a path tracer for the scenes of Ray Tracing in One Weekend, "
-               "built on Embree, oneTBB and OpenImageIO",
-               "rtiow"};
+  CLI::App app{
+      "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend, "
+      "built on Embree, oneTBB and OpenImageIO",
+      "rtiow"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "rtiow 0.1.0");
   std::vector<std::function<int()>> commands{rtiow::add_render_command(app),

@@ -32,7 +32,9 @@ struct RenderOptions {
   std::optional<double> vfov, aperture, focus_distance;
 };
 
-Vec3d to_vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+Vec3d to_vec3(const std::vector<double>& v) {
+  return {v[0], v[1], v[2]};
+}
 
 // The scene's own camera and image settings, overridden by whatever the user gave.
 void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& settings) {
@@ -72,8 +74,7 @@ void check_output_path(const std::string& path) {
   namespace fs = std::filesystem;
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent)) {
-    throw InvalidInput("output '" + path + "': directory '" + parent.string() +
-                       "' does not exist");
+    throw InvalidInput("output '" + path + "': directory '" + parent.string() + "' does not exist");
   }
   if (!is_writable_image_path(path)) {
     throw InvalidInput("output '" + path +
@@ -82,7 +83,8 @@ void check_output_path(const std::string& path) {
 }
 
 int list_scenes() {
-  for (const auto& s : builtin_scenes()) std::printf("%-16s %s\n", s.name.c_str(), s.summary.c_str());
+  for (const auto& s : builtin_scenes())
+    std::printf("%-16s %s\n", s.name.c_str(), s.summary.c_str());
   return 0;
 }
 
@@ -133,8 +135,8 @@ int run_render(const RenderOptions& o) {
                  "%.2f Mrays/s -> %s\n",
                  o.scene.c_str(), settings.width, settings.height, settings.samples_per_pixel,
                  settings.max_depth, to_string(settings.accel).c_str(), threads,
-                 threads == 1 ? "" : "s", result.render_seconds, rays, rays / result.render_seconds * 1e-6,
-                 std::filesystem::absolute(output).c_str());
+                 threads == 1 ? "" : "s", result.render_seconds, rays,
+                 rays / result.render_seconds * 1e-6, std::filesystem::absolute(output).c_str());
   }
   return 0;
 }
@@ -145,8 +147,9 @@ std::function<int()> add_render_command(CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
   RenderOptions& o = *options;
   CLI::App* cmd = app.add_subcommand(
-      "render", "Render a scene to an image (with no options: the book's cover at its final "
-                "settings, to cover.png)");
+      "render",
+      "Render a scene to an image (with no options: the book's cover at its final "
+      "settings, to cover.png)");
   cmd->add_option("--scene", o.scene, "Built-in scene to render (see --list-scenes)")
       ->capture_default_str();
   cmd->add_flag("--list-scenes", o.list_scenes, "List the built-in scenes and exit");
@@ -169,9 +172,11 @@ std::function<int()> add_render_command(CLI::App& app) {
                 "Leave wall-clock metadata (render time) out of the file, so the same scene, "
                 "settings and seed give a byte-identical file");
   cmd->add_option("--lookfrom", o.lookfrom, "Camera position x,y,z (overrides the scene)")
-      ->expected(3)->delimiter(',');
+      ->expected(3)
+      ->delimiter(',');
   cmd->add_option("--lookat", o.lookat, "Point the camera looks at x,y,z")
-      ->expected(3)->delimiter(',');
+      ->expected(3)
+      ->delimiter(',');
   cmd->add_option("--vup", o.vup, "Camera up vector x,y,z")->expected(3)->delimiter(',');
   cmd->add_option("--vfov", o.vfov, "Vertical field of view in degrees, in (0, 180)");
   cmd->add_option("--aperture", o.aperture, "Lens diameter (0: pinhole)");

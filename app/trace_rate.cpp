@@ -56,8 +56,8 @@ TraceRate measure_trace_rate(const Scene& scene, const std::vector<Ray>& rays, i
                         std::uint64_t local = 0;
                         Hit hit;
                         for (std::size_t i = range.begin(); i < range.end(); ++i) {
-                          local += embree.intersect(rays[i],
-                                                    std::numeric_limits<float>::infinity(), hit);
+                          local += embree.intersect(rays[i], std::numeric_limits<float>::infinity(),
+                                                    hit);
                         }
                         hits += local;
                       });

@@ -3,8 +3,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <optional>
 #include <numbers>
+#include <optional>
 
 #include "core/error.h"
 #include "core/rng.h"
@@ -192,7 +192,8 @@ const std::vector<BuiltinScene>& builtin_scenes() {
   static const std::vector<BuiltinScene> infos = [] {
     std::vector<BuiltinScene> v;
     for (const auto& e : registry()) v.push_back(e.info);
-    v.push_back({"spheres:N", "N small spheres on the cover's ground, for scaling (e.g. spheres:100000)"});
+    v.push_back(
+        {"spheres:N", "N small spheres on the cover's ground, for scaling (e.g. spheres:100000)"});
     return v;
   }();
   return infos;

@@ -35,8 +35,7 @@ void validate(const CameraSettings& s) {
   require(length(cross(normalize(view), s.vup / vup_len)) > 1e-9,
           "vup is parallel to the view direction (lookat - lookfrom)");
   require(std::isfinite(s.vfov_degrees) && s.vfov_degrees > 0.0 && s.vfov_degrees < 180.0,
-          "vfov must lie strictly between 0 and 180 degrees, got " +
-              number(s.vfov_degrees));
+          "vfov must lie strictly between 0 and 180 degrees, got " + number(s.vfov_degrees));
   require(std::isfinite(s.aperture) && s.aperture >= 0.0,
           "aperture must be finite and >= 0, got " + number(s.aperture));
   require(std::isfinite(s.focus_distance) && s.focus_distance > 0.0,
@@ -56,8 +55,7 @@ Camera::Camera(const CameraSettings& s, int image_width, int image_height) {
 
   const Vec3d horizontal = s.focus_distance * viewport_width * u;
   const Vec3d vertical = -s.focus_distance * viewport_height * v;  // film t grows downwards
-  const Vec3d upper_left =
-      s.lookfrom - 0.5 * horizontal - 0.5 * vertical - s.focus_distance * w;
+  const Vec3d upper_left = s.lookfrom - 0.5 * horizontal - 0.5 * vertical - s.focus_distance * w;
 
   origin_ = Vec3(s.lookfrom);
   // Store the corner relative to the origin: rays are built as direction vectors, so a

@@ -11,9 +11,9 @@ struct CameraSettings {
   Vec3d lookfrom{0, 0, 0};
   Vec3d lookat{0, 0, -1};
   Vec3d vup{0, 1, 0};
-  double vfov_degrees = 90.0;  // vertical field of view
-  double aperture = 0.0;       // lens diameter; 0 is a pinhole
-  double focus_distance = 1.0; // distance to the plane in focus
+  double vfov_degrees = 90.0;   // vertical field of view
+  double aperture = 0.0;        // lens diameter; 0 is a pinhole
+  double focus_distance = 1.0;  // distance to the plane in focus
 };
 
 // Throws InvalidInput naming the offending setting: lookfrom == lookat, vup parallel to

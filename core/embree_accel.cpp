@@ -25,8 +25,8 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
   const unsigned i = args->primID;
   const float r = std::abs(s.radius[i]);
   auto pad = [](float lo, float hi, float& out_lo, float& out_hi) {
-    const float slack = 4.0f * std::numeric_limits<float>::epsilon() *
-                        std::max(std::abs(lo), std::abs(hi));
+    const float slack =
+        4.0f * std::numeric_limits<float>::epsilon() * std::max(std::abs(lo), std::abs(hi));
     out_lo = lo - slack;
     out_hi = hi + slack;
   };

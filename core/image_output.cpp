@@ -107,8 +107,8 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
       .append(target.extension().string());
   const fs::path temporary = target.parent_path() / temporary_name;
   const OIIO::TypeDesc format = linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
-  const bool written = out->open(temporary.string(), spec) && out->write_image(format, data) &&
-                       out->close();
+  const bool written =
+      out->open(temporary.string(), spec) && out->write_image(format, data) && out->close();
   if (!written) {
     const std::string reason = out->geterror();
     out.reset();

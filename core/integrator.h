@@ -12,8 +12,8 @@
 namespace rtiow {
 
 template <typename Accel>
-Color trace_path(const Scene& scene, const Accel& accel, Ray ray, int max_depth,
-                 SampleStream& rng, std::uint64_t& rays_traced) {
+Color trace_path(const Scene& scene, const Accel& accel, Ray ray, int max_depth, SampleStream& rng,
+                 std::uint64_t& rays_traced) {
   Color throughput{1.0f, 1.0f, 1.0f};
   for (int depth = 0; depth < max_depth; ++depth) {
     Hit hit;

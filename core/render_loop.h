@@ -43,8 +43,7 @@ template <typename Accel>
 std::uint64_t render_tiles(const Scene& scene, const Camera& camera, const Accel& accel,
                            const RenderSettings& settings, Film& film, RenderProgress* progress) {
   std::atomic<std::uint64_t> rays{0};
-  const int threads =
-      settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
+  const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_for(

@@ -60,8 +60,8 @@ inline bool sphere_may_hit(const Vec3T<T>& center, T radius, const RayT<T>& ray)
 
 // The same test for callers that branch: true and the distance when there is a hit.
 template <typename T>
-inline bool intersect_sphere(const Vec3T<T>& center, T radius, const RayT<T>& ray, T t_min,
-                             T t_max, T& t_hit) {
+inline bool intersect_sphere(const Vec3T<T>& center, T radius, const RayT<T>& ray, T t_min, T t_max,
+                             T& t_hit) {
   const T t = sphere_hit_distance(center, radius, ray, t_min, t_max);
   if (!(t < std::numeric_limits<T>::infinity())) return false;
   t_hit = t;

@@ -36,8 +36,8 @@ std::string test_name() {
 CommandResult run_rtiow(const std::string& args) {
   const fs::path dir = RTIOW_TEST_OUTPUT_DIR;
   const fs::path out = dir / (test_name() + ".stdout"), err = dir / (test_name() + ".stderr");
-  const std::string command = std::string(RTIOW_BINARY) + " " + args + " > " + out.string() +
-                              " 2> " + err.string();
+  const std::string command =
+      std::string(RTIOW_BINARY) + " " + args + " > " + out.string() + " 2> " + err.string();
   const int status = std::system(command.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
@@ -48,7 +48,9 @@ fs::path output_path(const std::string& name) {
   return p;
 }
 
-int count_lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+int count_lines(const std::string& s) {
+  return int(std::count(s.begin(), s.end(), '\n'));
+}
 
 void expect_refused(const std::string& args, const std::string& needle) {
   const fs::path out = output_path("refused.png");
@@ -94,8 +96,8 @@ TEST(Cli, RefusesBadCamerasAndSettingsWithOneLineAndExitTwo) {
 }
 
 TEST(Cli, RefusesUnwritableOutputsBeforeRendering) {
-  const CommandResult bad_ext = run_rtiow("render -q --spp 1 --width 8 -o " +
-                                output_path("image.nosuchformat").string());
+  const CommandResult bad_ext =
+      run_rtiow("render -q --spp 1 --width 8 -o " + output_path("image.nosuchformat").string());
   EXPECT_EQ(bad_ext.exit_code, 2);
   EXPECT_NE(bad_ext.stderr_text.find("unknown image format"), std::string::npos);
   const CommandResult bad_dir = run_rtiow("render -q --spp 1 --width 8 -o /nonexistent-dir/x.png");
@@ -105,8 +107,8 @@ TEST(Cli, RefusesUnwritableOutputsBeforeRendering) {
 
 TEST(Cli, WritesTheImageWithMetadataAndSaysWhere) {
   const fs::path out = output_path("cli_materials.exr");
-  const CommandResult r = run_rtiow("render --scene materials --width 32 --spp 2 --depth 5 --seed 9 -o " +
-                          out.string());
+  const CommandResult r = run_rtiow(
+      "render --scene materials --width 32 --spp 2 --depth 5 --seed 9 -o " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   EXPECT_NE(r.stderr_text.find(out.string()), std::string::npos) << "summary names the file";
   EXPECT_NE(r.stderr_text.find("Mrays/s"), std::string::npos);
@@ -129,7 +131,8 @@ TEST(Cli, WritesTheImageWithMetadataAndSaysWhere) {
 TEST(Cli, EveryAdvertisedFormatIsWritten) {
   for (const char* ext : {".png", ".exr", ".ppm", ".jpg", ".tif"}) {
     const fs::path out = output_path(std::string("format") + ext);
-    const CommandResult r = run_rtiow("render -q --scene wide-angle --width 16 --spp 1 -o " + out.string());
+    const CommandResult r =
+        run_rtiow("render -q --scene wide-angle --width 16 --spp 1 -o " + out.string());
     EXPECT_EQ(r.exit_code, 0) << ext << ": " << r.stderr_text;
     auto in = OIIO::ImageInput::open(out.string());
     ASSERT_TRUE(in) << ext;
@@ -170,9 +173,9 @@ TEST(Cli, BenchWritesFiguresAndPlot) {
 
 TEST(Cli, SphereFieldScenesRenderAndRefuseBadCounts) {
   const fs::path out = output_path("field.png");
-  EXPECT_EQ(run_rtiow("render -q --scene spheres:1000 --width 24 --spp 1 -o " + out.string())
-                .exit_code,
-            0);
+  EXPECT_EQ(
+      run_rtiow("render -q --scene spheres:1000 --width 24 --spp 1 -o " + out.string()).exit_code,
+      0);
   EXPECT_TRUE(fs::exists(out));
   expect_refused("--scene spheres:0", "N must be a whole number");
   expect_refused("--scene spheres:12x", "N must be a whole number");

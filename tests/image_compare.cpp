@@ -42,8 +42,7 @@ OIIO::ImageBuf read_display(const std::string& path) {
 
 ImageDiff compare(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& expected,
                   const Thresholds& t) {
-  const auto r = OIIO::ImageBufAlgo::compare(actual, expected, t.fail_threshold,
-                                             t.fail_threshold);
+  const auto r = OIIO::ImageBufAlgo::compare(actual, expected, t.fail_threshold, t.fail_threshold);
   ImageDiff d;
   d.mean_error = r.meanerror;
   d.rms_error = r.rms_error;

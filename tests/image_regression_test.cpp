@@ -51,15 +51,14 @@ struct Case {
 };
 
 // Names the parameter in gtest's output instead of dumping its bytes.
-void PrintTo(const Case& c, std::ostream* os) { *os << c.scene; }
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.scene;
+}
 
 const Case kCases[] = {
-    {"materials", {0.1f, 1.5f, 0.50f}},
-    {"wide-angle", {0.1f, 0.5f, 0.45f}},
-    {"viewpoint", {0.1f, 0.5f, 0.45f}},
-    {"viewpoint-zoom", {0.1f, 2.5f, 0.60f}},
-    {"defocus", {0.1f, 2.25f, 0.60f}},
-    {"cover", {0.1f, 0.25f, 0.30f}},
+    {"materials", {0.1f, 1.5f, 0.50f}}, {"wide-angle", {0.1f, 0.5f, 0.45f}},
+    {"viewpoint", {0.1f, 0.5f, 0.45f}}, {"viewpoint-zoom", {0.1f, 2.5f, 0.60f}},
+    {"defocus", {0.1f, 2.25f, 0.60f}},  {"cover", {0.1f, 0.25f, 0.30f}},
 };
 
 bool updating_references() {
@@ -139,7 +138,8 @@ TEST_P(ImageRegression, MatchesReference) {
   const OIIO::ImageBuf actual = to_display(render(scene, s).film);
   const ImageDiff d = compare(actual, expected, c.thresholds);
   if (!d.passed) {
-    const std::string diff = write_failure_images(actual, expected, output_stem(c.scene, "regression"));
+    const std::string diff =
+        write_failure_images(actual, expected, output_stem(c.scene, "regression"));
     ADD_FAILURE() << c.scene << " differs from its reference: " << d.summary()
                   << "\n  thresholds: fail " << c.thresholds.fail_threshold << ", failpercent "
                   << c.thresholds.fail_percent << ", hardfail " << c.thresholds.hard_fail
@@ -161,9 +161,9 @@ TEST_P(ImageRegression, CatchesAWrongRender) {
   const double angle = std::numbers::pi / 180.0;
   const Vec3d view = turned.camera.lookat - turned.camera.lookfrom;
   // Rotate the view direction by 1 degree about the y axis.
-  turned.camera.lookat = turned.camera.lookfrom +
-                         Vec3d{view.x * std::cos(angle) + view.z * std::sin(angle), view.y,
-                               -view.x * std::sin(angle) + view.z * std::cos(angle)};
+  turned.camera.lookat =
+      turned.camera.lookfrom + Vec3d{view.x * std::cos(angle) + view.z * std::sin(angle), view.y,
+                                     -view.x * std::sin(angle) + view.z * std::cos(angle)};
   const OIIO::ImageBuf turned_image = to_display(render(turned, s).film);
   const ImageDiff turned_diff = compare(turned_image, expected, c.thresholds);
   EXPECT_FALSE(turned_diff.passed) << "camera turned 1 degree passed: " << turned_diff.summary();
@@ -254,8 +254,7 @@ TEST_P(ImageRegression, AgreesInTheMeanWithReference) {
     if (auto* diffuse = std::get_if<Lambertian>(&m)) diffuse->albedo *= 0.95f;
   }
   const BlockTest biased = block_t_test(darker, reference);
-  EXPECT_LT(biased.passing_percent, 99.0)
-      << "5% darker albedos passed: the test cannot see bias";
+  EXPECT_LT(biased.passing_percent, 99.0) << "5% darker albedos passed: the test cannot see bias";
   std::printf("%s: %.2f%% of %d blocks agree in the mean; with 5%% darker albedos: %.2f%%\n",
               c.scene, unbiased.passing_percent, unbiased.blocks, biased.passing_percent);
 }
@@ -308,9 +307,10 @@ TEST_P(ImageRegression, DISABLED_CalibrateThresholds) {
       mean_percent += d.failing_percent / double(renders.size());
       worst_pixel = std::max(worst_pixel, d.max_error);
     }
-    std::printf("%-15s A=%.3f over 10 seeds: mean %.3f%%, worst %.3f%% of pixels beyond A; "
-                "worst pixel %.4f\n",
-                c.scene, a, mean_percent, worst_percent, worst_pixel);
+    std::printf(
+        "%-15s A=%.3f over 10 seeds: mean %.3f%%, worst %.3f%% of pixels beyond A; "
+        "worst pixel %.4f\n",
+        c.scene, a, mean_percent, worst_percent, worst_pixel);
   }
 }
 

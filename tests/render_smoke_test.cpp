@@ -25,8 +25,7 @@ RenderSettings tiny(const Scene& scene) {
 
 bool bit_identical(const Film& a, const Film& b) {
   return a.width() == b.width() && a.height() == b.height() &&
-         std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Color)) ==
-             0;
+         std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Color)) == 0;
 }
 
 class EveryScene : public ::testing::TestWithParam<std::string> {};
@@ -58,8 +57,8 @@ TEST_P(EveryScene, RendersFiniteNonBlackAndDeterministic) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, EveryScene,
-                         ::testing::Values("materials", "wide-angle", "viewpoint",
-                                           "viewpoint-zoom", "defocus", "cover"),
+                         ::testing::Values("materials", "wide-angle", "viewpoint", "viewpoint-zoom",
+                                           "defocus", "cover"),
                          [](const ::testing::TestParamInfo<std::string>& param_info) {
                            std::string name = param_info.param;
                            for (char& c : name) c = (c == '-') ? '_' : c;

@@ -48,8 +48,8 @@ TEST(SphereIntersect, TangentRayTouchesOnce) {
   // Grazes the top of the unit sphere at (0, 1, 0).
   ASSERT_TRUE(intersect_sphere(Vec3{0, 0, 0}, 1.0f, Ray{{-3, 1, 0}, {1, 0, 0}}, 0.0f, kInf, t));
   EXPECT_FLOAT_EQ(t, 3.0f);
-  EXPECT_FALSE(intersect_sphere(Vec3{0, 0, 0}, 1.0f, Ray{{-3, 1.0001f, 0}, {1, 0, 0}}, 0.0f,
-                                kInf, t));
+  EXPECT_FALSE(
+      intersect_sphere(Vec3{0, 0, 0}, 1.0f, Ray{{-3, 1.0001f, 0}, {1, 0, 0}}, 0.0f, kInf, t));
 }
 
 TEST(SphereIntersect, NegativeRadiusIntersectsLikeItsMagnitude) {
@@ -80,8 +80,8 @@ TEST(SphereIntersect, FloatStaysAccurateForSmallDistantSpheres) {
     ASSERT_TRUE(intersect_sphere(Vec3(center), float(radius), ray_f, 0.0f, kInf, t_f))
         << "float missed a sphere of radius " << radius << " at " << distance;
     // Within a few ulps of the distance, relative to the size of the coordinates.
-    EXPECT_LT(std::abs(double(t_f) - t_d), 64 * double(std::numeric_limits<float>::epsilon()) *
-                                               distance);
+    EXPECT_LT(std::abs(double(t_f) - t_d),
+              64 * double(std::numeric_limits<float>::epsilon()) * distance);
   }
   EXPECT_GT(hits, 15000);
 }
