@@ -10,6 +10,7 @@
 
 #include "app/bench_command.h"
 #include "app/render_command.h"
+#include "app/scene_command.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
@@ -19,8 +20,8 @@ int main(int argc, char** argv) {
       "rtiow"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "rtiow 0.1.0");
-  std::vector<std::function<int()>> commands{rtiow::add_render_command(app),
-                                             rtiow::add_bench_command(app)};
+  std::vector<std::function<int()>> commands{
+      rtiow::add_render_command(app), rtiow::add_scene_command(app), rtiow::add_bench_command(app)};
 
   try {
     app.parse(argc, argv);

@@ -18,9 +18,9 @@ void format_duration(char* out, std::size_t size, double seconds) {
 
 }  // namespace
 
-ProgressDisplay::ProgressDisplay(const RenderProgress& progress, std::uint64_t total_pixels)
+ProgressDisplay::ProgressDisplay(const RenderProgress& progress, std::uint64_t total_samples)
     : progress_(progress),
-      total_pixels_(total_pixels),
+      total_samples_(total_samples),
       terminal_(::isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()),
       thread_([this] { run(); }) {}
@@ -45,7 +45,8 @@ void ProgressDisplay::run() {
 void ProgressDisplay::report(bool final_report) {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  const double fraction = total_pixels_ ? double(progress_.pixels_done) / double(total_pixels_) : 1;
+  const double fraction =
+      total_samples_ ? double(progress_.samples_done) / double(total_samples_) : 1;
   const double mrays = elapsed > 0 ? double(progress_.rays_traced) / elapsed * 1e-6 : 0.0;
   char elapsed_text[32], eta_text[32] = "?";
   format_duration(elapsed_text, sizeof elapsed_text, elapsed);

@@ -15,7 +15,7 @@ namespace rtiow {
 
 class ProgressDisplay {
  public:
-  ProgressDisplay(const RenderProgress& progress, std::uint64_t total_pixels);
+  ProgressDisplay(const RenderProgress& progress, std::uint64_t total_samples);
   ~ProgressDisplay();  // stops the thread and finishes the live line
   ProgressDisplay(const ProgressDisplay&) = delete;
   ProgressDisplay& operator=(const ProgressDisplay&) = delete;
@@ -25,7 +25,7 @@ class ProgressDisplay {
   void report(bool final_report);
 
   const RenderProgress& progress_;
-  const std::uint64_t total_pixels_;
+  const std::uint64_t total_samples_;
   const bool terminal_;
   const std::chrono::steady_clock::time_point start_;
   int last_decile_ = 0;

@@ -8,16 +8,19 @@
 #include <string>
 #include <vector>
 
+#include "app/interrupt.h"
 #include "app/progress_display.h"
 #include "core/builtin_scenes.h"
 #include "core/error.h"
 #include "core/image_output.h"
 #include "core/render.h"
+#include "core/scene_file.h"
 
 namespace rtiow {
 namespace {
 
 struct RenderOptions {
+  std::string scene_file;
   std::string scene = "cover";
   std::uint64_t scene_seed = 1;
   bool list_scenes = false;
@@ -65,7 +68,7 @@ void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& setti
 std::string default_output(const std::string& scene) {
   std::string name = scene;
   for (char& c : name) {
-    if (c == ':' || c == '/') c = '-';
+    if (c == ':' || c == '/' || c == ' ') c = '-';
   }
   return name + ".png";
 }
@@ -88,43 +91,63 @@ int list_scenes() {
   return 0;
 }
 
-Metadata make_metadata(const RenderOptions& o, const RenderSettings& s, const RenderResult& r) {
-  Metadata metadata{
-      {"scene", o.scene},
-      {"scene_seed", std::int64_t(o.scene_seed)},
-      {"spp", std::int64_t(s.samples_per_pixel)},
-      {"depth", std::int64_t(s.max_depth)},
-      {"seed", std::int64_t(s.seed)},
-      {"accelerator", to_string(s.accel)},
-      {"rays_traced", std::int64_t(r.rays_traced)},
-  };
+Metadata make_metadata(const RenderOptions& o, const Scene& scene, const RenderSettings& s,
+                       const RenderResult& r) {
+  Metadata metadata{{"scene", scene.name}};
+  if (scene.layout_seed) metadata.emplace_back("scene_seed", std::int64_t(*scene.layout_seed));
+  metadata.insert(metadata.end(), {
+                                      {"spp", std::int64_t(r.samples_completed)},
+                                      {"depth", std::int64_t(s.max_depth)},
+                                      {"seed", std::int64_t(s.seed)},
+                                      {"accelerator", to_string(s.accel)},
+                                      {"rays_traced", std::int64_t(r.rays_traced)},
+                                  });
+  if (r.stopped) {
+    metadata.emplace_back("spp_requested", std::int64_t(s.samples_per_pixel));
+    metadata.emplace_back("stopped", std::string("interrupted by a signal"));
+  }
   if (!o.reproducible) metadata.emplace_back("render_seconds", r.render_seconds);
   return metadata;
 }
 
-int run_render(const RenderOptions& o) {
+Scene load_scene(const RenderOptions& o, bool scene_option_given) {
+  if (o.scene_file.empty()) return make_builtin_scene(o.scene, o.scene_seed);
+  if (scene_option_given) {
+    throw InvalidInput("give a scene file or --scene, not both");
+  }
+  return load_scene_file(o.scene_file);
+}
+
+int run_render(const RenderOptions& o, bool scene_option_given) {
   if (o.list_scenes) return list_scenes();
 
-  Scene scene = make_builtin_scene(o.scene, o.scene_seed);
+  Scene scene = load_scene(o, scene_option_given);
   RenderSettings settings;
   settings.accel = parse_accel(o.accel);
   apply_overrides(o, scene, settings);
   validate(settings);
   validate(scene.camera);
-  const std::string output = o.output.empty() ? default_output(o.scene) : o.output;
+  const std::string output = o.output.empty() ? default_output(scene.name) : o.output;
   check_output_path(output);
 
   RenderProgress progress;
   RenderResult result;
   {
+    const InterruptGuard interrupt(progress.stop_requested);
     std::unique_ptr<ProgressDisplay> display;
     if (!o.quiet) {
       display = std::make_unique<ProgressDisplay>(
-          progress, std::uint64_t(settings.width) * std::uint64_t(settings.height));
+          progress, std::uint64_t(settings.width) * std::uint64_t(settings.height) *
+                        std::uint64_t(settings.samples_per_pixel));
     }
     result = render(scene, settings, &progress);
   }
-  write_image(output, result.film, make_metadata(o, settings, result));
+  write_image(output, result.film, make_metadata(o, scene, settings, result));
+  if (result.stopped) {
+    std::fprintf(stderr, "rtiow: interrupted: wrote %d of %d spp to %s\n", result.samples_completed,
+                 settings.samples_per_pixel, std::filesystem::absolute(output).c_str());
+    return 128 + InterruptGuard::signal_received();
+  }
 
   if (!o.quiet) {
     const double rays = double(result.rays_traced);
@@ -133,7 +156,7 @@ int run_render(const RenderOptions& o) {
     std::fprintf(stderr,
                  "rendered %s %dx%d, %d spp, depth %d, %s, %d thread%s: %.2f s, %.3g rays, "
                  "%.2f Mrays/s -> %s\n",
-                 o.scene.c_str(), settings.width, settings.height, settings.samples_per_pixel,
+                 scene.name.c_str(), settings.width, settings.height, settings.samples_per_pixel,
                  settings.max_depth, to_string(settings.accel).c_str(), threads,
                  threads == 1 ? "" : "s", result.render_seconds, rays,
                  rays / result.render_seconds * 1e-6, std::filesystem::absolute(output).c_str());
@@ -148,10 +171,14 @@ std::function<int()> add_render_command(CLI::App& app) {
   RenderOptions& o = *options;
   CLI::App* cmd = app.add_subcommand(
       "render",
-      "Render a scene to an image (with no options: the book's cover at its final "
-      "settings, to cover.png)");
-  cmd->add_option("--scene", o.scene, "Built-in scene to render (see --list-scenes)")
-      ->capture_default_str();
+      "Render a scene file or a built-in scene to an image (with no options: the book's cover "
+      "at its final settings, to cover.png)");
+  cmd->add_option("scene_file", o.scene_file,
+                  "Scene file (JSON, see the README); its settings are overridden by the options")
+      ->check(CLI::ExistingFile);
+  CLI::Option* scene_option =
+      cmd->add_option("--scene", o.scene, "Built-in scene to render (see --list-scenes)")
+          ->capture_default_str();
   cmd->add_flag("--list-scenes", o.list_scenes, "List the built-in scenes and exit");
   cmd->add_option("--scene-seed", o.scene_seed, "Seed of the random layout of cover and spheres:N")
       ->capture_default_str();
@@ -181,7 +208,9 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--vfov", o.vfov, "Vertical field of view in degrees, in (0, 180)");
   cmd->add_option("--aperture", o.aperture, "Lens diameter (0: pinhole)");
   cmd->add_option("--focus-dist", o.focus_distance, "Distance to the plane in focus");
-  return [options, cmd] { return cmd->parsed() ? run_render(*options) : -1; };
+  return [options, cmd, scene_option] {
+    return cmd->parsed() ? run_render(*options, scene_option->count() > 0) : -1;
+  };
 }
 
 }  // namespace rtiow

@@ -150,6 +150,7 @@ Scene sphere_field_scene(std::uint64_t count, std::uint64_t scene_seed) {
 struct Entry {
   BuiltinScene info;
   Scene (*make)(std::uint64_t scene_seed);
+  bool random_layout = false;
 };
 
 const std::vector<Entry>& registry() {
@@ -165,7 +166,8 @@ const std::vector<Entry>& registry() {
       {{"defocus", "ch. 12.2: depth of field from (3,3,2), aperture 2, focused on the centre"},
        [](std::uint64_t) { return defocus_scene(); }},
       {{"cover", "ch. 13.1: the cover, ~480 random small spheres and three big ones (default)"},
-       cover_scene},
+       cover_scene,
+       true},
   };
   return entries;
 }
@@ -203,12 +205,14 @@ Scene make_builtin_scene(const std::string& name, std::uint64_t scene_seed) {
   if (const auto count = sphere_field_count(name)) {
     Scene s = sphere_field_scene(*count, scene_seed);
     s.name = name;
+    s.layout_seed = scene_seed;
     return s;
   }
   for (const auto& e : registry()) {
     if (e.info.name == name) {
       Scene s = e.make(scene_seed);
       s.name = name;
+      if (e.random_layout) s.layout_seed = scene_seed;
       return s;
     }
   }

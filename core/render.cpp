@@ -1,5 +1,8 @@
 #include "core/render.h"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 
@@ -12,13 +15,24 @@
 namespace rtiow {
 namespace {
 
-// Beyond this many pixels the film alone would not fit in a machine's memory.
+// Beyond this many pixels indices overflow; a film costs this much per pixel (the float
+// image and the double accumulator).
 constexpr std::uint64_t kMaxPixels = 1ull << 31;
+constexpr std::uint64_t kBytesPerPixel = sizeof(Color) + sizeof(Vec3d);
 
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// How many samples the next pass takes: about a second's worth, judged from the last pass,
+// so a stop request is honoured soon. (Grouping never changes the image.)
+int next_pass_samples(int last_pass, double last_seconds, int remaining) {
+  constexpr double kTargetSeconds = 1.0;
+  double n = last_pass * (last_seconds > 0 ? kTargetSeconds / last_seconds : 4.0);
+  n = std::clamp(n, 1.0, 4.0 * last_pass);
+  return std::min(remaining, int(n));
 }
 
 template <typename Accel>
@@ -29,10 +43,24 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   const Accel accel(scene.spheres);
   result.build_seconds = seconds_since(build_start);
 
-  result.film = Film(settings.width, settings.height);
+  std::vector<Vec3d> sums(std::size_t(settings.width) * std::size_t(settings.height));
   const auto render_start = Clock::now();
-  result.rays_traced = render_tiles(scene, camera, accel, settings, result.film, progress);
+  int done = 0, pass = 1;
+  while (done < settings.samples_per_pixel) {
+    if (done > 0 && progress && progress->stop_requested.load()) {
+      result.stopped = true;
+      break;
+    }
+    const auto pass_start = Clock::now();
+    result.rays_traced +=
+        render_pass(scene, camera, accel, settings, done, done + pass, sums, progress);
+    done += pass;
+    pass = next_pass_samples(pass, seconds_since(pass_start), settings.samples_per_pixel - done);
+  }
   result.render_seconds = seconds_since(render_start);
+  result.samples_completed = done;
+  result.film = Film(settings.width, settings.height);
+  resolve(sums, done, result.film);
   return result;
 }
 
@@ -56,9 +84,20 @@ void validate(const RenderSettings& s) {
   }
   if (s.max_depth < 0) throw InvalidInput("depth must be >= 0, got " + std::to_string(s.max_depth));
   if (s.threads < 0) throw InvalidInput("threads must be >= 0, got " + std::to_string(s.threads));
-  if (std::uint64_t(s.width) * std::uint64_t(s.height) > kMaxPixels) {
+  const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
+  if (pixels > kMaxPixels) {
     throw InvalidInput("image " + std::to_string(s.width) + "x" + std::to_string(s.height) +
                        " has more than 2^31 pixels");
+  }
+  // Refuse before allocating what the machine cannot hold: the film and its accumulator.
+  const std::uint64_t needed = pixels * kBytesPerPixel;
+  const std::uint64_t available =
+      std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGESIZE));
+  if (needed > available / 2) {
+    throw InvalidInput("image " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                       " needs " + std::to_string(needed >> 20) +
+                       " MiB, more than half of this machine's " + std::to_string(available >> 20) +
+                       " MiB");
   }
 }
 

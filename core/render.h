@@ -31,21 +31,27 @@ struct RenderSettings {
 // an image too large to hold in memory, negative threads.
 void validate(const RenderSettings& settings);
 
-// Read by another thread while the render runs (the progress display).
+// Shared with other threads while the render runs: counters it updates (for a progress
+// display) and a request to stop that it honours at the end of the current pass.
 struct RenderProgress {
-  std::atomic<std::uint64_t> pixels_done{0};
+  std::atomic<std::uint64_t> samples_done{0};  // pixel samples, over all pixels
   std::atomic<std::uint64_t> rays_traced{0};
+  std::atomic<bool> stop_requested{false};
 };
 
 struct RenderResult {
-  Film film;
+  Film film;                    // the mean of the samples completed
+  int samples_completed = 0;    // per pixel; less than asked when stopped
+  bool stopped = false;         // a stop request ended the render early
   double build_seconds = 0.0;   // accelerator construction
   double render_seconds = 0.0;  // the sample loop
   std::uint64_t rays_traced = 0;
 };
 
 // Validates the scene's camera and the settings (throwing InvalidInput before any work),
-// builds the accelerator and renders.
+// builds the accelerator and renders in passes: each pass adds a few samples to every
+// pixel, and the pixel sums continue across passes in sample order, so the image does not
+// depend on how samples were grouped into passes.
 RenderResult render(const Scene& scene, const RenderSettings& settings,
                     RenderProgress* progress = nullptr);
 

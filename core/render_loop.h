@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <vector>
 
 #include "core/camera.h"
 #include "core/film.h"
@@ -20,13 +21,24 @@ namespace rtiow {
 
 inline constexpr int kTileSize = 16;
 
-// All samples of one pixel, in sample order: the sum is the same whatever thread runs it.
+// The film from per-pixel sums of `samples` samples each.
+inline void resolve(const std::vector<Vec3d>& sums, int samples, Film& film) {
+  for (int y = 0; y < film.height(); ++y) {
+    for (int x = 0; x < film.width(); ++x) {
+      const Vec3d& sum = sums[std::size_t(y) * std::size_t(film.width()) + std::size_t(x)];
+      film.at(x, y) = Color(sum / double(samples));
+    }
+  }
+}
+
+// Adds samples [first, last) of pixel (x, y) to `sum`, in sample order: the sum is the same
+// whatever thread runs it and however the samples are split into passes.
 template <typename Accel>
-Color render_pixel(const Scene& scene, const Camera& camera, const Accel& accel,
-                   const RenderSettings& settings, int x, int y, std::uint64_t& rays) {
-  Vec3d sum;
+void accumulate_pixel(const Scene& scene, const Camera& camera, const Accel& accel,
+                      const RenderSettings& settings, int x, int y, int first, int last, Vec3d& sum,
+                      std::uint64_t& rays) {
   const float inv_w = 1.0f / float(settings.width), inv_h = 1.0f / float(settings.height);
-  for (int i = 0; i < settings.samples_per_pixel; ++i) {
+  for (int i = first; i < last; ++i) {
     SampleStream rng(settings.seed, std::uint32_t(x), std::uint32_t(y), std::uint64_t(i));
     const float s = (float(x) + rng.next_1d()) * inv_w;
     const float t = (float(y) + rng.next_1d()) * inv_h;
@@ -35,13 +47,14 @@ Color render_pixel(const Scene& scene, const Camera& camera, const Accel& accel,
     const Ray ray = camera.generate_ray(s, t, lens_u, lens_v);
     sum += Vec3d(trace_path(scene, accel, ray, settings.max_depth, rng, rays));
   }
-  return Color(sum / double(settings.samples_per_pixel));
 }
 
-// Renders every pixel of `film` (already sized) and returns the number of rays traced.
+// One pass: samples [first, last) of every pixel added to `sums` (width x height, row
+// major). Returns the number of rays traced.
 template <typename Accel>
-std::uint64_t render_tiles(const Scene& scene, const Camera& camera, const Accel& accel,
-                           const RenderSettings& settings, Film& film, RenderProgress* progress) {
+std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel& accel,
+                          const RenderSettings& settings, int first, int last,
+                          std::vector<Vec3d>& sums, RenderProgress* progress) {
   std::atomic<std::uint64_t> rays{0};
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   tbb::task_arena arena(threads);
@@ -52,18 +65,32 @@ std::uint64_t render_tiles(const Scene& scene, const Camera& camera, const Accel
           std::uint64_t tile_rays = 0;
           for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
             for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-              film.at(x, y) = render_pixel(scene, camera, accel, settings, x, y, tile_rays);
+              Vec3d& sum = sums[std::size_t(y) * std::size_t(settings.width) + std::size_t(x)];
+              accumulate_pixel(scene, camera, accel, settings, x, y, first, last, sum, tile_rays);
             }
           }
           rays += tile_rays;
           if (progress) {
             progress->rays_traced += tile_rays;
-            progress->pixels_done += std::uint64_t(tile.rows().size() * tile.cols().size());
+            progress->samples_done += std::uint64_t(tile.rows().size() * tile.cols().size()) *
+                                      std::uint64_t(last - first);
           }
         },
         tbb::simple_partitioner());
   });
   return rays.load();
+}
+
+// Renders every pixel of `film` (already sized) at all samples in one pass and returns the
+// number of rays traced.
+template <typename Accel>
+std::uint64_t render_tiles(const Scene& scene, const Camera& camera, const Accel& accel,
+                           const RenderSettings& settings, Film& film, RenderProgress* progress) {
+  std::vector<Vec3d> sums(std::size_t(settings.width) * std::size_t(settings.height));
+  const std::uint64_t rays =
+      render_pass(scene, camera, accel, settings, 0, settings.samples_per_pixel, sums, progress);
+  resolve(sums, settings.samples_per_pixel, film);
+  return rays;
 }
 
 }  // namespace rtiow

@@ -2,6 +2,8 @@
 // A scene: what the renderer models and nothing more. Spheres with materials, a
 // background, a camera, and the image settings the scene was composed for.
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,7 @@ struct ImageSettings {
 
 struct Scene {
   std::string name;
+  std::optional<std::uint64_t> layout_seed;  // provenance of a randomly generated layout
   SphereSet spheres;
   std::vector<Material> materials;
   Background background;

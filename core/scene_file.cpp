@@ -1,0 +1,406 @@
+#include "core/scene_file.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+#include <unordered_map>
+
+namespace rtiow {
+namespace {
+
+using json = nlohmann::json;
+using ordered_json = nlohmann::ordered_json;
+
+constexpr int kVersion = 1;
+constexpr int kMaxDimension = 1 << 20;
+
+// Reading: every accessor knows where it is (a JSON pointer) and says so when it refuses.
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
+    throw InvalidInput(source_ + ": " + (pointer.empty() ? "/" : pointer) + ": " + what);
+  }
+
+  const json& object(const json& v, const std::string& pointer) const {
+    if (!v.is_object()) fail(pointer, "must be an object, got " + describe(v));
+    return v;
+  }
+
+  // Refuses keys outside `allowed`: a misspelt field must not be ignored silently.
+  void only(const json& obj, const std::string& pointer,
+            std::initializer_list<const char*> allowed) const {
+    for (const auto& item : obj.items()) {
+      bool known = false;
+      for (const char* a : allowed) known = known || item.key() == a;
+      if (!known) {
+        std::string list;
+        for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        fail(pointer + "/" + item.key(), "unknown field (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  const json* find(const json& obj, const char* key) const {
+    const auto it = obj.find(key);
+    return it == obj.end() ? nullptr : &*it;
+  }
+
+  const json& require(const json& obj, const std::string& pointer, const char* key) const {
+    const json* v = find(obj, key);
+    if (!v) fail(pointer, std::string("missing field \"") + key + "\"");
+    return *v;
+  }
+
+  double number(const json& v, const std::string& pointer) const {
+    if (!v.is_number()) fail(pointer, "must be a number, got " + describe(v));
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(pointer, "must be finite");
+    return d;
+  }
+
+  // A float-valued field: finite also after rounding to float.
+  float single(const json& v, const std::string& pointer) const {
+    const double d = number(v, pointer);
+    if (std::abs(d) > double(std::numeric_limits<float>::max())) {
+      fail(pointer, "is too large for single precision");
+    }
+    return float(d);
+  }
+
+  int integer(const json& v, const std::string& pointer, int lo, int hi) const {
+    if (!v.is_number_integer()) fail(pointer, "must be a whole number, got " + describe(v));
+    const auto i = v.get<std::int64_t>();
+    if (i < lo || i > hi) {
+      fail(pointer, "must be from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
+                        std::to_string(i));
+    }
+    return int(i);
+  }
+
+  Vec3 vec3f(const json& v, const std::string& pointer) const {
+    if (!v.is_array() || v.size() != 3) fail(pointer, "must be an array of 3 numbers");
+    return {single(v[0], pointer + "/0"), single(v[1], pointer + "/1"),
+            single(v[2], pointer + "/2")};
+  }
+
+  Vec3d vec3(const json& v, const std::string& pointer) const {
+    if (!v.is_array() || v.size() != 3) fail(pointer, "must be an array of 3 numbers");
+    return {number(v[0], pointer + "/0"), number(v[1], pointer + "/1"),
+            number(v[2], pointer + "/2")};
+  }
+
+  Color color(const json& v, const std::string& pointer) const {
+    const Vec3d c = vec3(v, pointer);
+    for (int i = 0; i < 3; ++i) {
+      if (c[std::size_t(i)] < 0.0 || c[std::size_t(i)] > 1.0) {
+        fail(pointer + "/" + std::to_string(i),
+             "must be in [0, 1], got " + format(c[std::size_t(i)]));
+      }
+    }
+    return Color(c);
+  }
+
+  static std::string format(double d) {
+    std::ostringstream s;
+    s << d;
+    return s.str();
+  }
+
+  static std::string describe(const json& v) {
+    std::string text = v.dump();
+    if (text.size() > 40) text = text.substr(0, 37) + "...";
+    return std::string(v.type_name()) + " " + text;
+  }
+
+ private:
+  std::string source_;
+};
+
+void read_camera(const Reader& r, const json& v, CameraSettings& cam) {
+  const std::string p = "/camera";
+  r.object(v, p);
+  r.only(v, p,
+         {"lookfrom", "lookat", "vup", "vfov", "aperture", "defocus_angle", "focus_distance"});
+  cam.lookfrom = r.vec3(r.require(v, p, "lookfrom"), p + "/lookfrom");
+  cam.lookat = r.vec3(r.require(v, p, "lookat"), p + "/lookat");
+  cam.vup = Vec3d{0, 1, 0};
+  if (const json* vup = r.find(v, "vup")) cam.vup = r.vec3(*vup, p + "/vup");
+  cam.vfov_degrees = r.number(r.require(v, p, "vfov"), p + "/vfov");
+  cam.focus_distance = length(cam.lookat - cam.lookfrom);
+  if (const json* f = r.find(v, "focus_distance")) {
+    cam.focus_distance = r.number(*f, p + "/focus_distance");
+  }
+  const json* aperture = r.find(v, "aperture");
+  const json* angle = r.find(v, "defocus_angle");
+  if (aperture && angle) r.fail(p, "give either \"aperture\" or \"defocus_angle\", not both");
+  cam.aperture = 0.0;
+  if (aperture) cam.aperture = r.number(*aperture, p + "/aperture");
+  if (angle) {
+    // The book's later editions: the lens subtends this angle (degrees) from the focus plane.
+    const double degrees = r.number(*angle, p + "/defocus_angle");
+    if (degrees < 0.0 || degrees >= 180.0) {
+      r.fail(p + "/defocus_angle", "must be in [0, 180), got " + Reader::format(degrees));
+    }
+    cam.aperture = 2.0 * cam.focus_distance * std::tan(degrees * std::numbers::pi / 360.0);
+  }
+  try {
+    validate(cam);
+  } catch (const InvalidInput& e) {
+    std::string what = e.what();
+    if (what.rfind("camera: ", 0) == 0) what = what.substr(8);
+    r.fail(p, what);
+  }
+}
+
+void read_image(const Reader& r, const json& v, ImageSettings& image) {
+  const std::string p = "/image";
+  r.object(v, p);
+  r.only(v, p, {"width", "height", "aspect_ratio", "spp", "depth"});
+  image.width = r.integer(r.require(v, p, "width"), p + "/width", 1, kMaxDimension);
+  const json* height = r.find(v, "height");
+  const json* aspect = r.find(v, "aspect_ratio");
+  if (height && aspect) r.fail(p, "give either \"height\" or \"aspect_ratio\", not both");
+  if (!height && !aspect) r.fail(p, "missing field \"height\" (or \"aspect_ratio\")");
+  if (height) {
+    const int h = r.integer(*height, p + "/height", 1, kMaxDimension);
+    image.aspect_ratio = double(image.width) / double(h);
+  } else {
+    image.aspect_ratio = r.number(*aspect, p + "/aspect_ratio");
+    if (image.aspect_ratio <= 0.0) r.fail(p + "/aspect_ratio", "must be > 0");
+  }
+  image.samples_per_pixel = 100;
+  if (const json* spp = r.find(v, "spp")) {
+    image.samples_per_pixel = r.integer(*spp, p + "/spp", 1, std::numeric_limits<int>::max());
+  }
+  image.max_depth = 50;
+  if (const json* depth = r.find(v, "depth"))
+    image.max_depth = r.integer(*depth, p + "/depth", 0, 1 << 16);
+}
+
+Material read_material(const Reader& r, const json& v, const std::string& p) {
+  r.object(v, p);
+  const json& type = r.require(v, p, "type");
+  if (!type.is_string()) r.fail(p + "/type", "must be a string, got " + Reader::describe(type));
+  const std::string kind = type.get<std::string>();
+  if (kind == "lambertian") {
+    r.only(v, p, {"type", "albedo"});
+    return Lambertian{r.color(r.require(v, p, "albedo"), p + "/albedo")};
+  }
+  if (kind == "metal") {
+    r.only(v, p, {"type", "albedo", "fuzz"});
+    float fuzz = 0.0f;
+    if (const json* f = r.find(v, "fuzz")) {
+      fuzz = r.single(*f, p + "/fuzz");
+      if (fuzz < 0.0f) r.fail(p + "/fuzz", "must be >= 0 (values above 1 act as 1)");
+    }
+    return make_metal(r.color(r.require(v, p, "albedo"), p + "/albedo"), fuzz);
+  }
+  if (kind == "dielectric") {
+    r.only(v, p, {"type", "ior"});
+    const float ior = r.single(r.require(v, p, "ior"), p + "/ior");
+    if (!(ior > 0.0f)) r.fail(p + "/ior", "must be > 0, got " + Reader::format(ior));
+    return Dielectric{ior};
+  }
+  r.fail(p + "/type",
+         "unknown material type \"" + kind + "\" (expected lambertian, metal or dielectric)");
+}
+
+std::string escape_pointer_token(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
+  }
+  return out;
+}
+
+Scene read_scene(const Reader& r, const json& root) {
+  r.object(root, "");
+  r.only(
+      root, "",
+      {"version", "name", "scene_seed", "camera", "image", "background", "materials", "spheres"});
+  r.integer(r.require(root, "", "version"), "/version", kVersion, kVersion);
+
+  Scene scene;
+  if (const json* name = r.find(root, "name")) {
+    if (!name->is_string()) r.fail("/name", "must be a string, got " + Reader::describe(*name));
+    scene.name = name->get<std::string>();
+  }
+  if (const json* seed = r.find(root, "scene_seed")) {
+    if (!seed->is_number_unsigned()) r.fail("/scene_seed", "must be a whole number >= 0");
+    scene.layout_seed = seed->get<std::uint64_t>();
+  }
+  read_camera(r, r.require(root, "", "camera"), scene.camera);
+  read_image(r, r.require(root, "", "image"), scene.image);
+
+  if (const json* bg = r.find(root, "background")) {
+    r.object(*bg, "/background");
+    r.only(*bg, "/background", {"horizon", "zenith"});
+    scene.background.horizon =
+        r.color(r.require(*bg, "/background", "horizon"), "/background/horizon");
+    scene.background.zenith =
+        r.color(r.require(*bg, "/background", "zenith"), "/background/zenith");
+  }
+
+  const json& materials = r.object(r.require(root, "", "materials"), "/materials");
+  std::unordered_map<std::string, std::uint32_t> index;
+  index.reserve(materials.size());
+  scene.materials.reserve(materials.size());
+  for (const auto& item : materials.items()) {
+    const std::string p = "/materials/" + escape_pointer_token(item.key());
+    index.emplace(item.key(), scene.add_material(read_material(r, item.value(), p)));
+  }
+
+  const json& spheres = r.require(root, "", "spheres");
+  if (!spheres.is_array()) r.fail("/spheres", "must be an array, got " + Reader::describe(spheres));
+  if (spheres.empty()) r.fail("/spheres", "the scene has no spheres");
+  scene.spheres.reserve(spheres.size());
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const std::string p = "/spheres/" + std::to_string(i);
+    const json& s = r.object(spheres[i], p);
+    r.only(s, p, {"center", "radius", "material"});
+    const Vec3 center = r.vec3f(r.require(s, p, "center"), p + "/center");
+    const float radius = r.single(r.require(s, p, "radius"), p + "/radius");
+    if (radius == 0.0f) r.fail(p + "/radius", "must not be 0 (negative makes a hollow sphere)");
+    const json& m = r.require(s, p, "material");
+    if (!m.is_string())
+      r.fail(p + "/material", "must be a material name, got " + Reader::describe(m));
+    const auto found = index.find(m.get<std::string>());
+    if (found == index.end()) {
+      r.fail(p + "/material", "no material named \"" + m.get<std::string>() + "\" in /materials");
+    }
+    scene.spheres.add(center, radius, found->second);
+  }
+  return scene;
+}
+
+// A float as the shortest decimal that reads back (through double, as JSON does) to it.
+double shortest(float f) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, f);
+  const double d = std::strtod(std::string(buffer, result.ptr).c_str(), nullptr);
+  return float(d) == f ? d : double(f);
+}
+
+// Materials written from a scene are named by index. (Built with append: GCC 12 warns
+// falsely, -Wrestrict, on "literal" + std::string.)
+std::string material_key(std::size_t index) {
+  std::string key = "m";
+  key.append(std::to_string(index));
+  return key;
+}
+
+ordered_json float3(const Vec3& v) {
+  return {shortest(v.x), shortest(v.y), shortest(v.z)};
+}
+ordered_json double3(const Vec3d& v) {
+  return {v.x, v.y, v.z};
+}
+
+ordered_json material_json(const Material& m) {
+  if (const auto* l = std::get_if<Lambertian>(&m)) {
+    return {{"type", "lambertian"}, {"albedo", float3(l->albedo)}};
+  }
+  if (const auto* metal = std::get_if<Metal>(&m)) {
+    return {{"type", "metal"}, {"albedo", float3(metal->albedo)}, {"fuzz", shortest(metal->fuzz)}};
+  }
+  return {{"type", "dielectric"}, {"ior", shortest(std::get<Dielectric>(m).ior)}};
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& source) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // nlohmann's message already says "at line L, column C"; drop its "[json.exception...]".
+    std::string what = e.what();
+    const auto bracket = what.find("] ");
+    if (bracket != std::string::npos) what = what.substr(bracket + 2);
+    throw InvalidInput(source + ": " + what);
+  } catch (const json::out_of_range& e) {
+    // A number too large for a double (e.g. 1e999): nlohmann names the token, not the place,
+    // so find the token's line ourselves.
+    std::string what = e.what();
+    const auto bracket = what.find("] ");
+    if (bracket != std::string::npos) what = what.substr(bracket + 2);
+    std::string where;
+    const auto open = what.find('\''), close = what.rfind('\'');
+    if (open != std::string::npos && close > open) {
+      const auto at = text.find(what.substr(open + 1, close - open - 1));
+      if (at != std::string::npos) {
+        where = "line " +
+                std::to_string(1 + std::count(text.begin(), text.begin() + long(at), '\n')) + ": ";
+      }
+    }
+    throw InvalidInput(source + ": " + where + what);
+  }
+  Scene scene = read_scene(Reader(source), root);
+  if (scene.name.empty()) scene.name = std::filesystem::path(source).stem().string();
+  return scene;
+}
+
+Scene load_scene_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidInput(path + ": cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InvalidInput(path + ": cannot read the scene file");
+  return parse_scene(text.str(), path);
+}
+
+std::string scene_to_json(const Scene& scene) {
+  // Written line by line rather than as one document: one material or sphere per line is
+  // readable and diffable, and a million spheres take seconds, not a DOM of gigabytes.
+  ordered_json head;
+  head["version"] = kVersion;
+  head["name"] = scene.name;
+  if (scene.layout_seed) head["scene_seed"] = *scene.layout_seed;
+  const CameraSettings& c = scene.camera;
+  head["camera"] = {{"lookfrom", double3(c.lookfrom)}, {"lookat", double3(c.lookat)},
+                    {"vup", double3(c.vup)},           {"vfov", c.vfov_degrees},
+                    {"aperture", c.aperture},          {"focus_distance", c.focus_distance}};
+  head["image"] = {{"width", scene.image.width},
+                   {"aspect_ratio", scene.image.aspect_ratio},
+                   {"spp", scene.image.samples_per_pixel},
+                   {"depth", scene.image.max_depth}};
+  head["background"] = {{"horizon", float3(scene.background.horizon)},
+                        {"zenith", float3(scene.background.zenith)}};
+  std::string out = "{\n";
+  for (const auto& item : head.items()) {
+    out.append("  ").append(ordered_json(item.key()).dump()).append(": ");
+    out.append(item.value().dump()).append(",\n");
+  }
+  out.append("  \"materials\": {");
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    out.append(i ? ",\n    \"" : "\n    \"").append(material_key(i)).append("\": ");
+    out.append(material_json(scene.materials[i]).dump());
+  }
+  out.append("\n  },\n  \"spheres\": [");
+  const SphereSet& s = scene.spheres;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const ordered_json sphere = {{"center", float3(s.center(i))},
+                                 {"radius", shortest(s.radius[i])},
+                                 {"material", material_key(s.material[i])}};
+    out.append(i ? ",\n    " : "\n    ").append(sphere.dump());
+  }
+  out.append("\n  ]\n}\n");
+  return out;
+}
+
+}  // namespace rtiow

@@ -1,0 +1,191 @@
+// Scene files: every built-in scene survives the round trip to JSON bit for bit, and every
+// kind of bad file is refused with one line naming the file, the place and the problem.
+
+#include "core/scene_file.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/builtin_scenes.h"
+#include "core/render.h"
+
+namespace rtiow {
+namespace {
+
+bool same_bits(const Film& a, const Film& b) {
+  return a.width() == b.width() && a.height() == b.height() &&
+         std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Color)) == 0;
+}
+
+class BuiltinRoundTrip : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(BuiltinRoundTrip, FileRendersTheIdenticalImage) {
+  const Scene builtin = make_builtin_scene(GetParam(), 7);
+  const std::string text = scene_to_json(builtin);
+  const Scene loaded = parse_scene(text, "roundtrip.json");
+  EXPECT_EQ(loaded.name, builtin.name);
+  EXPECT_EQ(loaded.layout_seed, builtin.layout_seed);
+  EXPECT_EQ(loaded.spheres.center_x, builtin.spheres.center_x);
+  EXPECT_EQ(loaded.spheres.radius, builtin.spheres.radius);
+  EXPECT_EQ(loaded.spheres.material.size(), builtin.spheres.material.size());
+
+  RenderSettings s;
+  s.width = 40;
+  s.height = std::max(1, int(std::lround(40 / builtin.image.aspect_ratio)));
+  s.samples_per_pixel = 3;
+  s.max_depth = 10;
+  EXPECT_TRUE(same_bits(render(builtin, s).film, render(loaded, s).film));
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltinScenes, BuiltinRoundTrip,
+                         ::testing::Values("materials", "wide-angle", "viewpoint", "viewpoint-zoom",
+                                           "defocus", "cover", "spheres:300"),
+                         [](const ::testing::TestParamInfo<std::string>& param_info) {
+                           std::string name = param_info.param;
+                           for (char& c : name) c = (c == '-' || c == ':') ? '_' : c;
+                           return name;
+                         });
+
+// A small valid scene; the bad cases below each break one thing in it.
+const char* kValid = R"({
+  "version": 1,
+  "camera": {"lookfrom": [0, 0, 0], "lookat": [0, 0, -1], "vfov": 90},
+  "image": {"width": 32, "height": 18, "spp": 4, "depth": 8},
+  "materials": {"red": {"type": "lambertian", "albedo": [0.8, 0.1, 0.1]},
+                "glass": {"type": "dielectric", "ior": 1.5},
+                "steel": {"type": "metal", "albedo": [0.7, 0.7, 0.7], "fuzz": 0.2}},
+  "spheres": [{"center": [0, 0, -1], "radius": 0.5, "material": "red"},
+              {"center": [0, -100.5, -1], "radius": 100, "material": "steel"},
+              {"center": [1, 0, -1], "radius": -0.4, "material": "glass"}]
+})";
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in the valid scene";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+TEST(SceneFile, TheValidSceneLoadsWithItsSettingsAndDefaults) {
+  const Scene s = parse_scene(kValid, "dir/valid.json");
+  EXPECT_EQ(s.name, "valid") << "the name defaults to the file's stem";
+  EXPECT_EQ(s.spheres.size(), 3u);
+  EXPECT_EQ(s.materials.size(), 3u);
+  EXPECT_EQ(s.image.width, 32);
+  EXPECT_DOUBLE_EQ(s.image.aspect_ratio, 32.0 / 18.0);
+  EXPECT_EQ(s.camera.vup, (Vec3d{0, 1, 0})) << "vup defaults to +y";
+  EXPECT_DOUBLE_EQ(s.camera.focus_distance, 1.0) << "focus defaults to the lookat distance";
+  EXPECT_EQ(s.camera.aperture, 0.0);
+  EXPECT_EQ(s.spheres.radius[2], -0.4f) << "negative radius: hollow sphere";
+}
+
+TEST(SceneFile, DefocusAngleSetsTheAperture) {
+  const Scene s = parse_scene(
+      replace(kValid, "\"vfov\": 90", "\"vfov\": 90, \"defocus_angle\": 10, \"focus_distance\": 3"),
+      "x.json");
+  EXPECT_NEAR(s.camera.aperture, 2 * 3 * std::tan(5 * 3.14159265358979 / 180), 1e-12);
+}
+
+struct BadCase {
+  std::string name;
+  std::string text;
+  std::string message;  // the error must contain this
+};
+
+std::vector<BadCase> bad_cases() {
+  const std::string v = kValid;
+  return {
+      {"empty file", "", "line 1, column 1"},
+      {"syntax error", replace(v, "\"spp\": 4,", "\"spp\": 4,,"), "line 4, column"},
+      {"not an object", "[1, 2]", "/: must be an object"},
+      {"no version", replace(v, "\"version\": 1,", ""), "/: missing field \"version\""},
+      {"future version", replace(v, "\"version\": 1", "\"version\": 2"),
+       "/version: must be from 1 to 1"},
+      {"unknown top field", replace(v, "\"version\": 1,", "\"version\": 1, \"lights\": [],"),
+       "/lights: unknown field"},
+      {"misspelt field", replace(v, "\"vfov\": 90", "\"vfow\": 90"), "/camera/vfow: unknown field"},
+      {"missing camera", replace(v, "\"camera\"", "\"kamera\""), "/kamera: unknown field"},
+      {"wrong type", replace(v, "\"width\": 32", "\"width\": \"32\""),
+       "/image/width: must be a whole number, got string \"32\""},
+      {"fractional size", replace(v, "\"width\": 32", "\"width\": 32.5"),
+       "/image/width: must be a whole number"},
+      {"zero width", replace(v, "\"width\": 32", "\"width\": 0"), "/image/width: must be from 1"},
+      {"absurd width", replace(v, "\"width\": 32", "\"width\": 100000000"),
+       "/image/width: must be from 1"},
+      {"zero spp", replace(v, "\"spp\": 4", "\"spp\": 0"), "/image/spp: must be from 1"},
+      {"negative depth", replace(v, "\"depth\": 8", "\"depth\": -1"),
+       "/image/depth: must be from 0"},
+      {"height and aspect", replace(v, "\"height\": 18", "\"height\": 18, \"aspect_ratio\": 2"),
+       "/image: give either \"height\" or \"aspect_ratio\""},
+      {"short vector", replace(v, "[0, 0, -1], \"vfov\"", "[0, -1], \"vfov\""),
+       "/camera/lookat: must be an array of 3 numbers"},
+      {"degenerate camera", replace(v, "\"lookat\": [0, 0, -1]", "\"lookat\": [0, 0, 0]"),
+       "/camera: lookfrom equals lookat"},
+      {"vfov out of range", replace(v, "\"vfov\": 90", "\"vfov\": 180"),
+       "/camera: vfov must lie strictly"},
+      {"aperture and angle",
+       replace(v, "\"vfov\": 90", "\"vfov\": 90, \"aperture\": 1, \"defocus_angle\": 2"),
+       "give either \"aperture\" or \"defocus_angle\""},
+      {"negative aperture", replace(v, "\"vfov\": 90", "\"vfov\": 90, \"aperture\": -1"),
+       "/camera: aperture must be"},
+      {"albedo above 1", replace(v, "[0.8, 0.1, 0.1]", "[1.8, 0.1, 0.1]"),
+       "/materials/red/albedo/0: must be in [0, 1], got 1.8"},
+      {"negative albedo", replace(v, "[0.8, 0.1, 0.1]", "[0.8, -0.1, 0.1]"),
+       "/materials/red/albedo/1: must be in [0, 1]"},
+      {"unknown material type", replace(v, "\"type\": \"dielectric\"", "\"type\": \"glass\""),
+       "/materials/glass/type: unknown material type \"glass\""},
+      {"material field of another type", replace(v, "\"ior\": 1.5", "\"ior\": 1.5, \"fuzz\": 0"),
+       "/materials/glass/fuzz: unknown field"},
+      {"zero ior", replace(v, "\"ior\": 1.5", "\"ior\": 0"), "/materials/glass/ior: must be > 0"},
+      {"negative fuzz", replace(v, "\"fuzz\": 0.2", "\"fuzz\": -0.2"),
+       "/materials/steel/fuzz: must be >= 0"},
+      {"huge number", replace(v, "\"radius\": 100,", "\"radius\": 1e39,"),
+       "/spheres/1/radius: is too large for single precision"},
+      {"overflowing number", replace(v, "\"radius\": 100,", "\"radius\": 1e999,"),
+       "line 9: number overflow parsing '1e999'"},
+      {"zero radius", replace(v, "\"radius\": 0.5", "\"radius\": 0"),
+       "/spheres/0/radius: must not be 0"},
+      {"unknown material", replace(v, "\"material\": \"red\"", "\"material\": \"blue\""),
+       "/spheres/0/material: no material named \"blue\""},
+      {"material not a name", replace(v, "\"material\": \"red\"", "\"material\": 3"),
+       "/spheres/0/material: must be a material name"},
+      {"no spheres", replace(v, "\"spheres\": [", "\"spheres\": [], \"x\": ["),
+       "/x: unknown field"},
+      {"empty scene",
+       std::string(
+           R"({"version": 1, "camera": {"lookfrom": [0,0,0], "lookat": [0,0,-1], "vfov": 90},
+          "image": {"width": 8, "height": 8}, "materials": {}, "spheres": []})"),
+       "/spheres: the scene has no spheres"},
+      {"nan literal", replace(v, "\"radius\": 0.5", "\"radius\": NaN"), "line 8, column 48"},
+  };
+}
+
+TEST(SceneFile, EveryBadFileGetsOneLineNamingFileAndPlace) {
+  for (const BadCase& c : bad_cases()) {
+    try {
+      parse_scene(c.text, "scenes/bad.json");
+      ADD_FAILURE() << c.name << ": accepted";
+    } catch (const InvalidInput& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("scenes/bad.json: ", 0), 0u) << c.name << ": " << what;
+      EXPECT_NE(what.find(c.message), std::string::npos) << c.name << ": " << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << c.name << ": not one line: " << what;
+    }
+  }
+}
+
+TEST(SceneFile, MissingFileIsNamed) {
+  try {
+    load_scene_file("/nonexistent/scene.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.json: cannot open"),
+              std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace rtiow
