@@ -3,13 +3,21 @@
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
+#include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace {
 
@@ -179,6 +187,103 @@ TEST(Cli, SphereFieldScenesRenderAndRefuseBadCounts) {
   EXPECT_TRUE(fs::exists(out));
   expect_refused("--scene spheres:0", "N must be a whole number");
   expect_refused("--scene spheres:12x", "N must be a whole number");
+}
+
+}  // namespace
+
+namespace {
+
+// A render started in the background, for the signal tests.
+class BackgroundRender {
+ public:
+  explicit BackgroundRender(const std::vector<std::string>& args) {
+    std::vector<char*> argv;
+    std::string binary = RTIOW_BINARY;
+    argv.push_back(binary.data());
+    args_ = args;
+    for (std::string& a : args_) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    stderr_path_ = (fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + ".stderr")).string();
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 2, stderr_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
+    EXPECT_EQ(posix_spawn(&pid_, binary.c_str(), &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+  }
+
+  void signal(int sig) const { ::kill(pid_, sig); }
+
+  // The exit code, or -1 if it did not end within `seconds` (then it is killed).
+  int wait(double seconds) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    int status = 0;
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (waitpid(pid_, &status, WNOHANG) == pid_) return WIFEXITED(status) ? WEXITSTATUS(status) : -2;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ::kill(pid_, SIGKILL);
+    waitpid(pid_, &status, 0);
+    return -1;
+  }
+
+  std::string stderr_text() const { return slurp(stderr_path_); }
+
+ private:
+  std::vector<std::string> args_;
+  std::string stderr_path_;
+  pid_t pid_ = -1;
+};
+
+std::vector<std::string> long_render(const fs::path& out) {
+  return {"render", "--scene", "cover", "--width", "160", "--spp", "1000000", "-o", out.string()};
+}
+
+TEST(Cli, InterruptWritesTheSamplesCompleted) {
+  for (int sig : {SIGINT, SIGTERM}) {
+    const fs::path out = output_path("interrupted.exr");
+    BackgroundRender r(long_render(out));
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    r.signal(sig);
+    const int code = r.wait(20.0);
+    EXPECT_EQ(code, 128 + sig) << r.stderr_text();
+    EXPECT_NE(r.stderr_text().find("interrupted: wrote"), std::string::npos) << r.stderr_text();
+    auto in = OIIO::ImageInput::open(out.string());
+    ASSERT_TRUE(in) << "no partial image written";
+    const OIIO::ImageSpec& spec = in->spec();
+    const int spp = spec.get_int_attribute("rtiow:spp");
+    EXPECT_GE(spp, 1);
+    EXPECT_LT(spp, 1000000);
+    EXPECT_EQ(spec.get_int_attribute("rtiow:spp_requested"), 1000000);
+    EXPECT_FALSE(spec.get_string_attribute("rtiow:stopped").empty());
+    std::vector<float> pixels(std::size_t(spec.width * spec.height * 3));
+    ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, pixels.data()));
+    double sum = 0;
+    for (float v : pixels) {
+      ASSERT_TRUE(std::isfinite(v));
+      sum += v;
+    }
+    EXPECT_GT(sum / double(pixels.size()), 0.1) << "the partial image is not black";
+  }
+}
+
+TEST(Cli, SecondInterruptAbortsAndLeavesTheOldFileAlone) {
+  const fs::path out = output_path("kept.png");
+  {
+    std::ofstream old(out, std::ios::binary);
+    old << "the good image from before";
+  }
+  // Wide enough that the first pass (1 spp) outlasts both signals: the first must not get
+  // to write before the second arrives.
+  BackgroundRender r({"render", "--scene", "cover", "--width", "3000", "--spp", "1000", "-o",
+                      out.string()});
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  r.signal(SIGINT);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  r.signal(SIGINT);
+  EXPECT_EQ(r.wait(5.0), 128 + SIGINT) << r.stderr_text();
+  EXPECT_NE(r.stderr_text().find("aborted"), std::string::npos) << r.stderr_text();
+  EXPECT_EQ(slurp(out), "the good image from before");
 }
 
 }  // namespace
