@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/sphere_intersect.h"
+#include "core/thread_sanitizer.h"
 
 namespace rtiow {
 namespace {
@@ -22,6 +23,7 @@ void throw_on_device_error(RTCDevice device, const char* what) {
 // sphere test can report, or Embree could skip a hit the naive loop finds.
 void sphere_bounds(const RTCBoundsFunctionArguments* args) {
   const auto& s = *static_cast<const SphereSet*>(args->geometryUserPtr);
+  tsan_acquire(&s);  // Embree's build threads start after the spheres were written
   const unsigned i = args->primID;
   const float r = std::abs(s.radius[i]);
   auto pad = [](float lo, float hi, float& out_lo, float& out_hi) {
@@ -34,6 +36,7 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
   pad(s.center_x[i] - r, s.center_x[i] + r, b->lower_x, b->upper_x);
   pad(s.center_y[i] - r, s.center_y[i] + r, b->lower_y, b->upper_y);
   pad(s.center_z[i] - r, s.center_z[i] + r, b->lower_z, b->upper_z);
+  tsan_release(&s);  // ...and finish before the commit returns
 }
 
 // Called by rtcIntersect1 for each sphere whose box the ray enters; N is 1 for single rays.
@@ -88,9 +91,11 @@ EmbreeAccel::EmbreeAccel(const SphereSet& spheres) {
     rtcSetGeometryIntersectFunction(geometry, sphere_intersect);
     rtcSetGeometryOccludedFunction(geometry, sphere_occluded);
     rtcCommitGeometry(geometry);
+    tsan_release(&spheres);
     rtcAttachGeometry(scene_, geometry);
     rtcReleaseGeometry(geometry);
     rtcCommitScene(scene_);
+    tsan_acquire(&spheres);
     throw_on_device_error(device_, "building the sphere BVH");
   } catch (...) {
     if (scene_) rtcReleaseScene(scene_);

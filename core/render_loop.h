@@ -16,6 +16,7 @@
 #include "core/film.h"
 #include "core/integrator.h"
 #include "core/render.h"
+#include "core/thread_sanitizer.h"
 
 namespace rtiow {
 
@@ -58,10 +59,13 @@ std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel&
   std::atomic<std::uint64_t> rays{0};
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   tbb::task_arena arena(threads);
+  char fork = 0, join = 0;  // their addresses name the fork and the join for TSan
+  tsan_release(&fork);
   arena.execute([&] {
     tbb::parallel_for(
         tbb::blocked_range2d<int>(0, settings.height, kTileSize, 0, settings.width, kTileSize),
         [&](const tbb::blocked_range2d<int>& tile) {
+          tsan_acquire(&fork);
           std::uint64_t tile_rays = 0;
           for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
             for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
@@ -75,9 +79,11 @@ std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel&
             progress->samples_done += std::uint64_t(tile.rows().size() * tile.cols().size()) *
                                       std::uint64_t(last - first);
           }
+          tsan_release(&join);
         },
         tbb::simple_partitioner());
   });
+  tsan_acquire(&join);
   return rays.load();
 }
 

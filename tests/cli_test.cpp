@@ -2,8 +2,8 @@
 // on refusal, the file and its metadata on success.
 
 #include <OpenImageIO/imageio.h>
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -206,8 +206,8 @@ class BackgroundRender {
     stderr_path_ = (fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + ".stderr")).string();
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 2, stderr_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                     0644);
+    posix_spawn_file_actions_addopen(&actions, 2, stderr_path_.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
     EXPECT_EQ(posix_spawn(&pid_, binary.c_str(), &actions, nullptr, argv.data(), environ), 0);
     posix_spawn_file_actions_destroy(&actions);
   }
@@ -219,7 +219,8 @@ class BackgroundRender {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     int status = 0;
     while (std::chrono::steady_clock::now() < deadline) {
-      if (waitpid(pid_, &status, WNOHANG) == pid_) return WIFEXITED(status) ? WEXITSTATUS(status) : -2;
+      if (waitpid(pid_, &status, WNOHANG) == pid_)
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -2;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     ::kill(pid_, SIGKILL);
@@ -275,8 +276,8 @@ TEST(Cli, SecondInterruptAbortsAndLeavesTheOldFileAlone) {
   }
   // Wide enough that the first pass (1 spp) outlasts both signals: the first must not get
   // to write before the second arrives.
-  BackgroundRender r({"render", "--scene", "cover", "--width", "3000", "--spp", "1000", "-o",
-                      out.string()});
+  BackgroundRender r(
+      {"render", "--scene", "cover", "--width", "3000", "--spp", "1000", "-o", out.string()});
   std::this_thread::sleep_for(std::chrono::milliseconds(800));
   r.signal(SIGINT);
   std::this_thread::sleep_for(std::chrono::milliseconds(50));

@@ -1,0 +1,29 @@
+# Sanitizer builds of the core and of the unit and render tests, run as ordinary CTest tests
+# (label `sanitize`): AddressSanitizer with UndefinedBehaviorSanitizer, and ThreadSanitizer
+# for the parallel sample loop. They share nothing with the Release targets but the sources.
+
+set(RTIOW_SANITIZER_FLAGS_asan -fsanitize=address,undefined -fno-sanitize-recover=all
+                               -fno-omit-frame-pointer -g -O1)
+set(RTIOW_SANITIZER_FLAGS_tsan -fsanitize=thread -g -O1)
+
+# rtiow_add_sanitized_test(kind name SOURCES ...): `name`_`kind`, linked against a sanitized core.
+function(rtiow_add_sanitized_test kind name)
+  cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
+  if(NOT TARGET rtiow_core_${kind})
+    rtiow_add_core_library(rtiow_core_${kind})
+    target_compile_options(rtiow_core_${kind} PRIVATE ${RTIOW_SANITIZER_FLAGS_${kind}})
+    target_link_options(rtiow_core_${kind} PUBLIC ${RTIOW_SANITIZER_FLAGS_${kind}})
+  endif()
+  set(target ${name}_${kind})
+  add_executable(${target} ${ARG_SOURCES})
+  target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${target} PRIVATE rtiow_core_${kind} OpenImageIO::OpenImageIO
+                                          GTest::gtest_main)
+  target_compile_options(${target} PRIVATE ${RTIOW_SANITIZER_FLAGS_${kind}})
+  rtiow_set_warnings(${target})
+  rtiow_set_codegen(${target})
+  add_test(NAME ${target} COMMAND ${target})
+  set_tests_properties(${target} PROPERTIES
+    LABELS sanitize
+    ENVIRONMENT "ASAN_OPTIONS=detect_leaks=1:abort_on_error=0;UBSAN_OPTIONS=print_stacktrace=1;TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=${PROJECT_SOURCE_DIR}/tests/tsan.supp")
+endfunction()
