@@ -8,6 +8,7 @@ packages=(
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools
   libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev
   python3-matplotlib
 )
 
