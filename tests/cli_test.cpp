@@ -288,3 +288,49 @@ TEST(Cli, SecondInterruptAbortsAndLeavesTheOldFileAlone) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Cli, RendersSceneFilesWithOverridesAndRefusesBadOnes) {
+  const fs::path scene = output_path("scene.json");
+  {
+    std::ofstream out(scene);
+    out << R"({"version": 1, "name": "file scene",
+      "camera": {"lookfrom": [0, 0, 0], "lookat": [0, 0, -1], "vfov": 90},
+      "image": {"width": 20, "height": 10, "spp": 2, "depth": 4},
+      "materials": {"red": {"type": "lambertian", "albedo": [0.8, 0.1, 0.1]}},
+      "spheres": [{"center": [0, 0, -1], "radius": 0.5, "material": "red"}]})";
+  }
+  const fs::path out = output_path("from_file.exr");
+  const CommandResult r = run_rtiow("render " + scene.string() + " --spp 3 -q -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  auto in = OIIO::ImageInput::open(out.string());
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().width, 20) << "the file's width";
+  EXPECT_EQ(in->spec().get_int_attribute("rtiow:spp"), 3) << "--spp overrides the file";
+  EXPECT_EQ(in->spec().get_string_attribute("rtiow:scene"), "file scene");
+
+  expect_refused(scene.string() + " --scene cover", "give a scene file or --scene, not both");
+  {
+    std::ofstream bad(scene);
+    bad << R"({"version": 1, "spheres": []})";
+  }
+  expect_refused(scene.string(), scene.string() + ": /: missing field \"camera\"");
+}
+
+TEST(Cli, WrittenSceneFileRendersTheIdenticalFile) {
+  const fs::path scene = output_path("cover7.json");
+  ASSERT_EQ(run_rtiow("scene cover --scene-seed 7 -o " + scene.string()).exit_code, 0);
+  const fs::path a = output_path("a.png"), b = output_path("b.png");
+  const std::string common = " --width 48 --spp 2 --reproducible -q -o ";
+  ASSERT_EQ(run_rtiow("render " + scene.string() + common + a.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow("render --scene cover --scene-seed 7" + common + b.string()).exit_code, 0);
+  EXPECT_EQ(slurp(a), slurp(b));
+}
+
+TEST(Cli, RefusesImagesTooLargeForMemoryBeforeAllocating) {
+  expect_refused("--width 40000 --height 40000", "more than half of this machine's");
+  expect_refused("--width 100000 --height 100000", "more than 2^31 pixels");
+}
+
+}  // namespace
