@@ -34,18 +34,22 @@ inline float next_float_up(float v) {
 }
 
 inline SurfaceHit make_surface_hit(const SphereSet& spheres, const Ray& ray, const Hit& hit) {
-  const Vec3 center = spheres.center(hit.sphere);
-  const float radius = spheres.radius[hit.sphere];
-  // Re-projection removes the error the ray parameter t carries along the ray.
-  Vec3 offset = ray.at(hit.t) - center;
-  const float dist = length(offset);
-  if (dist > 0.0f) offset *= std::abs(radius) / dist;
+  const Vec3d center(spheres.center(hit.sphere));
+  const double radius = spheres.radius[hit.sphere];
+  // In double, then rounded once: the point relative to a far-away centre (a huge ground
+  // sphere) keeps its precision. Re-projection removes the error t carries along the ray.
+  Vec3d offset = Vec3d(ray.origin) + double(hit.t) * Vec3d(ray.direction) - center;
+  const double dist = length(offset);
+  if (dist > 0.0) offset *= std::abs(radius) / dist;
+  const Vec3d point = center + offset;
   SurfaceHit s;
-  s.point = center + offset;
-  // Bound on |computed - exact|: a handful of roundings of quantities no larger than
-  // |center| and |offset|, componentwise.
-  s.point_error = float_error_gamma(7) * (abs(center) + abs(offset));
-  const Vec3 outward = offset / radius;  // negative radius flips it: hollow spheres
+  s.point = Vec3(point);
+  // |stored - exact|: the rounding to float (half an ulp of the point) plus the double
+  // computation's own error, a few ulps of double of the centre and radius.
+  s.point_error =
+      float_error_gamma(1) * abs(s.point) +
+      Vec3(1e-14 * (abs(center) + Vec3d(std::abs(radius), std::abs(radius), std::abs(radius))));
+  const Vec3 outward(offset / radius);  // negative radius flips it: hollow spheres
   s.front_face = dot(ray.direction, outward) < 0.0f;
   s.normal = s.front_face ? outward : -outward;
   s.material = spheres.material[hit.sphere];

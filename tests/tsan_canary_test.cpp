@@ -4,17 +4,23 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "core/builtin_scenes.h"
 #include "core/render_loop.h"
 
 namespace rtiow {
 namespace {
 
-// Counts queries in a plain int shared by all threads: a race.
+// Counts queries in a plain int shared by all threads: a race. Each query also takes a few
+// microseconds, so that both threads get tiles even on a loaded machine.
 struct RacyAccel {
   mutable int queries = 0;
   bool intersect(const Ray&, float, Hit&) const {
     queries = queries + 1;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(5);
+    while (std::chrono::steady_clock::now() < until) {
+    }
     return false;
   }
 };
