@@ -126,7 +126,7 @@ int run_render(const RenderOptions& o, bool scene_option_given) {
   settings.accel = parse_accel(o.accel);
   apply_overrides(o, scene, settings);
   validate(settings);
-  validate(scene.camera);
+  validate(scene);
   const std::string output = o.output.empty() ? default_output(scene.name) : o.output;
   check_output_path(output);
 

@@ -103,6 +103,7 @@ void validate(const RenderSettings& s) {
 
 RenderResult render(const Scene& scene, const RenderSettings& settings, RenderProgress* progress) {
   validate(settings);
+  validate(scene);
   const Camera camera(scene.camera, settings.width, settings.height);
   switch (settings.accel) {
     case AccelKind::Embree:

@@ -36,4 +36,8 @@ struct Scene {
   }
 };
 
+// Throws InvalidInput naming what is wrong: no spheres, a non-finite or zero radius, a
+// missing material, a material parameter out of range, a degenerate camera.
+void validate(const Scene& scene);
+
 }  // namespace rtiow
