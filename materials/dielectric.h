@@ -23,7 +23,10 @@ inline bool scatter(const Dielectric& m, const Vec3& in_direction, const Surface
   const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
   const bool total_internal_reflection = eta * sin_theta > 1.0f;
   const float u = rng.next_1d();  // drawn always, so the stream does not depend on the branch
-  if (total_internal_reflection || schlick_reflectance(cos_theta, eta) > u) {
+  // Index 1 is no interface at all: Schlick's formula would still reflect (1-cos)^5 at grazing
+  // angles and draw a rim around an invisible sphere.
+  const float reflectance = m.ior == 1.0f ? 0.0f : schlick_reflectance(cos_theta, eta);
+  if (total_internal_reflection || reflectance > u) {
     out_direction = reflect(unit, hit.normal);
   } else {
     out_direction = refract(unit, hit.normal, eta);

@@ -25,16 +25,21 @@ double log_uniform(Pcg32& rng, double lo_exp, double hi_exp) {
   return std::pow(10.0, lo_exp + (hi_exp - lo_exp) * rng.next_double());
 }
 
-Vec3d random_direction(Pcg32& rng) { return Vec3d(sample_unit_vector(rng.next_float(), rng.next_float())); }
+Vec3d random_direction(Pcg32& rng) {
+  return Vec3d(sample_unit_vector(rng.next_float(), rng.next_float()));
+}
 
 struct Tally {
-  long spawned = 0, skipped_grazing = 0, rehit_outward = 0, missed_far_side = 0, hit_near_side = 0, first_misses = 0;
+  long spawned = 0, skipped_grazing = 0, rehit_outward = 0, missed_far_side = 0, hit_near_side = 0,
+       first_misses = 0;
   long failures() const { return rehit_outward + missed_far_side + hit_near_side; }
 };
 
 // Buckets by how small the sphere is against its distance from the origin, in decades:
 // float positions are spaced ~6e-8 |c| apart, so small r / |c| is where float runs out.
-int bucket(double r, double c) { return std::clamp(int(std::floor(std::log10(r / c))), -10, 3); }
+int bucket(double r, double c) {
+  return std::clamp(int(std::floor(std::log10(r / c))), -10, 3);
+}
 
 TEST(Reintersection, SpawnedRaysNeverRehitTheSurfaceTheyLeft) {
   Pcg32 rng(2024, 7);
@@ -54,11 +59,11 @@ TEST(Reintersection, SpawnedRaysNeverRehitTheSurfaceTheyLeft) {
 
     const bool from_inside = sphere % 2 == 1;
     const Vec3d on_surface = Vec3d(c_f) + double(r_f) * random_direction(rng);
-    const Vec3d origin = from_inside
-                             ? Vec3d(c_f) + 0.5 * double(r_f) * random_direction(rng)
-                             : on_surface + double(r_f) * log_uniform(rng, 0, 2) *
-                                                normalize(on_surface - Vec3d(c_f) +
-                                                          0.5 * double(r_f) * random_direction(rng));
+    const Vec3d origin =
+        from_inside ? Vec3d(c_f) + 0.5 * double(r_f) * random_direction(rng)
+                    : on_surface + double(r_f) * log_uniform(rng, 0, 2) *
+                                       normalize(on_surface - Vec3d(c_f) +
+                                                 0.5 * double(r_f) * random_direction(rng));
     const Ray first{Vec3(origin), Vec3(on_surface - origin)};
     const float t = sphere_hit_distance(c_f, r_f, first, 0.0f, kInf);
     if (!(t < kInf)) {
@@ -104,12 +109,13 @@ TEST(Reintersection, SpawnedRaysNeverRehitTheSurfaceTheyLeft) {
   // plane can re-enter (measured: 1e-6: ~1%, 1e-7: ~0.3% of rays); below 1e-7 even rays
   // aimed at the sphere miss it.
   constexpr int kCertifiedFrom = -5;  // r / |c| >= 1e-5
-  std::printf("r/|c| decade  spawned  grazing(skipped)  rehit-out  missed-far  hit-near  first-miss\n");
+  std::printf(
+      "r/|c| decade  spawned  grazing(skipped)  rehit-out  missed-far  hit-near  first-miss\n");
   for (int b = -10; b <= 3; ++b) {
     const Tally& t = tallies[std::size_t(b + 10)];
     if (t.spawned == 0 && t.first_misses == 0) continue;
-    std::printf("  1e%-3d     %9ld %17ld %10ld %11ld %9ld %11ld\n", b, t.spawned, t.skipped_grazing, t.rehit_outward,
-                t.missed_far_side, t.hit_near_side, t.first_misses);
+    std::printf("  1e%-3d     %9ld %17ld %10ld %11ld %9ld %11ld\n", b, t.spawned, t.skipped_grazing,
+                t.rehit_outward, t.missed_far_side, t.hit_near_side, t.first_misses);
     if (b >= kCertifiedFrom) {
       EXPECT_EQ(t.failures(), 0) << "failures at r/|c| ~ 1e" << b;
       EXPECT_EQ(t.first_misses, 0) << "initial rays missed at r/|c| ~ 1e" << b;
