@@ -12,7 +12,9 @@ bool in_unit_range(const Color& c) {
   return is_finite(c) && c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x <= 1 && c.y <= 1 && c.z <= 1;
 }
 
-std::string sphere_name(std::size_t i) { return "scene: sphere " + std::to_string(i) + ": "; }
+std::string sphere_name(std::size_t i) {
+  return "scene: sphere " + std::to_string(i) + ": ";
+}
 
 }  // namespace
 
@@ -46,9 +48,9 @@ void validate(const Scene& scene) {
     }
   }
   if (!is_finite(scene.background.horizon) || !is_finite(scene.background.zenith) ||
-      std::min({scene.background.horizon.x, scene.background.horizon.y,
-                scene.background.horizon.z, scene.background.zenith.x, scene.background.zenith.y,
-                scene.background.zenith.z}) < 0.0f) {
+      std::min({scene.background.horizon.x, scene.background.horizon.y, scene.background.horizon.z,
+                scene.background.zenith.x, scene.background.zenith.y, scene.background.zenith.z}) <
+          0.0f) {
     throw InvalidInput("scene: background colours must be finite and >= 0");
   }
   validate(scene.camera);

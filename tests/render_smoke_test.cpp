@@ -9,6 +9,7 @@
 #include "core/builtin_scenes.h"
 #include "core/error.h"
 #include "core/render.h"
+#include "tests/film_equality.h"
 
 namespace rtiow {
 namespace {
@@ -21,11 +22,6 @@ RenderSettings tiny(const Scene& scene) {
   s.max_depth = 12;
   s.seed = 11;
   return s;
-}
-
-bool bit_identical(const Film& a, const Film& b) {
-  return a.width() == b.width() && a.height() == b.height() &&
-         std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Color)) == 0;
 }
 
 class EveryScene : public ::testing::TestWithParam<std::string> {};
@@ -51,8 +47,8 @@ TEST_P(EveryScene, RendersFiniteNonBlackAndDeterministic) {
   EXPECT_LT(mean, 1.0) << "image is washed out";
   EXPECT_GT(one.rays_traced, std::uint64_t(settings.width * settings.height * 4));
 
-  EXPECT_TRUE(bit_identical(one.film, two.film)) << "1 and 2 threads differ";
-  EXPECT_TRUE(bit_identical(one.film, naive.film)) << "Embree and naive differ";
+  EXPECT_TRUE(test::bit_identical(one.film, two.film)) << "1 and 2 threads differ";
+  EXPECT_TRUE(test::bit_identical(one.film, naive.film)) << "Embree and naive differ";
   EXPECT_EQ(one.rays_traced, naive.rays_traced);
 }
 
@@ -71,7 +67,7 @@ TEST(Render, DifferentSeedsGiveDifferentNoise) {
   const RenderResult a = render(scene, settings);
   settings.seed = 12;
   const RenderResult b = render(scene, settings);
-  EXPECT_FALSE(bit_identical(a.film, b.film));
+  EXPECT_FALSE(test::bit_identical(a.film, b.film));
 }
 
 TEST(Render, DepthZeroIsBlackAsInTheBook) {

@@ -11,14 +11,10 @@
 
 #include "core/builtin_scenes.h"
 #include "core/render.h"
+#include "tests/film_equality.h"
 
 namespace rtiow {
 namespace {
-
-bool same_bits(const Film& a, const Film& b) {
-  return a.width() == b.width() && a.height() == b.height() &&
-         std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Color)) == 0;
-}
 
 class BuiltinRoundTrip : public ::testing::TestWithParam<std::string> {};
 
@@ -37,7 +33,7 @@ TEST_P(BuiltinRoundTrip, FileRendersTheIdenticalImage) {
   s.height = std::max(1, int(std::lround(40 / builtin.image.aspect_ratio)));
   s.samples_per_pixel = 3;
   s.max_depth = 10;
-  EXPECT_TRUE(same_bits(render(builtin, s).film, render(loaded, s).film));
+  EXPECT_TRUE(test::bit_identical(render(builtin, s).film, render(loaded, s).film));
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, BuiltinRoundTrip,
