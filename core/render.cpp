@@ -16,9 +16,9 @@ namespace rtiow {
 namespace {
 
 // Beyond this many pixels indices overflow; a film costs this much per pixel (the float
-// image and the double accumulator).
+// image and the exact fixed-point sums).
 constexpr std::uint64_t kMaxPixels = 1ull << 31;
-constexpr std::uint64_t kBytesPerPixel = sizeof(Color) + sizeof(Vec3d);
+constexpr std::uint64_t kBytesPerPixel = sizeof(Color) + sizeof(PixelSum);
 
 using Clock = std::chrono::steady_clock;
 
@@ -28,11 +28,12 @@ double seconds_since(Clock::time_point start) {
 
 // How many samples the next pass takes: about a second's worth, judged from the last pass,
 // so a stop request is honoured soon. (Grouping never changes the image.)
-int next_pass_samples(int last_pass, double last_seconds, int remaining) {
+std::uint64_t next_pass_samples(std::uint64_t last_pass, double last_seconds,
+                                std::uint64_t remaining) {
   constexpr double kTargetSeconds = 1.0;
-  double n = last_pass * (last_seconds > 0 ? kTargetSeconds / last_seconds : 4.0);
-  n = std::clamp(n, 1.0, 4.0 * last_pass);
-  return std::min(remaining, int(n));
+  double n = double(last_pass) * (last_seconds > 0 ? kTargetSeconds / last_seconds : 4.0);
+  n = std::clamp(n, 1.0, 4.0 * double(last_pass));
+  return std::min(remaining, std::uint64_t(n));
 }
 
 template <typename Accel>
@@ -43,24 +44,26 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   const Accel accel(scene.spheres);
   result.build_seconds = seconds_since(build_start);
 
-  std::vector<Vec3d> sums(std::size_t(settings.width) * std::size_t(settings.height));
+  result.sums.resize(std::size_t(settings.width) * std::size_t(settings.height));
   const auto render_start = Clock::now();
-  int done = 0, pass = 1;
-  while (done < settings.samples_per_pixel) {
+  const std::uint64_t first = settings.first_sample;
+  const auto total = std::uint64_t(settings.samples_per_pixel);
+  std::uint64_t done = 0, pass = 1;
+  while (done < total) {
     if (done > 0 && progress && progress->stop_requested.load()) {
       result.stopped = true;
       break;
     }
     const auto pass_start = Clock::now();
-    result.rays_traced +=
-        render_pass(scene, camera, accel, settings, done, done + pass, sums, progress);
+    result.rays_traced += render_pass(scene, camera, accel, settings, first + done,
+                                      first + done + pass, result.sums, progress);
     done += pass;
-    pass = next_pass_samples(pass, seconds_since(pass_start), settings.samples_per_pixel - done);
+    pass = next_pass_samples(pass, seconds_since(pass_start), total - done);
   }
   result.render_seconds = seconds_since(render_start);
-  result.samples_completed = done;
+  result.samples_completed = int(done);
   result.film = Film(settings.width, settings.height);
-  resolve(sums, done, result.film);
+  resolve(result.sums, done, result.film);
   return result;
 }
 
@@ -84,6 +87,7 @@ void validate(const RenderSettings& s) {
   }
   if (s.max_depth < 0) throw InvalidInput("depth must be >= 0, got " + std::to_string(s.max_depth));
   if (s.threads < 0) throw InvalidInput("threads must be >= 0, got " + std::to_string(s.threads));
+  if (s.first_sample > (1ull << 62)) throw InvalidInput("first sample index is out of range");
   const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
   if (pixels > kMaxPixels) {
     throw InvalidInput("image " + std::to_string(s.width) + "x" + std::to_string(s.height) +

@@ -6,8 +6,10 @@
 #include <atomic>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/film.h"
+#include "core/sample_sum.h"
 #include "core/scene.h"
 
 namespace rtiow {
@@ -20,7 +22,8 @@ AccelKind parse_accel(const std::string& name);  // throws InvalidInput
 struct RenderSettings {
   int width = 0;
   int height = 0;
-  int samples_per_pixel = 1;
+  int samples_per_pixel = 1;       // how many samples to render per pixel...
+  std::uint64_t first_sample = 0;  // ...starting at this sample index (a share of a render)
   int max_depth = 50;
   std::uint64_t seed = 0;
   int threads = 0;  // 0: all cores
@@ -41,6 +44,7 @@ struct RenderProgress {
 
 struct RenderResult {
   Film film;                    // the mean of the samples completed
+  std::vector<PixelSum> sums;   // their exact sums, for merging shares of a render
   int samples_completed = 0;    // per pixel; less than asked when stopped
   bool stopped = false;         // a stop request ended the render early
   double build_seconds = 0.0;   // accelerator construction

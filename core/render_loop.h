@@ -16,6 +16,7 @@
 #include "core/film.h"
 #include "core/integrator.h"
 #include "core/render.h"
+#include "core/sample_sum.h"
 #include "core/thread_sanitizer.h"
 
 namespace rtiow {
@@ -23,30 +24,30 @@ namespace rtiow {
 inline constexpr int kTileSize = 16;
 
 // The film from per-pixel sums of `samples` samples each.
-inline void resolve(const std::vector<Vec3d>& sums, int samples, Film& film) {
+inline void resolve(const std::vector<PixelSum>& sums, std::uint64_t samples, Film& film) {
   for (int y = 0; y < film.height(); ++y) {
     for (int x = 0; x < film.width(); ++x) {
-      const Vec3d& sum = sums[std::size_t(y) * std::size_t(film.width()) + std::size_t(x)];
-      film.at(x, y) = Color(sum / double(samples));
+      film.at(x, y) =
+          sums[std::size_t(y) * std::size_t(film.width()) + std::size_t(x)].mean(samples);
     }
   }
 }
 
-// Adds samples [first, last) of pixel (x, y) to `sum`, in sample order: the sum is the same
-// whatever thread runs it and however the samples are split into passes.
+// Adds samples [first, last) of pixel (x, y) to `sum`. The sum is exact (PixelSum), so it
+// is the same whatever thread runs it and however the samples are split.
 template <typename Accel>
 void accumulate_pixel(const Scene& scene, const Camera& camera, const Accel& accel,
-                      const RenderSettings& settings, int x, int y, int first, int last, Vec3d& sum,
-                      std::uint64_t& rays) {
+                      const RenderSettings& settings, int x, int y, std::uint64_t first,
+                      std::uint64_t last, PixelSum& sum, std::uint64_t& rays) {
   const float inv_w = 1.0f / float(settings.width), inv_h = 1.0f / float(settings.height);
-  for (int i = first; i < last; ++i) {
-    SampleStream rng(settings.seed, std::uint32_t(x), std::uint32_t(y), std::uint64_t(i));
+  for (std::uint64_t i = first; i < last; ++i) {
+    SampleStream rng(settings.seed, std::uint32_t(x), std::uint32_t(y), i);
     const float s = (float(x) + rng.next_1d()) * inv_w;
     const float t = (float(y) + rng.next_1d()) * inv_h;
     float lens_u = 0.0f, lens_v = 0.0f;
     if (camera.has_lens()) lens_u = rng.next_1d(), lens_v = rng.next_1d();
     const Ray ray = camera.generate_ray(s, t, lens_u, lens_v);
-    sum += Vec3d(trace_path(scene, accel, ray, settings.max_depth, rng, rays));
+    sum.add(trace_path(scene, accel, ray, settings.max_depth, rng, rays));
   }
 }
 
@@ -54,8 +55,8 @@ void accumulate_pixel(const Scene& scene, const Camera& camera, const Accel& acc
 // major). Returns the number of rays traced.
 template <typename Accel>
 std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel& accel,
-                          const RenderSettings& settings, int first, int last,
-                          std::vector<Vec3d>& sums, RenderProgress* progress) {
+                          const RenderSettings& settings, std::uint64_t first, std::uint64_t last,
+                          std::vector<PixelSum>& sums, RenderProgress* progress) {
   std::atomic<std::uint64_t> rays{0};
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   tbb::task_arena arena(threads);
@@ -69,15 +70,15 @@ std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel&
           std::uint64_t tile_rays = 0;
           for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
             for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-              Vec3d& sum = sums[std::size_t(y) * std::size_t(settings.width) + std::size_t(x)];
+              PixelSum& sum = sums[std::size_t(y) * std::size_t(settings.width) + std::size_t(x)];
               accumulate_pixel(scene, camera, accel, settings, x, y, first, last, sum, tile_rays);
             }
           }
           rays += tile_rays;
           if (progress) {
             progress->rays_traced += tile_rays;
-            progress->samples_done += std::uint64_t(tile.rows().size() * tile.cols().size()) *
-                                      std::uint64_t(last - first);
+            progress->samples_done +=
+                std::uint64_t(tile.rows().size() * tile.cols().size()) * (last - first);
           }
           tsan_release(&join);
         },
@@ -92,10 +93,12 @@ std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel&
 template <typename Accel>
 std::uint64_t render_tiles(const Scene& scene, const Camera& camera, const Accel& accel,
                            const RenderSettings& settings, Film& film, RenderProgress* progress) {
-  std::vector<Vec3d> sums(std::size_t(settings.width) * std::size_t(settings.height));
+  std::vector<PixelSum> sums(std::size_t(settings.width) * std::size_t(settings.height));
+  const std::uint64_t first = settings.first_sample;
   const std::uint64_t rays =
-      render_pass(scene, camera, accel, settings, 0, settings.samples_per_pixel, sums, progress);
-  resolve(sums, settings.samples_per_pixel, film);
+      render_pass(scene, camera, accel, settings, first,
+                  first + std::uint64_t(settings.samples_per_pixel), sums, progress);
+  resolve(sums, std::uint64_t(settings.samples_per_pixel), film);
   return rays;
 }
 

@@ -5,6 +5,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <utility>
+#include <vector>
 
 #include "core/builtin_scenes.h"
 #include "core/error.h"
@@ -68,6 +71,46 @@ TEST(Render, DifferentSeedsGiveDifferentNoise) {
   settings.seed = 12;
   const RenderResult b = render(scene, settings);
   EXPECT_FALSE(test::bit_identical(a.film, b.film));
+}
+
+// Shares of a render add up to the whole render, bit for bit: the exact sums make the split
+// (passes, processes, machines) invisible.
+TEST(Render, SharesOfTheSamplesAddUpToTheWholeRender) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  RenderSettings whole = tiny(scene);
+  whole.samples_per_pixel = 9;
+  const RenderResult all = render(scene, whole);
+  std::vector<PixelSum> sums(all.sums.size());
+  std::uint64_t rays = 0;
+  for (auto [first, count] : {std::pair{0, 2}, std::pair{2, 5}, std::pair{7, 2}}) {
+    RenderSettings share = whole;
+    share.first_sample = std::uint64_t(first);
+    share.samples_per_pixel = count;
+    const RenderResult part = render(scene, share);
+    for (std::size_t i = 0; i < sums.size(); ++i) sums[i] += part.sums[i];
+    rays += part.rays_traced;
+  }
+  EXPECT_TRUE(sums == all.sums);
+  EXPECT_EQ(rays, all.rays_traced);
+  Film merged(whole.width, whole.height);
+  for (int y = 0; y < whole.height; ++y) {
+    for (int x = 0; x < whole.width; ++x)
+      merged.at(x, y) = sums[std::size_t(y * whole.width + x)].mean(9);
+  }
+  EXPECT_TRUE(test::bit_identical(merged, all.film));
+}
+
+TEST(PixelSum, RoundsEachSampleOnceAndClampsTheAbsurd) {
+  PixelSum s;
+  s.add({0.25f, 1.0f, 0.0f});
+  s.add({0.75f, std::numeric_limits<float>::quiet_NaN(), -3.0f});
+  const Color mean = s.mean(2);
+  EXPECT_EQ(mean.x, 0.5f);
+  EXPECT_EQ(mean.y, 0.5f) << "NaN counts as 0";
+  EXPECT_EQ(mean.z, 0.0f) << "negative counts as 0";
+  PixelSum big;
+  big.add({1e30f, 0, 0});
+  EXPECT_EQ(big.mean(1).x, float(PixelSum::kMaxSample));
 }
 
 TEST(Render, DepthZeroIsBlackAsInTheBook) {

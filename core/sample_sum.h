@@ -1,0 +1,57 @@
+#pragma once
+// The sum of a pixel's samples, exact and independent of order: each sample is rounded once
+// to a fixed-point number with 2^-32 resolution and added as a 128-bit integer. Integer
+// addition is associative, so splitting the samples across passes, processes or machines
+// and adding the parts gives the same bits as one sequential render.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "core/vec3.h"
+
+namespace rtiow {
+
+__extension__ using int128 = __int128;  // a GCC/Clang extension; -Wpedantic knows it is
+
+class PixelSum {
+ public:
+  static constexpr double kScale = 4294967296.0;  // 2^32
+  // A single sample's value is clamped to [0, 2^30]: far beyond any radiance a scene of
+  // albedos <= 1 under a finite sky produces, and it keeps 2^31 samples from overflowing.
+  static constexpr double kMaxSample = 1073741824.0;
+
+  void add(const Color& c) {
+    channel_[0] += to_fixed(c.x);
+    channel_[1] += to_fixed(c.y);
+    channel_[2] += to_fixed(c.z);
+  }
+
+  PixelSum& operator+=(const PixelSum& other) {
+    for (int i = 0; i < 3; ++i) channel_[i] += other.channel_[i];
+    return *this;
+  }
+
+  bool operator==(const PixelSum&) const = default;
+
+  // The mean of `samples` samples, rounded once to float.
+  Color mean(std::uint64_t samples) const {
+    const double n = double(samples) * kScale;
+    return {float(double(channel_[0]) / n), float(double(channel_[1]) / n),
+            float(double(channel_[2]) / n)};
+  }
+
+  int128 channel(int i) const { return channel_[i]; }
+  void set_channel(int i, int128 value) { channel_[i] = value; }
+
+ private:
+  // Round to nearest (values are >= 0, so + 0.5 and truncation do it without a libm call).
+  static int128 to_fixed(float v) {
+    const double clamped = std::isfinite(v) ? std::clamp(double(v), 0.0, kMaxSample) : 0.0;
+    return int128(static_cast<std::int64_t>(clamped * kScale + 0.5));
+  }
+
+  int128 channel_[3]{};
+};
+
+}  // namespace rtiow
