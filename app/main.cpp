@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/bench_command.h"
+#include "app/merge_command.h"
 #include "app/render_command.h"
 #include "app/scene_command.h"
 #include "core/error.h"
@@ -21,7 +22,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "rtiow 0.1.0");
   std::vector<std::function<int()>> commands{
-      rtiow::add_render_command(app), rtiow::add_scene_command(app), rtiow::add_bench_command(app)};
+      rtiow::add_render_command(app), rtiow::add_scene_command(app), rtiow::add_merge_command(app),
+      rtiow::add_bench_command(app)};
 
   try {
     app.parse(argc, argv);

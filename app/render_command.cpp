@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 #include "core/error.h"
 #include "core/image_output.h"
 #include "core/render.h"
+#include "core/render_part.h"
 #include "core/scene_file.h"
 
 namespace rtiow {
@@ -31,6 +33,8 @@ struct RenderOptions {
   std::string accel = "embree";
   bool quiet = false;
   bool reproducible = false;
+  std::string sample_range;  // "A:B": render a share of the samples into a part file
+  std::string part;          // "i/n": the i-th of n equal shares
   std::vector<double> lookfrom, lookat, vup;
   std::optional<double> vfov, aperture, focus_distance;
 };
@@ -118,6 +122,42 @@ Scene load_scene(const RenderOptions& o, bool scene_option_given) {
   return load_scene_file(o.scene_file);
 }
 
+// "A:B" or "i/n" into the share of samples this process renders; nothing when neither.
+void apply_share(const RenderOptions& o, const std::string& output, RenderSettings& settings) {
+  if (o.sample_range.empty() && o.part.empty()) return;
+  if (!o.sample_range.empty() && !o.part.empty()) {
+    throw InvalidInput("give --sample-range or --part, not both");
+  }
+  if (std::filesystem::path(output).extension() != ".exr") {
+    throw InvalidInput("output '" + output +
+                       "': a share of a render is written as a part file, which must be .exr");
+  }
+  unsigned long long a = 0, b = 0;
+  char separator = 0, rest = 0;
+  const std::string& text = o.sample_range.empty() ? o.part : o.sample_range;
+  const char expected = o.sample_range.empty() ? '/' : ':';
+  if (std::sscanf(text.c_str(), "%llu%c%llu%c", &a, &separator, &b, &rest) != 3 ||
+      separator != expected || text.find('-') != std::string::npos) {
+    throw InvalidInput(o.sample_range.empty()
+                           ? "--part '" + text + "': expected i/n, e.g. 0/4"
+                           : "--sample-range '" + text + "': expected A:B, e.g. 0:100");
+  }
+  if (o.sample_range.empty()) {
+    if (b == 0 || a >= b) throw InvalidInput("--part '" + text + "': need 0 <= i < n");
+    const auto total = std::uint64_t(settings.samples_per_pixel);
+    const std::uint64_t first = total * a / b, last = total * (a + 1) / b;
+    if (first == last) {
+      throw InvalidInput("--part '" + text + "': " + std::to_string(total) +
+                         " samples per pixel do not make " + std::to_string(b) + " shares");
+    }
+    a = first, b = last;
+  } else if (a >= b || b - a > std::uint64_t(std::numeric_limits<int>::max())) {
+    throw InvalidInput("--sample-range '" + text + "': need A < B");
+  }
+  settings.first_sample = a;
+  settings.samples_per_pixel = int(b - a);
+}
+
 int run_render(const RenderOptions& o, bool scene_option_given) {
   if (o.list_scenes) return list_scenes();
 
@@ -125,9 +165,11 @@ int run_render(const RenderOptions& o, bool scene_option_given) {
   RenderSettings settings;
   settings.accel = parse_accel(o.accel);
   apply_overrides(o, scene, settings);
+  const std::string output = o.output.empty() ? default_output(scene.name) : o.output;
+  apply_share(o, output, settings);
+  const bool share = settings.first_sample > 0 || !o.sample_range.empty() || !o.part.empty();
   validate(settings);
   validate(scene);
-  const std::string output = o.output.empty() ? default_output(scene.name) : o.output;
   check_output_path(output);
 
   RenderProgress progress;
@@ -142,7 +184,18 @@ int run_render(const RenderOptions& o, bool scene_option_given) {
     }
     result = render(scene, settings, &progress);
   }
-  write_image(output, result.film, make_metadata(o, scene, settings, result));
+  if (share) {
+    RenderPart part;
+    part.width = settings.width, part.height = settings.height;
+    part.first_sample = settings.first_sample;
+    part.samples = std::uint64_t(result.samples_completed);
+    part.digest = render_digest(scene, settings);
+    part.metadata = make_metadata(o, scene, settings, result);
+    part.sums = std::move(result.sums);
+    write_part(output, part);
+  } else {
+    write_image(output, result.film, make_metadata(o, scene, settings, result));
+  }
   if (result.stopped) {
     std::fprintf(stderr, "rtiow: interrupted: wrote %d of %d spp to %s\n", result.samples_completed,
                  settings.samples_per_pixel, std::filesystem::absolute(output).c_str());
@@ -195,6 +248,12 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--accel", o.accel, "Intersector: embree or naive (same image, other speed)")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
+  cmd->add_option("--sample-range", o.sample_range,
+                  "Render only samples A..B-1 of every pixel into a part file (.exr) for "
+                  "'rtiow merge' (render farms)");
+  cmd->add_option("--part", o.part,
+                  "Render the i-th of n equal shares of the samples (i/n, from 0) into a part "
+                  "file (.exr)");
   cmd->add_flag("--reproducible", o.reproducible,
                 "Leave wall-clock metadata (render time) out of the file, so the same scene, "
                 "settings and seed give a byte-identical file");

@@ -32,7 +32,12 @@ std::string metadata_string(const MetadataValue& v) {
   return std::get<std::string>(v);
 }
 
-void add_metadata(OIIO::ImageSpec& spec, const Metadata& metadata, bool typed) {
+void add_metadata(OIIO::ImageSpec& spec, const Metadata& unordered, bool typed) {
+  // In key order, as EXR itself stores attributes: the same metadata gives the same bytes
+  // however it was gathered (a render, or a merge of parts read back from EXR).
+  Metadata metadata = unordered;
+  std::sort(metadata.begin(), metadata.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [key, value] : metadata) {
     const std::string name = "rtiow:" + key;
     if (typed && std::holds_alternative<std::int64_t>(value)) {

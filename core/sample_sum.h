@@ -13,6 +13,7 @@
 namespace rtiow {
 
 __extension__ using int128 = __int128;  // a GCC/Clang extension; -Wpedantic knows it is
+__extension__ using uint128 = unsigned __int128;
 
 class PixelSum {
  public:

@@ -334,3 +334,58 @@ TEST(Cli, RefusesImagesTooLargeForMemoryBeforeAllocating) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Cli, PartsMergeIntoTheIdenticalFileAndBadSetsAreRefused) {
+  const std::string common = " --scene cover --width 64 --spp 12 --reproducible -q ";
+  const fs::path whole = output_path("whole.png");
+  ASSERT_EQ(run_rtiow("render" + common + "-o " + whole.string()).exit_code, 0);
+  std::vector<fs::path> parts;
+  for (int i = 0; i < 3; ++i) {
+    parts.push_back(output_path("part" + std::to_string(i) + ".exr"));
+    ASSERT_EQ(run_rtiow("render" + common + "--part " + std::to_string(i) + "/3 -o " +
+                        parts.back().string())
+                  .exit_code,
+              0);
+  }
+  const fs::path merged = output_path("merged.png");
+  // Given in any order.
+  const CommandResult m = run_rtiow("merge " + parts[2].string() + " " + parts[0].string() + " " +
+                                    parts[1].string() + " -o " + merged.string());
+  ASSERT_EQ(m.exit_code, 0) << m.stderr_text;
+  EXPECT_EQ(slurp(merged), slurp(whole)) << "merged parts differ from the single render";
+
+  const fs::path early = output_path("early.exr"), late = output_path("late.exr");
+  ASSERT_EQ(run_rtiow("render" + common + "--sample-range 0:5 -o " + early.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow("render" + common + "--sample-range 3:12 -o " + late.string()).exit_code, 0);
+  const fs::path out = output_path("refused.png");
+  auto refused = [&](const std::string& files, const std::string& needle) {
+    const CommandResult r = run_rtiow("merge " + files + " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << files;
+    EXPECT_NE(r.stderr_text.find(needle), std::string::npos) << r.stderr_text;
+    EXPECT_FALSE(fs::exists(out));
+  };
+  refused(early.string() + " " + late.string(), "overlap: both hold samples [3, 5)");
+  refused(parts[0].string() + " " + parts[2].string(), "samples [4, 8) are missing");
+  refused(parts[1].string() + " " + parts[2].string(), "samples [0, 4) are missing");
+  refused(whole.string(), "not a part file");
+  const fs::path other = output_path("other.exr");
+  ASSERT_EQ(run_rtiow("render" + common + "--seed 2 --part 0/3 -o " + other.string()).exit_code, 0);
+  refused(other.string() + " " + parts[1].string() + " " + parts[2].string(),
+          "share of a different render");
+  expect_refused("--part 0/3", "must be .exr");  // expect_refused writes a .png
+  const fs::path part_out = output_path("refused.exr");
+  for (const auto& [args, needle] :
+       {std::pair<std::string, std::string>{"--part 3/3", "need 0 <= i < n"},
+        {"--sample-range 5:5", "need A < B"},
+        {"--sample-range 1-5", "expected A:B"},
+        {"--part 0/3 --sample-range 0:4", "not both"}}) {
+    const CommandResult r = run_rtiow("render -q -o " + part_out.string() + " " + args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.stderr_text.find(needle), std::string::npos) << r.stderr_text;
+    EXPECT_FALSE(fs::exists(part_out));
+  }
+}
+
+}  // namespace
