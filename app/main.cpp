@@ -10,11 +10,13 @@
 
 #include "app/bench_command.h"
 #include "app/merge_command.h"
+#include "app/mpi_session.h"
 #include "app/render_command.h"
 #include "app/scene_command.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
+  const rtiow::MpiSession mpi(argc, argv);
   CLI::App app{
       "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend, "
       "built on Embree, oneTBB and OpenImageIO",
@@ -22,8 +24,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "rtiow 0.1.0");
   std::vector<std::function<int()>> commands{
-      rtiow::add_render_command(app), rtiow::add_scene_command(app), rtiow::add_merge_command(app),
-      rtiow::add_bench_command(app)};
+      rtiow::add_render_command(app, mpi), rtiow::add_scene_command(app),
+      rtiow::add_merge_command(app), rtiow::add_bench_command(app)};
 
   try {
     app.parse(argc, argv);
@@ -44,9 +46,14 @@ int main(int argc, char** argv) {
       if (code >= 0) return code;
     }
   } catch (const rtiow::InvalidInput& e) {
-    std::fprintf(stderr, "rtiow: error: %s\n", e.what());
+    // Bad input is seen alike by every rank before any work: say it once, all exit.
+    if (mpi.rank() == 0) std::fprintf(stderr, "rtiow: error: %s\n", e.what());
     return 2;
   } catch (const std::exception& e) {
+    if (mpi.distributed()) {
+      std::fprintf(stderr, "rtiow: error on rank %d of %d: %s\n", mpi.rank(), mpi.size(), e.what());
+      mpi.abort(1);  // the other ranks may be waiting for this one
+    }
     std::fprintf(stderr, "rtiow: error: %s\n", e.what());
     return 1;
   }

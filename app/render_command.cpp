@@ -10,11 +10,13 @@
 #include <vector>
 
 #include "app/interrupt.h"
+#include "app/mpi_session.h"
 #include "app/progress_display.h"
 #include "core/builtin_scenes.h"
 #include "core/error.h"
 #include "core/image_output.h"
 #include "core/render.h"
+#include "core/render_loop.h"
 #include "core/render_part.h"
 #include "core/scene_file.h"
 
@@ -158,16 +160,36 @@ void apply_share(const RenderOptions& o, const std::string& output, RenderSettin
   settings.samples_per_pixel = int(b - a);
 }
 
-int run_render(const RenderOptions& o, bool scene_option_given) {
-  if (o.list_scenes) return list_scenes();
+// Under mpirun: this rank's equal share of the samples of every pixel.
+void apply_rank_share(const RenderOptions& o, const MpiSession& mpi, RenderSettings& settings) {
+  if (!mpi.distributed()) return;
+  if (!o.sample_range.empty() || !o.part.empty()) {
+    throw InvalidInput(
+        "--sample-range and --part are for separate jobs; under mpirun the ranks "
+        "share the samples themselves");
+  }
+  const auto total = std::uint64_t(settings.samples_per_pixel);
+  const auto ranks = std::uint64_t(mpi.size()), rank = std::uint64_t(mpi.rank());
+  if (total < ranks) {
+    throw InvalidInput(std::to_string(total) + " samples per pixel cannot be shared by " +
+                       std::to_string(ranks) + " ranks");
+  }
+  settings.first_sample = total * rank / ranks;
+  settings.samples_per_pixel = int(total * (rank + 1) / ranks - settings.first_sample);
+}
+
+int run_render(const RenderOptions& o, bool scene_option_given, const MpiSession& mpi) {
+  if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
 
   Scene scene = load_scene(o, scene_option_given);
   RenderSettings settings;
   settings.accel = parse_accel(o.accel);
   apply_overrides(o, scene, settings);
+  const int samples_asked = settings.samples_per_pixel;
   const std::string output = o.output.empty() ? default_output(scene.name) : o.output;
   apply_share(o, output, settings);
-  const bool share = settings.first_sample > 0 || !o.sample_range.empty() || !o.part.empty();
+  apply_rank_share(o, mpi, settings);
+  const bool share = !o.sample_range.empty() || !o.part.empty();
   validate(settings);
   validate(scene);
   check_output_path(output);
@@ -177,12 +199,26 @@ int run_render(const RenderOptions& o, bool scene_option_given) {
   {
     const InterruptGuard interrupt(progress.stop_requested);
     std::unique_ptr<ProgressDisplay> display;
-    if (!o.quiet) {
+    // Under MPI rank 0 shows its own share, which moves with the others' (equal shares).
+    if (!o.quiet && mpi.rank() == 0) {
       display = std::make_unique<ProgressDisplay>(
           progress, std::uint64_t(settings.width) * std::uint64_t(settings.height) *
                         std::uint64_t(settings.samples_per_pixel));
     }
     result = render(scene, settings, &progress);
+  }
+  if (mpi.distributed()) {
+    // Rank 0 adds every rank's exact sums: the image of one process with all the samples.
+    const std::uint64_t done = mpi.reduce_sum(std::uint64_t(result.samples_completed));
+    result.rays_traced = mpi.reduce_sum(result.rays_traced);
+    result.render_seconds = mpi.reduce_max(result.render_seconds);
+    mpi.reduce_sums(result.sums);
+    if (mpi.rank() != 0) return 0;
+    result.stopped = done < std::uint64_t(samples_asked);
+    result.samples_completed = int(done);
+    resolve(result.sums, done, result.film);
+    settings.samples_per_pixel = samples_asked;
+    settings.first_sample = 0;
   }
   if (share) {
     RenderPart part;
@@ -206,11 +242,12 @@ int run_render(const RenderOptions& o, bool scene_option_given) {
     const double rays = double(result.rays_traced);
     const int threads =
         settings.threads > 0 ? settings.threads : int(std::thread::hardware_concurrency());
+    const std::string ranks = mpi.distributed() ? std::to_string(mpi.size()) + " ranks x " : "";
     std::fprintf(stderr,
-                 "rendered %s %dx%d, %d spp, depth %d, %s, %d thread%s: %.2f s, %.3g rays, "
+                 "rendered %s %dx%d, %d spp, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
                  "%.2f Mrays/s -> %s\n",
                  scene.name.c_str(), settings.width, settings.height, settings.samples_per_pixel,
-                 settings.max_depth, to_string(settings.accel).c_str(), threads,
+                 settings.max_depth, to_string(settings.accel).c_str(), ranks.c_str(), threads,
                  threads == 1 ? "" : "s", result.render_seconds, rays,
                  rays / result.render_seconds * 1e-6, std::filesystem::absolute(output).c_str());
   }
@@ -219,7 +256,7 @@ int run_render(const RenderOptions& o, bool scene_option_given) {
 
 }  // namespace
 
-std::function<int()> add_render_command(CLI::App& app) {
+std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
   auto options = std::make_shared<RenderOptions>();
   RenderOptions& o = *options;
   CLI::App* cmd = app.add_subcommand(
@@ -267,8 +304,8 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--vfov", o.vfov, "Vertical field of view in degrees, in (0, 180)");
   cmd->add_option("--aperture", o.aperture, "Lens diameter (0: pinhole)");
   cmd->add_option("--focus-dist", o.focus_distance, "Distance to the plane in focus");
-  return [options, cmd, scene_option] {
-    return cmd->parsed() ? run_render(*options, scene_option->count() > 0) : -1;
+  return [options, cmd, scene_option, &mpi] {
+    return cmd->parsed() ? run_render(*options, scene_option->count() > 0, mpi) : -1;
   };
 }
 

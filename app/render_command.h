@@ -9,6 +9,9 @@ namespace rtiow {
 
 // Adds the subcommand to `app`; the returned function runs it after parsing and returns
 // the process exit code.
-std::function<int()> add_render_command(CLI::App& app);
+class MpiSession;
+
+// Under mpirun (`mpi.distributed()`), the ranks share the samples and rank 0 writes the file.
+std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi);
 
 }  // namespace rtiow

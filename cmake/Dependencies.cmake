@@ -15,6 +15,20 @@ rtiow_require(CLI11 libcli11-dev)
 rtiow_require(nlohmann_json nlohmann-json3-dev)
 find_package(Threads REQUIRED)
 
+# MPI is optional: ON when Debian's OpenMPI (libopenmpi-dev) is installed, unless turned off.
+set(RTIOW_MPI AUTO CACHE STRING "Build with MPI: AUTO (if found), ON or OFF")
+if(NOT RTIOW_MPI STREQUAL "OFF")
+  find_package(MPI COMPONENTS CXX QUIET)
+  if(MPI_CXX_FOUND)
+    set(RTIOW_MPI ON)
+  elseif(RTIOW_MPI STREQUAL "ON")
+    message(FATAL_ERROR "RTIOW_MPI=ON but MPI was not found: install libopenmpi-dev")
+  else()
+    set(RTIOW_MPI OFF)
+  endif()
+endif()
+message(STATUS "rtiow: MPI ${RTIOW_MPI}")
+
 # Debian 12's OpenImageIO config lists /usr/include/opencv4 among its include directories
 # although nothing we use needs OpenCV; drop include directories that do not exist rather
 # than pull in libopencv-dev.

@@ -1,0 +1,100 @@
+// MPI rendering (built when OpenMPI is installed): mpirun -np 2 and -np 3 give the file one
+// process gives, byte for byte; a rank that dies ends the run instead of hanging it; bad
+// input is reported once.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path output(const std::string& name) {
+  const fs::path p = fs::path(RTIOW_TEST_OUTPUT_DIR) / ("mpi-" + name);
+  fs::remove(p);
+  return p;
+}
+
+// Runs a shell command; returns its exit code, stderr in `err`.
+int run(const std::string& command, std::string* err = nullptr) {
+  const fs::path err_path = output("stderr.txt");
+  const int status = std::system((command + " 2> " + err_path.string()).c_str());
+  if (err) *err = slurp(err_path);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string mpirun(int ranks) {
+  // Tests may run as root (CI): OpenMPI refuses that unless told it is intended.
+  setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  return std::string(RTIOW_MPIEXEC) + " --oversubscribe -np " + std::to_string(ranks) + " ";
+}
+
+const std::string kRender =
+    std::string(RTIOW_BINARY) +
+    " render --scene cover --width 96 --spp 7 --threads 1 --reproducible -q";
+
+TEST(Mpi, RanksGiveTheSingleProcessFileByteForByte) {
+  const fs::path single = output("single.png");
+  ASSERT_EQ(run(kRender + " -o " + single.string()), 0);
+  for (int ranks : {2, 3}) {
+    const fs::path distributed = output("ranks" + std::to_string(ranks) + ".png");
+    std::string err;
+    ASSERT_EQ(run(mpirun(ranks) + kRender + " -o " + distributed.string(), &err), 0) << err;
+    EXPECT_EQ(slurp(distributed), slurp(single)) << ranks << " ranks";
+  }
+}
+
+TEST(Mpi, BadInputIsReportedOnce) {
+  std::string err;
+  EXPECT_NE(run(mpirun(2) + kRender + " --vfov 0 -o " + output("bad.png").string(), &err), 0);
+  std::size_t count = 0;
+  for (std::size_t at = err.find("rtiow: error"); at != std::string::npos;
+       at = err.find("rtiow: error", at + 1)) {
+    ++count;
+  }
+  EXPECT_EQ(count, 1u) << err;
+  EXPECT_FALSE(fs::exists(output("bad.png")));
+}
+
+TEST(Mpi, ARankThatDiesEndsTheRun) {
+  const fs::path out = output("killed.png");
+  const std::string command = mpirun(2) + std::string(RTIOW_BINARY) +
+                              " render --scene cover --width 200 --spp 100000 --threads 1 -q -o " +
+                              out.string() + " 2>/dev/null";
+  const auto start = std::chrono::steady_clock::now();
+  std::thread killer([] {
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    // Only the ranks' command lines start with the binary (not mpirun's, timeout's or this
+    // shell's); the [2] keeps the pattern from matching itself.
+    const std::string pattern =
+        "^" + std::string(RTIOW_BINARY) + " render --scene cover --width [2]00";
+    std::system(("kill -9 $(pgrep -f '" + pattern + "' | tail -1)").c_str());
+  });
+  const int status = std::system(("timeout 60 " + command).c_str());
+  killer.join();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0);
+  EXPECT_NE(WEXITSTATUS(status), 124) << "mpirun hung until the timeout";
+  EXPECT_LT(seconds, 30.0);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
