@@ -25,8 +25,10 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
+// CTest runs these tests in parallel processes: each test gets its own files.
 fs::path output(const std::string& name) {
-  const fs::path p = fs::path(RTIOW_TEST_OUTPUT_DIR) / ("mpi-" + name);
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const fs::path p = fs::path(RTIOW_TEST_OUTPUT_DIR) / ("mpi-" + test + "-" + name);
   fs::remove(p);
   return p;
 }
