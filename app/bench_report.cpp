@@ -1,9 +1,10 @@
 #include "app/bench_report.h"
 
+#include "core/atomic_file.h"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 namespace rtiow {
@@ -78,14 +79,7 @@ void print_bench_table(const json& r) {
 }
 
 void write_bench_json(const json& results, const std::string& path) {
-  const fs::path target(path);
-  const fs::path temporary = target.string() + ".tmp";
-  {
-    std::ofstream out(temporary);
-    out << results.dump(2) << "\n";
-    if (!out) throw std::runtime_error("cannot write '" + path + "'");
-  }
-  fs::rename(temporary, target);
+  write_text_atomically(path, results.dump(2) + "\n");
 }
 
 void plot_bench(const std::string& json_path, const std::string& plot_path) {

@@ -2,10 +2,10 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 
+#include "core/atomic_file.h"
 #include "core/builtin_scenes.h"
 #include "core/error.h"
 #include "core/scene_file.h"
@@ -19,33 +19,16 @@ struct SceneOptions {
   std::string output;
 };
 
-// Written beside the target and renamed: an interrupted write leaves no truncated file.
-void write_text_atomically(const std::string& path, const std::string& text) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  if (!target.parent_path().empty() && !fs::is_directory(target.parent_path())) {
-    throw InvalidInput("output '" + path + "': directory '" + target.parent_path().string() +
-                       "' does not exist");
-  }
-  fs::path temporary = target;
-  temporary += ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) {
-      fs::remove(temporary);
-      throw std::runtime_error("cannot write '" + path + "'");
-    }
-  }
-  fs::rename(temporary, target);
-}
-
 int run_scene(const SceneOptions& o) {
   const std::string text = scene_to_json(make_builtin_scene(o.name, o.scene_seed));
   if (o.output.empty() || o.output == "-") {
     std::fwrite(text.data(), 1, text.size(), stdout);
     return std::fflush(stdout) == 0 ? 0 : 1;
+  }
+  const std::filesystem::path parent = std::filesystem::path(o.output).parent_path();
+  if (!parent.empty() && !std::filesystem::is_directory(parent)) {
+    throw InvalidInput("output '" + o.output + "': directory '" + parent.string() +
+                       "' does not exist");
   }
   write_text_atomically(o.output, text);
   return 0;

@@ -1,7 +1,8 @@
 #include "core/image_output.h"
 
+#include "core/atomic_file.h"
+
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -102,31 +103,14 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
     data = bytes.data();
   }
 
-  // The temporary keeps the extension (some writers look at it) and lives beside the
-  // target, so the final rename stays on one file system and is atomic.
-  const fs::path target(path);
-  std::string temporary_name = ".";
-  temporary_name.append(target.stem().string())
-      .append(".tmp-")
-      .append(std::to_string(::getpid()))
-      .append(target.extension().string());
-  const fs::path temporary = target.parent_path() / temporary_name;
   const OIIO::TypeDesc format = linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
-  const bool written =
-      out->open(temporary.string(), spec) && out->write_image(format, data) && out->close();
-  if (!written) {
-    const std::string reason = out->geterror();
-    out.reset();
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw std::runtime_error("cannot write '" + path + "': " + reason);
-  }
-  std::error_code error;
-  fs::rename(temporary, target, error);
-  if (error) {
-    fs::remove(temporary, error);
-    throw std::runtime_error("cannot write '" + path + "': " + error.message());
-  }
+  write_atomically(path, [&](const std::string& temporary, std::string& reason) {
+    const bool written =
+        out->open(temporary, spec) && out->write_image(format, data) && out->close();
+    if (!written) reason = out->geterror();
+    out.reset();  // closes the file before the rename
+    return written;
+  });
 }
 
 }  // namespace rtiow

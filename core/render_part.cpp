@@ -1,13 +1,13 @@
 #include "core/render_part.h"
 
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/rng.h"
 #include "core/scene_file.h"
@@ -88,17 +88,15 @@ void write_part(const std::string& path, const RenderPart& part) {
     }
   }
 
-  fs::path temporary = fs::path(path);
-  temporary += ".tmp-" + std::to_string(::getpid()) + ".exr";
   auto out = OIIO::ImageOutput::create(path);
-  if (!out || !out->open(temporary.string(), spec) ||
-      !out->write_image(OIIO::TypeDesc::UNKNOWN, data.data()) || !out->close()) {
-    const std::string reason = out ? out->geterror() : "no EXR writer";
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw std::runtime_error("cannot write '" + path + "': " + reason);
-  }
-  fs::rename(temporary, path);
+  if (!out) throw std::runtime_error("cannot write '" + path + "': no EXR writer");
+  write_atomically(path, [&](const std::string& temporary, std::string& reason) {
+    const bool written = out->open(temporary, spec) &&
+                         out->write_image(OIIO::TypeDesc::UNKNOWN, data.data()) && out->close();
+    if (!written) reason = out->geterror();
+    out.reset();
+    return written;
+  });
 }
 
 RenderPart read_part(const std::string& path) {
