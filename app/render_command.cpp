@@ -33,6 +33,8 @@ struct RenderOptions {
   std::uint64_t seed = 1;
   int threads = 0;
   std::string accel = "embree";
+  std::string fresnel;  // empty: as the scene says
+  double time_limit = 0.0;
   bool quiet = false;
   bool reproducible = false;
   std::string sample_range;  // "A:B": render a share of the samples into a part file
@@ -54,6 +56,12 @@ void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& setti
   if (o.vfov) cam.vfov_degrees = *o.vfov;
   if (o.aperture) cam.aperture = *o.aperture;
   if (o.focus_distance) cam.focus_distance = *o.focus_distance;
+  if (!o.fresnel.empty()) {
+    const FresnelModel model = o.fresnel == "exact" ? FresnelModel::Exact : FresnelModel::Schlick;
+    for (Material& m : scene.materials) {
+      if (auto* d = std::get_if<Dielectric>(&m)) d->fresnel = model;
+    }
+  }
 
   const ImageSettings& image = scene.image;
   if (o.width && o.height) {
@@ -65,7 +73,10 @@ void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& setti
     settings.width = o.width.value_or(image.width);
     settings.height = std::max(1, int(std::lround(settings.width / image.aspect_ratio)));
   }
-  settings.samples_per_pixel = o.spp.value_or(image.samples_per_pixel);
+  // With a time limit and no --spp, samples are added until the time is spent.
+  settings.samples_per_pixel =
+      o.spp.value_or(o.time_limit > 0 ? std::numeric_limits<int>::max() : image.samples_per_pixel);
+  settings.time_limit_seconds = o.time_limit;
   settings.max_depth = o.depth.value_or(image.max_depth);
   settings.seed = o.seed;
   settings.threads = o.threads;
@@ -111,6 +122,10 @@ Metadata make_metadata(const RenderOptions& o, const Scene& scene, const RenderS
   if (r.stopped) {
     metadata.emplace_back("spp_requested", std::int64_t(s.samples_per_pixel));
     metadata.emplace_back("stopped", std::string("interrupted by a signal"));
+  } else if (r.time_limited) {
+    char limit[64];
+    std::snprintf(limit, sizeof limit, "time limit of %g s", s.time_limit_seconds);
+    metadata.emplace_back("stopped", std::string(limit));
   }
   if (!o.reproducible) metadata.emplace_back("render_seconds", r.render_seconds);
   return metadata;
@@ -246,7 +261,7 @@ int run_render(const RenderOptions& o, bool scene_option_given, const MpiSession
     std::fprintf(stderr,
                  "rendered %s %dx%d, %d spp, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
                  "%.2f Mrays/s -> %s\n",
-                 scene.name.c_str(), settings.width, settings.height, settings.samples_per_pixel,
+                 scene.name.c_str(), settings.width, settings.height, result.samples_completed,
                  settings.max_depth, to_string(settings.accel).c_str(), ranks.c_str(), threads,
                  threads == 1 ? "" : "s", result.render_seconds, rays,
                  rays / result.render_seconds * 1e-6, std::filesystem::absolute(output).c_str());
@@ -284,6 +299,14 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
   cmd->add_option("--accel", o.accel, "Intersector: embree or naive (same image, other speed)")
       ->capture_default_str();
+  cmd->add_option("--time-limit", o.time_limit,
+                  "Render in passes until this many seconds are spent (ends within one pass); "
+                  "the file holds the samples completed. With --spp, stop at that many")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--fresnel", o.fresnel,
+                  "Glass reflectance: schlick (the book's approximation) or exact (default: as "
+                  "the scene says, schlick for the built-in scenes)")
+      ->check(CLI::IsMember({"schlick", "exact"}));
   cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
   cmd->add_option("--sample-range", o.sample_range,
                   "Render only samples A..B-1 of every pixel into a part file (.exr) for "

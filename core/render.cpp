@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 
 #include "core/camera.h"
@@ -58,7 +59,20 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
     result.rays_traced += render_pass(scene, camera, accel, settings, first + done,
                                       first + done + pass, result.sums, progress);
     done += pass;
-    pass = next_pass_samples(pass, seconds_since(pass_start), total - done);
+    const double pass_seconds = seconds_since(pass_start);
+    const double seconds_per_sample = pass_seconds / double(pass);
+    pass = next_pass_samples(pass, pass_seconds, total - done);
+    if (settings.time_limit_seconds > 0.0 && done < total) {
+      // End within one pass of the limit: stop once it is reached, and size the next pass to
+      // what the remaining time holds at the rate just measured.
+      const double left = settings.time_limit_seconds - seconds_since(render_start);
+      if (left <= 0.0) {
+        result.time_limited = true;
+        break;
+      }
+      const double fits = left / std::max(seconds_per_sample, 1e-9);
+      pass = std::clamp<std::uint64_t>(std::uint64_t(fits), 1, pass);
+    }
   }
   result.render_seconds = seconds_since(render_start);
   result.samples_completed = int(done);
@@ -87,6 +101,9 @@ void validate(const RenderSettings& s) {
   }
   if (s.max_depth < 0) throw InvalidInput("depth must be >= 0, got " + std::to_string(s.max_depth));
   if (s.threads < 0) throw InvalidInput("threads must be >= 0, got " + std::to_string(s.threads));
+  if (!(s.time_limit_seconds >= 0.0) || !std::isfinite(s.time_limit_seconds)) {
+    throw InvalidInput("time limit must be a finite number of seconds >= 0");
+  }
   if (s.first_sample > (1ull << 62)) throw InvalidInput("first sample index is out of range");
   const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
   if (pixels > kMaxPixels) {

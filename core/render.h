@@ -27,6 +27,7 @@ struct RenderSettings {
   int max_depth = 50;
   std::uint64_t seed = 0;
   int threads = 0;  // 0: all cores
+  double time_limit_seconds = 0.0;  // > 0: stop after the pass that reaches this much time
   AccelKind accel = AccelKind::Embree;
 };
 
@@ -47,6 +48,7 @@ struct RenderResult {
   std::vector<PixelSum> sums;   // their exact sums, for merging shares of a render
   int samples_completed = 0;    // per pixel; less than asked when stopped
   bool stopped = false;         // a stop request ended the render early
+  bool time_limited = false;    // the time limit ended it (with the samples completed)
   double build_seconds = 0.0;   // accelerator construction
   double render_seconds = 0.0;  // the sample loop
   std::uint64_t rays_traced = 0;

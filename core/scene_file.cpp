@@ -187,6 +187,12 @@ void read_image(const Reader& r, const json& v, ImageSettings& image) {
     image.max_depth = r.integer(*depth, p + "/depth", 0, 1 << 16);
 }
 
+FresnelModel parse_fresnel(const std::string& name, const Reader& r, const std::string& p) {
+  if (name == "schlick") return FresnelModel::Schlick;
+  if (name == "exact") return FresnelModel::Exact;
+  r.fail(p, "must be \"schlick\" or \"exact\", got \"" + name + "\"");
+}
+
 Material read_material(const Reader& r, const json& v, const std::string& p) {
   r.object(v, p);
   const json& type = r.require(v, p, "type");
@@ -206,10 +212,15 @@ Material read_material(const Reader& r, const json& v, const std::string& p) {
     return make_metal(r.color(r.require(v, p, "albedo"), p + "/albedo"), fuzz);
   }
   if (kind == "dielectric") {
-    r.only(v, p, {"type", "ior"});
+    r.only(v, p, {"type", "ior", "fresnel"});
     const float ior = r.single(r.require(v, p, "ior"), p + "/ior");
     if (!(ior > 0.0f)) r.fail(p + "/ior", "must be > 0, got " + Reader::format(ior));
-    return Dielectric{ior};
+    Dielectric d{ior};
+    if (const json* f = r.find(v, "fresnel")) {
+      if (!f->is_string()) r.fail(p + "/fresnel", "must be \"schlick\" or \"exact\"");
+      d.fresnel = parse_fresnel(f->get<std::string>(), r, p + "/fresnel");
+    }
+    return d;
   }
   r.fail(p + "/type",
          "unknown material type \"" + kind + "\" (expected lambertian, metal or dielectric)");
@@ -318,7 +329,10 @@ ordered_json material_json(const Material& m) {
   if (const auto* metal = std::get_if<Metal>(&m)) {
     return {{"type", "metal"}, {"albedo", float3(metal->albedo)}, {"fuzz", shortest(metal->fuzz)}};
   }
-  return {{"type", "dielectric"}, {"ior", shortest(std::get<Dielectric>(m).ior)}};
+  const Dielectric& d = std::get<Dielectric>(m);
+  ordered_json j = {{"type", "dielectric"}, {"ior", shortest(d.ior)}};
+  if (d.fresnel == FresnelModel::Exact) j["fresnel"] = "exact";  // Schlick is the default
+  return j;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #pragma once
-// Dielectric (glass, water, a bubble): reflects with Schlick's probability, refracts
-// otherwise by Snell's law, and reflects totally past the critical angle. Nothing is absorbed.
+// Dielectric (glass, water, a bubble): reflects with the Fresnel probability (Schlick's, as
+// in the book, or exact), refracts otherwise by Snell's law, and reflects totally past the
+// critical angle. Nothing is absorbed.
 
 #include <cmath>
 
@@ -12,6 +13,7 @@ namespace rtiow {
 
 struct Dielectric {
   float ior = 1.5f;  // index of refraction inside, relative to outside
+  FresnelModel fresnel = FresnelModel::Schlick;
 };
 
 inline bool scatter(const Dielectric& m, const Vec3& in_direction, const SurfaceHit& hit,
@@ -25,7 +27,11 @@ inline bool scatter(const Dielectric& m, const Vec3& in_direction, const Surface
   const float u = rng.next_1d();  // drawn always, so the stream does not depend on the branch
   // Index 1 is no interface at all: Schlick's formula would still reflect (1-cos)^5 at grazing
   // angles and draw a rim around an invisible sphere.
-  const float reflectance = m.ior == 1.0f ? 0.0f : schlick_reflectance(cos_theta, eta);
+  float reflectance = 0.0f;
+  if (m.ior != 1.0f) {
+    reflectance = m.fresnel == FresnelModel::Exact ? exact_reflectance(cos_theta, eta)
+                                                   : schlick_reflectance(cos_theta, eta);
+  }
   if (total_internal_reflection || reflectance > u) {
     out_direction = reflect(unit, hit.normal);
   } else {

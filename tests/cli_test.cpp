@@ -389,3 +389,45 @@ TEST(Cli, PartsMergeIntoTheIdenticalFileAndBadSetsAreRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+// A time-limited render's file says how many samples it holds, and it does hold them: the
+// same render with exactly that --spp and no limit gives the same file.
+TEST(Cli, TimeLimitedRenderHoldsTheSamplesItsMetadataSays) {
+  const fs::path limited = output_path("limited.exr"), exact = output_path("exact.exr");
+  const std::string common = "render -q --scene materials --width 64 --reproducible ";
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_EQ(run_rtiow(common + "--time-limit 1 -o " + limited.string()).exit_code, 0);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 10.0) << "the limit was not honoured";
+  auto in = OIIO::ImageInput::open(limited.string());
+  ASSERT_TRUE(in);
+  const int spp = in->spec().get_int_attribute("rtiow:spp");
+  EXPECT_GT(spp, 1);
+  EXPECT_NE(in->spec().get_string_attribute("rtiow:stopped").find("time limit"), std::string::npos);
+  ASSERT_EQ(run_rtiow(common + "--spp " + std::to_string(spp) + " -o " + exact.string()).exit_code,
+            0);
+  std::vector<float> a(64 * 36 * 3), b(64 * 36 * 3);
+  ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, a.data()));
+  auto other = OIIO::ImageInput::open(exact.string());
+  ASSERT_TRUE(other && other->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, b.data()));
+  EXPECT_EQ(a, b);
+}
+
+TEST(Cli, FresnelChoiceChangesGlassOnly) {
+  const fs::path schlick = output_path("schlick.exr"), exact = output_path("exact.exr");
+  const std::string common = "render -q --scene materials --width 48 --spp 16 --reproducible ";
+  ASSERT_EQ(run_rtiow(common + "--fresnel schlick -o " + schlick.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow(common + "--fresnel exact -o " + exact.string()).exit_code, 0);
+  EXPECT_NE(slurp(schlick), slurp(exact));
+  expect_refused("--fresnel fancy", "fresnel");
+  const fs::path wide = output_path("wide.png"), wide_exact = output_path("wide_exact.png");
+  const std::string no_glass = "render -q --scene wide-angle --width 32 --spp 4 --reproducible ";
+  ASSERT_EQ(run_rtiow(no_glass + "-o " + wide.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow(no_glass + "--fresnel exact -o " + wide_exact.string()).exit_code, 0);
+  EXPECT_EQ(slurp(wide), slurp(wide_exact)) << "a scene without glass does not change";
+}
+
+}  // namespace

@@ -78,6 +78,23 @@ TEST(SceneFile, TheValidSceneLoadsWithItsSettingsAndDefaults) {
   EXPECT_EQ(s.spheres.radius[2], -0.4f) << "negative radius: hollow sphere";
 }
 
+TEST(SceneFile, GlassMayAskForExactFresnel) {
+  const Scene s = parse_scene(
+      replace(kValid, "\"ior\": 1.5}", "\"ior\": 1.5, \"fresnel\": \"exact\"}"), "x.json");
+  int glasses = 0;
+  for (const Material& m : s.materials) {
+    if (const auto* d = std::get_if<Dielectric>(&m)) {
+      EXPECT_EQ(d->fresnel, FresnelModel::Exact);
+      ++glasses;
+    }
+  }
+  EXPECT_EQ(glasses, 1);
+  EXPECT_NE(scene_to_json(s).find("\"fresnel\":\"exact\""), std::string::npos);
+  EXPECT_THROW(
+      parse_scene(replace(kValid, "\"ior\": 1.5}", "\"ior\": 1.5, \"fresnel\": \"x\"}"), "x.json"),
+      InvalidInput);
+}
+
 TEST(SceneFile, DefocusAngleSetsTheAperture) {
   const Scene s = parse_scene(
       replace(kValid, "\"vfov\": 90", "\"vfov\": 90, \"defocus_angle\": 10, \"focus_distance\": 3"),
