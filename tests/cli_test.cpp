@@ -214,6 +214,25 @@ class BackgroundRender {
 
   void signal(int sig) const { ::kill(pid_, sig); }
 
+  // Waits (up to 20 s) until the render catches SIGINT, i.e. has installed its handler: a
+  // signal before that would just kill it, as it should, but would test nothing.
+  bool wait_until_catching_sigint() const {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    const std::string status_path = "/proc/" + std::to_string(pid_) + "/status";
+    while (std::chrono::steady_clock::now() < deadline) {
+      std::ifstream status(status_path);
+      std::string line;
+      while (std::getline(status, line)) {
+        if (line.rfind("SigCgt:", 0) == 0) {
+          const unsigned long long caught = std::stoull(line.substr(7), nullptr, 16);
+          if (caught & (1ull << (SIGINT - 1))) return true;
+        }
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+  }
+
   // The exit code, or -1 if it did not end within `seconds` (then it is killed).
   int wait(double seconds) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
@@ -244,7 +263,8 @@ TEST(Cli, InterruptWritesTheSamplesCompleted) {
   for (int sig : {SIGINT, SIGTERM}) {
     const fs::path out = output_path("interrupted.exr");
     BackgroundRender r(long_render(out));
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    ASSERT_TRUE(r.wait_until_catching_sigint());
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
     r.signal(sig);
     const int code = r.wait(20.0);
     EXPECT_EQ(code, 128 + sig) << r.stderr_text();
@@ -278,7 +298,7 @@ TEST(Cli, SecondInterruptAbortsAndLeavesTheOldFileAlone) {
   // to write before the second arrives.
   BackgroundRender r(
       {"render", "--scene", "cover", "--width", "3000", "--spp", "1000", "-o", out.string()});
-  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  ASSERT_TRUE(r.wait_until_catching_sigint());
   r.signal(SIGINT);
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   r.signal(SIGINT);
