@@ -29,7 +29,6 @@ class Camera {
   Ray generate_ray(float s, float t, float lens_u, float lens_v) const;
 
   bool has_lens() const { return lens_radius_ > 0.0f; }
-  const Vec3& origin() const { return origin_; }
 
  private:
   Vec3 origin_;

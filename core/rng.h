@@ -25,8 +25,7 @@ constexpr std::uint64_t hash_combine(std::uint64_t seed, std::uint64_t value) {
   return mix64(seed ^ (mix64(value) + 0x9e3779b97f4a7c15ull + (seed << 6) + (seed >> 2)));
 }
 
-// PCG32 (O'Neill): 64-bit LCG state, 32-bit permuted output, 2^63 selectable sequences,
-// O(log n) jump ahead.
+// PCG32 (O'Neill): 64-bit LCG state, 32-bit permuted output, 2^63 selectable sequences.
 class Pcg32 {
  public:
   constexpr Pcg32() { set_sequence(0, 0x853c49e6748fea9bull); }
@@ -53,21 +52,6 @@ class Pcg32 {
   constexpr double next_double() {
     const std::uint64_t hi = next_u32(), lo = next_u32();
     return static_cast<double>(((hi << 32) | lo) >> 11) * 0x1p-53;
-  }
-
-  // Skips `delta` draws, as if next_u32() had been called that many times.
-  constexpr void advance(std::uint64_t delta) {
-    std::uint64_t acc_mult = 1, acc_plus = 0, cur_mult = kMultiplier, cur_plus = inc_;
-    while (delta > 0) {
-      if (delta & 1u) {
-        acc_mult *= cur_mult;
-        acc_plus = acc_plus * cur_mult + cur_plus;
-      }
-      cur_plus = (cur_mult + 1) * cur_plus;
-      cur_mult *= cur_mult;
-      delta >>= 1u;
-    }
-    state_ = acc_mult * state_ + acc_plus;
   }
 
   constexpr bool operator==(const Pcg32&) const = default;

@@ -41,14 +41,6 @@ TEST(SampleStream, ValuesLieInTheHalfOpenUnitInterval) {
   }
 }
 
-TEST(Pcg32, AdvanceEqualsStepping) {
-  Pcg32 stepped(5, 9), jumped(5, 9);
-  for (int i = 0; i < 12345; ++i) stepped.next_u32();
-  jumped.advance(12345);
-  EXPECT_EQ(stepped, jumped);
-  EXPECT_EQ(stepped.next_u32(), jumped.next_u32());
-}
-
 TEST(Pcg32, FirstOutputsAreDistinct) {
   Pcg32 rng(42, 54);
   std::set<std::uint32_t> seen;
