@@ -26,7 +26,7 @@ struct RenderSettings {
   std::uint64_t first_sample = 0;  // ...starting at this sample index (a share of a render)
   int max_depth = 50;
   std::uint64_t seed = 0;
-  int threads = 0;  // 0: all cores
+  int threads = 0;                  // 0: all cores
   double time_limit_seconds = 0.0;  // > 0: stop after the pass that reaches this much time
   AccelKind accel = AccelKind::Embree;
 };

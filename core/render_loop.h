@@ -23,16 +23,6 @@ namespace rtiow {
 
 inline constexpr int kTileSize = 16;
 
-// The film from per-pixel sums of `samples` samples each.
-inline void resolve(const std::vector<PixelSum>& sums, std::uint64_t samples, Film& film) {
-  for (int y = 0; y < film.height(); ++y) {
-    for (int x = 0; x < film.width(); ++x) {
-      film.at(x, y) =
-          sums[std::size_t(y) * std::size_t(film.width()) + std::size_t(x)].mean(samples);
-    }
-  }
-}
-
 // Adds samples [first, last) of pixel (x, y) to `sum`. The sum is exact (PixelSum), so it
 // is the same whatever thread runs it and however the samples are split.
 template <typename Accel>

@@ -200,12 +200,7 @@ MergedRender merge_parts(const std::vector<RenderPart>& input) {
     for (std::size_t i = 0; i < sums.size(); ++i) sums[i] += p->sums[i];
   }
   merged.film = Film(reference.width, reference.height);
-  for (int y = 0; y < reference.height; ++y) {
-    for (int x = 0; x < reference.width; ++x) {
-      merged.film.at(x, y) =
-          sums[std::size_t(y) * std::size_t(reference.width) + std::size_t(x)].mean(next);
-    }
-  }
+  resolve(sums, next, merged.film);
   // Common metadata, with the per-part counts totalled.
   std::int64_t rays = 0;
   for (const RenderPart* p : parts) rays += metadata_int(p->metadata, "rays_traced");

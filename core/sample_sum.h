@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
+#include "core/film.h"
 #include "core/vec3.h"
 
 namespace rtiow {
@@ -54,5 +56,15 @@ class PixelSum {
 
   int128 channel_[3]{};
 };
+
+// The film from per-pixel sums (row major, film-sized) of `samples` samples each.
+inline void resolve(const std::vector<PixelSum>& sums, std::uint64_t samples, Film& film) {
+  for (int y = 0; y < film.height(); ++y) {
+    for (int x = 0; x < film.width(); ++x) {
+      film.at(x, y) =
+          sums[std::size_t(y) * std::size_t(film.width()) + std::size_t(x)].mean(samples);
+    }
+  }
+}
 
 }  // namespace rtiow
