@@ -1,5 +1,6 @@
 #include "app/render_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -35,6 +36,10 @@ struct RenderOptions {
   std::string accel = "embree";
   std::string fresnel;  // empty: as the scene says
   double time_limit = 0.0;
+  std::string sampler = "independent";
+  double target_error = 0.0;
+  int min_spp = 16;
+  bool stats_channels = false;
   bool quiet = false;
   bool reproducible = false;
   std::string sample_range;  // "A:B": render a share of the samples into a part file
@@ -42,6 +47,8 @@ struct RenderOptions {
   std::vector<double> lookfrom, lookat, vup;
   std::optional<double> vfov, aperture, focus_distance;
 };
+
+constexpr int kDefaultAdaptiveMaxSpp = 8192;
 
 Vec3d to_vec3(const std::vector<double>& v) {
   return {v[0], v[1], v[2]};
@@ -73,10 +80,15 @@ void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& setti
     settings.width = o.width.value_or(image.width);
     settings.height = std::max(1, int(std::lround(settings.width / image.aspect_ratio)));
   }
-  // With a time limit and no --spp, samples are added until the time is spent.
-  settings.samples_per_pixel =
-      o.spp.value_or(o.time_limit > 0 ? std::numeric_limits<int>::max() : image.samples_per_pixel);
+  // With a target error and no --spp, a pixel takes at most kDefaultAdaptiveMaxSpp; with
+  // only a time limit, samples are added until the time is spent.
+  settings.samples_per_pixel = o.spp.value_or(o.target_error > 0 ? kDefaultAdaptiveMaxSpp
+                                              : o.time_limit > 0 ? std::numeric_limits<int>::max()
+                                                                 : image.samples_per_pixel);
   settings.time_limit_seconds = o.time_limit;
+  settings.sampler = parse_sampler(o.sampler);
+  settings.target_error = o.target_error;
+  settings.min_samples = o.min_spp;
   settings.max_depth = o.depth.value_or(image.max_depth);
   settings.seed = o.seed;
   settings.threads = o.threads;
@@ -108,19 +120,64 @@ int list_scenes() {
   return 0;
 }
 
+double mean_samples(const RenderResult& r) {
+  double total = 0;
+  for (const std::uint32_t n : r.pixel_samples) total += n;
+  return total / double(r.pixel_samples.size());
+}
+
+// The per-pixel sample count and the variance of each pixel's mean, for --stats-channels.
+std::vector<ExtraChannel> stats_channels(const RenderResult& r) {
+  std::vector<ExtraChannel> channels{
+      {"spp", {}}, {"variance.R", {}}, {"variance.G", {}}, {"variance.B", {}}};
+  for (std::size_t p = 0; p < r.sums.size(); ++p) {
+    channels[0].values.push_back(float(r.pixel_samples[p]));
+    const Vec3d v = variance_of_mean(r.sums[p], r.squares[p], r.pixel_samples[p]);
+    for (std::size_t c = 0; c < 3; ++c) channels[1 + c].values.push_back(float(v[c]));
+  }
+  return channels;
+}
+
+// "64 spp", or for adaptive sampling the range and mean of the pixels' counts.
+std::string describe_samples(const RenderSettings& s, const RenderResult& r) {
+  char text[96];
+  if (s.target_error > 0) {
+    const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
+    std::snprintf(text, sizeof text, "%u-%u spp (mean %.1f, target error %g)", *least, *most,
+                  mean_samples(r), s.target_error);
+  } else {
+    std::snprintf(text, sizeof text, "%d spp", r.samples_completed);
+  }
+  return text;
+}
+
 Metadata make_metadata(const RenderOptions& o, const Scene& scene, const RenderSettings& s,
                        const RenderResult& r) {
   Metadata metadata{{"scene", scene.name}};
   if (scene.layout_seed) metadata.emplace_back("scene_seed", std::int64_t(*scene.layout_seed));
   metadata.insert(metadata.end(), {
-                                      {"spp", std::int64_t(r.samples_completed)},
                                       {"depth", std::int64_t(s.max_depth)},
                                       {"seed", std::int64_t(s.seed)},
+                                      {"sampler", to_string(s.sampler)},
                                       {"accelerator", to_string(s.accel)},
                                       {"rays_traced", std::int64_t(r.rays_traced)},
                                   });
+  if (s.target_error > 0) {
+    // Each pixel has its own count: the range and the mean, not one "spp".
+    const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
+    metadata.insert(metadata.end(), {
+                                        {"target_error", s.target_error},
+                                        {"spp_min", std::int64_t(*least)},
+                                        {"spp_max", std::int64_t(*most)},
+                                        {"spp_mean", mean_samples(r)},
+                                        {"spp_limit", std::int64_t(s.samples_per_pixel)},
+                                    });
+  } else {
+    metadata.emplace_back("spp", std::int64_t(r.samples_completed));
+  }
   if (r.stopped) {
-    metadata.emplace_back("spp_requested", std::int64_t(s.samples_per_pixel));
+    if (s.target_error <= 0)
+      metadata.emplace_back("spp_requested", std::int64_t(s.samples_per_pixel));
     metadata.emplace_back("stopped", std::string("interrupted by a signal"));
   } else if (r.time_limited) {
     char limit[64];
@@ -193,6 +250,24 @@ void apply_rank_share(const RenderOptions& o, const MpiSession& mpi, RenderSetti
   settings.samples_per_pixel = int(total * (rank + 1) / ranks - settings.first_sample);
 }
 
+// Adaptive sampling decides each pixel's stop on all its samples, so it cannot be split
+// into shares; the statistics channels need a float format.
+void check_adaptive_options(const RenderOptions& o, const std::string& output,
+                            const MpiSession& mpi) {
+  if (o.target_error > 0 && (!o.sample_range.empty() || !o.part.empty() || mpi.distributed())) {
+    throw InvalidInput(
+        "--target-error needs all of a pixel's samples in one process: it cannot be combined "
+        "with --sample-range, --part or mpirun");
+  }
+  if (o.stats_channels && !is_float_format(output)) {
+    throw InvalidInput("--stats-channels: output '" + output +
+                       "' must be a float format (.exr) to hold the spp and variance channels");
+  }
+  if (o.stats_channels && (!o.sample_range.empty() || !o.part.empty() || mpi.distributed())) {
+    throw InvalidInput("--stats-channels is for a render in one process, not a part or mpirun");
+  }
+}
+
 int run_render(const RenderOptions& o, bool scene_option_given, const MpiSession& mpi) {
   if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
 
@@ -208,6 +283,7 @@ int run_render(const RenderOptions& o, bool scene_option_given, const MpiSession
   validate(settings);
   validate(scene);
   check_output_path(output);
+  check_adaptive_options(o, output, mpi);
 
   RenderProgress progress;
   RenderResult result;
@@ -245,11 +321,13 @@ int run_render(const RenderOptions& o, bool scene_option_given, const MpiSession
     part.sums = std::move(result.sums);
     write_part(output, part);
   } else {
-    write_image(output, result.film, make_metadata(o, scene, settings, result));
+    write_image(output, result.film, make_metadata(o, scene, settings, result),
+                o.stats_channels ? stats_channels(result) : std::vector<ExtraChannel>{});
   }
   if (result.stopped) {
-    std::fprintf(stderr, "rtiow: interrupted: wrote %d of %d spp to %s\n", result.samples_completed,
-                 settings.samples_per_pixel, std::filesystem::absolute(output).c_str());
+    std::fprintf(stderr, "rtiow: interrupted: wrote %s (of %d asked) to %s\n",
+                 describe_samples(settings, result).c_str(), settings.samples_per_pixel,
+                 std::filesystem::absolute(output).c_str());
     return 128 + InterruptGuard::signal_received();
   }
 
@@ -259,12 +337,13 @@ int run_render(const RenderOptions& o, bool scene_option_given, const MpiSession
         settings.threads > 0 ? settings.threads : int(std::thread::hardware_concurrency());
     const std::string ranks = mpi.distributed() ? std::to_string(mpi.size()) + " ranks x " : "";
     std::fprintf(stderr,
-                 "rendered %s %dx%d, %d spp, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
+                 "rendered %s %dx%d, %s, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
                  "%.2f Mrays/s -> %s\n",
-                 scene.name.c_str(), settings.width, settings.height, result.samples_completed,
-                 settings.max_depth, to_string(settings.accel).c_str(), ranks.c_str(), threads,
-                 threads == 1 ? "" : "s", result.render_seconds, rays,
-                 rays / result.render_seconds * 1e-6, std::filesystem::absolute(output).c_str());
+                 scene.name.c_str(), settings.width, settings.height,
+                 describe_samples(settings, result).c_str(), settings.max_depth,
+                 to_string(settings.accel).c_str(), ranks.c_str(), threads, threads == 1 ? "" : "s",
+                 result.render_seconds, rays, rays / result.render_seconds * 1e-6,
+                 std::filesystem::absolute(output).c_str());
   }
   return 0;
 }
@@ -303,6 +382,22 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
                   "Render in passes until this many seconds are spent (ends within one pass); "
                   "the file holds the samples completed. With --spp, stop at that many")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--sampler", o.sampler,
+                  "Camera samples (pixel position, lens): independent (the book's) or sobol "
+                  "(Owen-scrambled Sobol, lower noise at the same spp)")
+      ->check(CLI::IsMember({"independent", "sobol"}))
+      ->capture_default_str();
+  cmd->add_option("--target-error", o.target_error,
+                  "Adaptive sampling: each pixel stops once its relative standard error is below "
+                  "this (e.g. 0.05); --spp is then the most a pixel takes (default 8192)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--min-spp", o.min_spp,
+                  "Adaptive sampling: samples every pixel takes before it may stop")
+      ->check(CLI::Range(2, std::numeric_limits<int>::max()))
+      ->capture_default_str();
+  cmd->add_flag("--stats-channels", o.stats_channels,
+                "Add per-pixel channels to an .exr output: spp and the variance of the pixel's "
+                "mean (variance.R/G/B)");
   cmd->add_option("--fresnel", o.fresnel,
                   "Glass reflectance: schlick (the book's approximation) or exact (default: as "
                   "the scene says, schlick for the built-in scenes)")

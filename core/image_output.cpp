@@ -75,15 +75,22 @@ std::uint8_t encode_gamma2_8bit(float linear) {
   return static_cast<std::uint8_t>(std::lround(v * 255.0f));
 }
 
-void write_image(const std::string& path, const Film& film, const Metadata& metadata) {
+void write_image(const std::string& path, const Film& film, const Metadata& metadata,
+                 const std::vector<ExtraChannel>& extra) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) {
     throw std::runtime_error("cannot write '" + path + "': no image format for extension '" +
                              lowercase_extension(path) + "'");
   }
   const bool linear_float = is_float_format(path);
-  OIIO::ImageSpec spec(film.width(), film.height(), 3,
+  if (!extra.empty() && !linear_float) {
+    throw std::invalid_argument("cannot write '" + path +
+                                "': extra channels need a float format such as .exr");
+  }
+  const int channels = 3 + int(extra.size());
+  OIIO::ImageSpec spec(film.width(), film.height(), channels,
                        linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  for (std::size_t i = 0; i < extra.size(); ++i) spec.channelnames[3 + i] = extra[i].name;
   add_metadata(spec, metadata, linear_float);
   if (!linear_float) spec.attribute("oiio:ColorSpace", "Gamma2.0");
 
@@ -91,8 +98,12 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
   std::vector<std::uint8_t> bytes;
   const void* data;
   if (linear_float) {
-    floats.reserve(film.pixels().size() * 3);
-    for (const Color& c : film.pixels()) floats.insert(floats.end(), {c.x, c.y, c.z});
+    floats.reserve(film.pixels().size() * std::size_t(channels));
+    for (std::size_t p = 0; p < film.pixels().size(); ++p) {
+      const Color& c = film.pixels()[p];
+      floats.insert(floats.end(), {c.x, c.y, c.z});
+      for (const ExtraChannel& e : extra) floats.push_back(e.values[p]);
+    }
     data = floats.data();
   } else {
     bytes.reserve(film.pixels().size() * 3);

@@ -24,8 +24,16 @@ bool is_writable_image_path(const std::string& path);
 // True if the format of `path` stores linear floating-point pixels.
 bool is_float_format(const std::string& path);
 
+// A named per-pixel value written after R, G, B (float formats only), e.g. "spp".
+struct ExtraChannel {
+  std::string name;
+  std::vector<float> values;  // one per pixel, row major
+};
+
 // Throws std::runtime_error with OIIO's reason on failure; the target is then untouched.
-void write_image(const std::string& path, const Film& film, const Metadata& metadata);
+// Extra channels need a float format (throws std::invalid_argument otherwise).
+void write_image(const std::string& path, const Film& film, const Metadata& metadata,
+                 const std::vector<ExtraChannel>& extra = {});
 
 // The book's gamma 2 and 8-bit quantisation, applied to one linear value.
 std::uint8_t encode_gamma2_8bit(float linear);

@@ -19,7 +19,8 @@ namespace {
 // Beyond this many pixels indices overflow; a film costs this much per pixel (the float
 // image and the exact fixed-point sums).
 constexpr std::uint64_t kMaxPixels = 1ull << 31;
-constexpr std::uint64_t kBytesPerPixel = sizeof(Color) + sizeof(PixelSum);
+constexpr std::uint64_t kBytesPerPixel =
+    sizeof(Color) + sizeof(PixelSum) + sizeof(PixelSquares) + sizeof(std::uint32_t);
 
 using Clock = std::chrono::steady_clock;
 
@@ -37,27 +38,22 @@ std::uint64_t next_pass_samples(std::uint64_t last_pass, double last_seconds,
   return std::min(remaining, std::uint64_t(n));
 }
 
+// Every pixel gets the same samples, in passes of about a second.
 template <typename Accel>
-RenderResult render_with(const Scene& scene, const Camera& camera, const RenderSettings& settings,
-                         RenderProgress* progress) {
-  RenderResult result;
-  const auto build_start = Clock::now();
-  const Accel accel(scene.spheres);
-  result.build_seconds = seconds_since(build_start);
-
-  result.sums.resize(std::size_t(settings.width) * std::size_t(settings.height));
+void render_uniform(const Scene& scene, const Camera& camera, const Accel& accel,
+                    const RenderSettings& settings, RenderProgress* progress,
+                    PixelAccumulators& pixels, RenderResult& result) {
   const auto render_start = Clock::now();
-  const std::uint64_t first = settings.first_sample;
   const auto total = std::uint64_t(settings.samples_per_pixel);
   std::uint64_t done = 0, pass = 1;
   while (done < total) {
-    if (done > 0 && progress && progress->stop_requested.load()) {
+    if (done > 0 && progress->stop_requested.load()) {
       result.stopped = true;
       break;
     }
     const auto pass_start = Clock::now();
-    result.rays_traced += render_pass(scene, camera, accel, settings, first + done,
-                                      first + done + pass, result.sums, progress);
+    result.rays_traced += render_pass(scene, camera, accel, settings,
+                                      every_pixel_to(std::uint32_t(done + pass)), pixels, progress);
     done += pass;
     const double pass_seconds = seconds_since(pass_start);
     const double seconds_per_sample = pass_seconds / double(pass);
@@ -74,10 +70,72 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
       pass = std::clamp<std::uint64_t>(std::uint64_t(fits), 1, pass);
     }
   }
-  result.render_seconds = seconds_since(render_start);
   result.samples_completed = int(done);
+}
+
+// Adaptive sampling: every pixel takes the minimum, then each round doubles the samples of
+// the pixels whose relative standard error is still above the target (up to the maximum).
+// A pixel's stopping decision depends on its own samples only, and the rounds do not depend
+// on timing, so the image is the same for any thread count. Few looks at the estimate
+// (one per doubling) keep the bias of stopping on a lucky estimate small. A stop request
+// or the time limit ends the render mid-round: untouched tiles keep their samples.
+template <typename Accel>
+void render_adaptive(const Scene& scene, const Camera& camera, const Accel& accel,
+                     const RenderSettings& settings, RenderProgress* progress,
+                     PixelAccumulators& pixels, RenderResult& result) {
+  const auto render_start = Clock::now();
+  const auto most = std::uint32_t(settings.samples_per_pixel);
+  const auto least = std::min(most, std::uint32_t(settings.min_samples));
+  const double target_error = settings.target_error;
+  std::atomic<bool> stop_requested{false}, time_out{false};
+  const std::function<bool()> may_skip = [&] {
+    if (progress && progress->stop_requested.load()) stop_requested = true;
+    if (settings.time_limit_seconds > 0.0 &&
+        seconds_since(render_start) >= settings.time_limit_seconds) {
+      time_out = true;
+    }
+    return stop_requested.load() || time_out.load();
+  };
+  const auto target = [&](const PixelSum& sum, const PixelSquares& squares, std::uint32_t n) {
+    if (n < least) return least;
+    if (n >= most || relative_standard_error(sum, squares, n) <= target_error) return n;
+    return std::min(most, 2 * n);
+  };
+  for (;;) {
+    const std::uint64_t before = progress->samples_done.load();
+    result.rays_traced +=
+        render_pass(scene, camera, accel, settings, target, pixels, progress, may_skip);
+    const bool added = progress->samples_done.load() > before;
+    if (!added || stop_requested || time_out) break;
+  }
+  result.stopped = stop_requested.load();
+  result.time_limited = time_out.load() && !result.stopped;
+  result.samples_completed = int(*std::max_element(pixels.samples.begin(), pixels.samples.end()));
+}
+
+template <typename Accel>
+RenderResult render_with(const Scene& scene, const Camera& camera, const RenderSettings& settings,
+                         RenderProgress* progress) {
+  RenderProgress unobserved;
+  if (!progress) progress = &unobserved;
+  RenderResult result;
+  const auto build_start = Clock::now();
+  const Accel accel(scene.spheres);
+  result.build_seconds = seconds_since(build_start);
+
+  PixelAccumulators pixels(std::size_t(settings.width) * std::size_t(settings.height));
+  const auto render_start = Clock::now();
+  if (settings.target_error > 0.0) {
+    render_adaptive(scene, camera, accel, settings, progress, pixels, result);
+  } else {
+    render_uniform(scene, camera, accel, settings, progress, pixels, result);
+  }
+  result.render_seconds = seconds_since(render_start);
   result.film = Film(settings.width, settings.height);
-  resolve(result.sums, done, result.film);
+  resolve(pixels.sums, pixels.samples, result.film);
+  result.sums = std::move(pixels.sums);
+  result.squares = std::move(pixels.squares);
+  result.pixel_samples = std::move(pixels.samples);
   return result;
 }
 
@@ -85,6 +143,16 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
 
 std::string to_string(AccelKind kind) {
   return kind == AccelKind::Embree ? EmbreeAccel::name() : NaiveAccel::name();
+}
+
+std::string to_string(SamplerKind kind) {
+  return kind == SamplerKind::Independent ? "independent" : "sobol";
+}
+
+SamplerKind parse_sampler(const std::string& name) {
+  if (name == "independent") return SamplerKind::Independent;
+  if (name == "sobol") return SamplerKind::Sobol;
+  throw InvalidInput("unknown sampler '" + name + "' (known: independent, sobol)");
 }
 
 AccelKind parse_accel(const std::string& name) {
@@ -105,6 +173,13 @@ void validate(const RenderSettings& s) {
     throw InvalidInput("time limit must be a finite number of seconds >= 0");
   }
   if (s.first_sample > (1ull << 62)) throw InvalidInput("first sample index is out of range");
+  if (!(s.target_error >= 0.0) || !std::isfinite(s.target_error)) {
+    throw InvalidInput("target error must be a finite number >= 0 (0: off)");
+  }
+  if (s.min_samples < 2) {
+    throw InvalidInput("minimum samples must be >= 2 (a variance needs two), got " +
+                       std::to_string(s.min_samples));
+  }
   const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
   if (pixels > kMaxPixels) {
     throw InvalidInput("image " + std::to_string(s.width) + "x" + std::to_string(s.height) +

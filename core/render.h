@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/film.h"
+#include "core/pixel_variance.h"
 #include "core/sample_sum.h"
 #include "core/scene.h"
 
@@ -18,6 +19,17 @@ enum class AccelKind { Embree, Naive };
 
 std::string to_string(AccelKind kind);
 AccelKind parse_accel(const std::string& name);  // throws InvalidInput
+
+// How a pixel sample's camera dimensions (pixel position, lens) are drawn: the book's
+// independent uniform numbers, or Owen-scrambled Sobol points (see core/sobol.h).
+enum class SamplerKind { Independent, Sobol };
+
+std::string to_string(SamplerKind kind);
+SamplerKind parse_sampler(const std::string& name);  // throws InvalidInput
+
+// The dimensions the Sobol sampler covers: pixel position and lens. (Covering the first
+// bounce as well measured no better on the cover scene; see the README.)
+inline constexpr int kSobolSampledDimensions = 4;
 
 struct RenderSettings {
   int width = 0;
@@ -29,10 +41,15 @@ struct RenderSettings {
   int threads = 0;                  // 0: all cores
   double time_limit_seconds = 0.0;  // > 0: stop after the pass that reaches this much time
   AccelKind accel = AccelKind::Embree;
+  SamplerKind sampler = SamplerKind::Independent;
+  // Adaptive sampling when > 0: a pixel stops once its relative standard error is below
+  // this, after at least `min_samples` and at most `samples_per_pixel` samples.
+  double target_error = 0.0;
+  int min_samples = 16;
 };
 
 // Throws InvalidInput naming the setting: non-positive size or spp, negative depth,
-// an image too large to hold in memory, negative threads.
+// an image too large to hold in memory, negative threads, a bad target error.
 void validate(const RenderSettings& settings);
 
 // Shared with other threads while the render runs: counters it updates (for a progress
@@ -44,13 +61,15 @@ struct RenderProgress {
 };
 
 struct RenderResult {
-  Film film;                    // the mean of the samples completed
-  std::vector<PixelSum> sums;   // their exact sums, for merging shares of a render
-  int samples_completed = 0;    // per pixel; less than asked when stopped
-  bool stopped = false;         // a stop request ended the render early
-  bool time_limited = false;    // the time limit ended it (with the samples completed)
-  double build_seconds = 0.0;   // accelerator construction
-  double render_seconds = 0.0;  // the sample loop
+  Film film;                                 // the mean of the samples completed
+  std::vector<PixelSum> sums;                // their exact sums, for merging shares of a render
+  std::vector<PixelSquares> squares;         // for each pixel's variance
+  std::vector<std::uint32_t> pixel_samples;  // each pixel's sample count
+  int samples_completed = 0;                 // per pixel (the most any pixel took when adaptive)
+  bool stopped = false;                      // a stop request ended the render early
+  bool time_limited = false;                 // the time limit ended it (with the samples completed)
+  double build_seconds = 0.0;                // accelerator construction
+  double render_seconds = 0.0;               // the sample loop
   std::uint64_t rays_traced = 0;
 };
 

@@ -41,6 +41,7 @@ std::string render_digest(const Scene& scene, const RenderSettings& settings) {
                                 std::uint64_t(settings.max_depth), settings.seed}) {
     text.append("|").append(std::to_string(v));
   }
+  text.append("|").append(to_string(settings.sampler));
   std::uint64_t h = 0x6a09e667f3bcc908ull;
   for (unsigned char c : text) h = hash_combine(h, c);
   return hex(h);

@@ -30,6 +30,11 @@ class PixelSum {
     channel_[2] += to_fixed(c.z);
   }
 
+  // A sample's value as the sum counts it: NaN and infinities as 0, clamped to kMaxSample.
+  static double counted_value(float v) {
+    return std::isfinite(v) ? std::clamp(double(v), 0.0, kMaxSample) : 0.0;
+  }
+
   PixelSum& operator+=(const PixelSum& other) {
     for (int i = 0; i < 3; ++i) channel_[i] += other.channel_[i];
     return *this;
@@ -50,8 +55,7 @@ class PixelSum {
  private:
   // Round to nearest (values are >= 0, so + 0.5 and truncation do it without a libm call).
   static int128 to_fixed(float v) {
-    const double clamped = std::isfinite(v) ? std::clamp(double(v), 0.0, kMaxSample) : 0.0;
-    return int128(static_cast<std::int64_t>(clamped * kScale + 0.5));
+    return int128(static_cast<std::int64_t>(counted_value(v) * kScale + 0.5));
   }
 
   int128 channel_[3]{};
@@ -64,6 +68,15 @@ inline void resolve(const std::vector<PixelSum>& sums, std::uint64_t samples, Fi
       film.at(x, y) =
           sums[std::size_t(y) * std::size_t(film.width()) + std::size_t(x)].mean(samples);
     }
+  }
+}
+
+// The film from per-pixel sums with each pixel's own sample count (adaptive sampling).
+inline void resolve(const std::vector<PixelSum>& sums, const std::vector<std::uint32_t>& samples,
+                    Film& film) {
+  for (std::size_t p = 0; p < sums.size(); ++p) {
+    film.at(int(p % std::size_t(film.width())), int(p / std::size_t(film.width()))) =
+        sums[p].mean(samples[p]);
   }
 }
 

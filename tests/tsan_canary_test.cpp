@@ -34,9 +34,9 @@ TEST(TsanCanary, RaceInTheLoopBodyIsReported) {
   s.max_depth = 1;
   s.threads = 2;
   const Camera camera(scene.camera, s.width, s.height);
-  std::vector<PixelSum> sums(std::size_t(s.width * s.height));
+  PixelAccumulators pixels(std::size_t(s.width * s.height));
   const RacyAccel accel;
-  render_pass(scene, camera, accel, s, 0, 1, sums, nullptr);
+  render_pass(scene, camera, accel, s, every_pixel_to(1), pixels, nullptr);
   EXPECT_GT(accel.queries, 0);
 }
 

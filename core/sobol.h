@@ -1,0 +1,108 @@
+#pragma once
+// Owen-scrambled Sobol points for the first dimensions of a pixel sample. Point i of
+// dimension d is a pure function of (i, d, scramble seed): nothing depends on how many
+// samples the render takes, so a time-limited, adaptive or shared render draws the same
+// points as a fixed one. Every power-of-two prefix of a dimension fills its strata, and
+// dimensions 0 and 1 form a (0,2)-sequence: any 2^m consecutive-from-zero points put one
+// point in each of the 2^m elementary intervals of every shape.
+//
+// The generator matrices come from Joe and Kuo's direction numbers (new-joe-kuo-6.21201,
+// dimensions 2-8; dimension 1 is van der Corput's). The scramble is the hash-based nested
+// permutation of Laine and Karras with Vegdahl's constants (Burley 2020): each step only
+// lets higher-order bits of the reversed value depend on lower ones, which is what makes
+// it an Owen (nested uniform) scramble.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+namespace rtiow {
+
+inline constexpr int kSobolDimensions = 8;
+
+namespace sobol_detail {
+
+struct PrimitivePolynomial {
+  int degree;
+  std::uint32_t coefficients;            // a_1 .. a_{s-1}, the highest first
+  std::array<std::uint32_t, 5> initial;  // m_1 .. m_s
+};
+
+// Dimensions 1..7 (the table's dimensions 2..8).
+constexpr std::array<PrimitivePolynomial, kSobolDimensions - 1> kJoeKuo{{
+    {1, 0, {1}},
+    {2, 1, {1, 3}},
+    {3, 1, {1, 3, 1}},
+    {3, 2, {1, 1, 1}},
+    {4, 1, {1, 1, 3, 3}},
+    {4, 4, {1, 3, 5, 13}},
+    {5, 2, {1, 1, 5, 5, 17}},
+}};
+
+using Matrix = std::array<std::uint32_t, 32>;  // column k: the contribution of index bit k
+
+constexpr Matrix generator_matrix(int dimension) {
+  Matrix v{};
+  if (dimension == 0) {
+    for (int k = 0; k < 32; ++k) v[k] = 1u << (31 - k);
+    return v;
+  }
+  const PrimitivePolynomial& p = kJoeKuo[dimension - 1];
+  const int s = p.degree;
+  for (int k = 0; k < s; ++k) v[k] = p.initial[k] << (31 - k);
+  for (int k = s; k < 32; ++k) {
+    std::uint32_t x = v[k - s] ^ (v[k - s] >> s);
+    for (int j = 1; j < s; ++j) {
+      if ((p.coefficients >> (s - 1 - j)) & 1u) x ^= v[k - j];
+    }
+    v[k] = x;
+  }
+  return v;
+}
+
+constexpr std::array<Matrix, kSobolDimensions> make_matrices() {
+  std::array<Matrix, kSobolDimensions> m{};
+  for (int d = 0; d < kSobolDimensions; ++d) m[d] = generator_matrix(d);
+  return m;
+}
+
+inline constexpr std::array<Matrix, kSobolDimensions> kMatrices = make_matrices();
+
+constexpr std::uint32_t reverse_bits(std::uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+}  // namespace sobol_detail
+
+// The unscrambled Sobol point: index i's bits select columns of the dimension's matrix.
+// `dimension` must be below kSobolDimensions (the remainder only tells the compiler so).
+constexpr std::uint32_t sobol_bits(std::uint32_t index, int dimension) {
+  const auto& columns = sobol_detail::kMatrices[std::size_t(dimension) % kSobolDimensions];
+  std::uint32_t x = 0;
+  for (int k = 0; index != 0; index >>= 1, ++k) {
+    if (index & 1u) x ^= columns[k];
+  }
+  return x;
+}
+
+// A nested uniform permutation of the 32-bit fraction `x`, chosen by `seed`.
+constexpr std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) {
+  x = sobol_detail::reverse_bits(x);
+  x ^= x * 0x3d20adeau;
+  x += seed;
+  x *= (seed >> 16) | 1u;
+  x ^= x * 0x05526c56u;
+  x ^= x * 0x53a22864u;
+  return sobol_detail::reverse_bits(x);
+}
+
+// In [0, 1) with 24 bits, like the independent sampler's floats.
+constexpr float scrambled_sobol(std::uint32_t index, int dimension, std::uint32_t seed) {
+  return float(owen_scramble(sobol_bits(index, dimension), seed) >> 8) * 0x1p-24f;
+}
+
+}  // namespace rtiow
