@@ -1,5 +1,7 @@
 #include "app/bench_report.h"
 
+#include "app/plot_script.h"
+
 #include "core/atomic_file.h"
 
 #include <cstdio>
@@ -83,20 +85,7 @@ void write_bench_json(const json& results, const std::string& path) {
 }
 
 void plot_bench(const std::string& json_path, const std::string& plot_path) {
-  // The script is copied beside the executable at build time.
-  const fs::path script = fs::read_symlink("/proc/self/exe").parent_path() / "bench_plot.py";
-  const char* python = "/usr/bin/python3";  // Debian's, where python3-matplotlib lives
-  if (!fs::exists(python) || !fs::exists(script)) {
-    std::printf("plot: skipped (%s or %s missing)\n", python, script.c_str());
-    return;
-  }
-  const std::string command =
-      std::string(python) + " '" + script.string() + "' '" + json_path + "' '" + plot_path + "'";
-  if (std::system(command.c_str()) != 0) {
-    std::printf("plot: skipped (%s failed; is python3-matplotlib installed?)\n", script.c_str());
-    return;
-  }
-  std::printf("plot:    %s\n", fs::absolute(plot_path).c_str());
+  run_plot_script("bench_plot.py", json_path, plot_path);
 }
 
 }  // namespace rtiow

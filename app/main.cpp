@@ -8,6 +8,7 @@
 #include <functional>
 #include <vector>
 
+#include "app/accuracy_command.h"
 #include "app/bench_command.h"
 #include "app/merge_command.h"
 #include "app/mpi_session.h"
@@ -25,7 +26,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "rtiow 0.1.0");
   std::vector<std::function<int()>> commands{
       rtiow::add_render_command(app, mpi), rtiow::add_scene_command(app),
-      rtiow::add_merge_command(app), rtiow::add_bench_command(app)};
+      rtiow::add_merge_command(app), rtiow::add_bench_command(app),
+      rtiow::add_accuracy_command(app)};
 
   try {
     app.parse(argc, argv);

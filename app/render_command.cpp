@@ -19,6 +19,7 @@
 #include "core/render.h"
 #include "core/render_loop.h"
 #include "core/render_part.h"
+#include "core/render_statistics.h"
 #include "core/scene_file.h"
 
 namespace rtiow {
@@ -118,24 +119,6 @@ int list_scenes() {
   for (const auto& s : builtin_scenes())
     std::printf("%-16s %s\n", s.name.c_str(), s.summary.c_str());
   return 0;
-}
-
-double mean_samples(const RenderResult& r) {
-  double total = 0;
-  for (const std::uint32_t n : r.pixel_samples) total += n;
-  return total / double(r.pixel_samples.size());
-}
-
-// The per-pixel sample count and the variance of each pixel's mean, for --stats-channels.
-std::vector<ExtraChannel> stats_channels(const RenderResult& r) {
-  std::vector<ExtraChannel> channels{
-      {"spp", {}}, {"variance.R", {}}, {"variance.G", {}}, {"variance.B", {}}};
-  for (std::size_t p = 0; p < r.sums.size(); ++p) {
-    channels[0].values.push_back(float(r.pixel_samples[p]));
-    const Vec3d v = variance_of_mean(r.sums[p], r.squares[p], r.pixel_samples[p]);
-    for (std::size_t c = 0; c < 3; ++c) channels[1 + c].values.push_back(float(v[c]));
-  }
-  return channels;
 }
 
 // "64 spp", or for adaptive sampling the range and mean of the pixels' counts.
@@ -322,7 +305,7 @@ int run_render(const RenderOptions& o, bool scene_option_given, const MpiSession
     write_part(output, part);
   } else {
     write_image(output, result.film, make_metadata(o, scene, settings, result),
-                o.stats_channels ? stats_channels(result) : std::vector<ExtraChannel>{});
+                o.stats_channels ? statistics_channels(result) : std::vector<ExtraChannel>{});
   }
   if (result.stopped) {
     std::fprintf(stderr, "rtiow: interrupted: wrote %s (of %d asked) to %s\n",
@@ -383,8 +366,9 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
                   "the file holds the samples completed. With --spp, stop at that many")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--sampler", o.sampler,
-                  "Camera samples (pixel position, lens): independent (the book's) or sobol "
-                  "(Owen-scrambled Sobol, lower noise at the same spp)")
+                  "Sampler of the pixel position, lens and first bounce: independent (the book's) "
+                  "or sobol (Owen-scrambled Sobol: about 2.5x lower relMSE on the cover at the "
+                  "same spp)")
       ->check(CLI::IsMember({"independent", "sobol"}))
       ->capture_default_str();
   cmd->add_option("--target-error", o.target_error,

@@ -44,19 +44,19 @@ inline Vec3d variance_of_mean(const PixelSum& sum, const PixelSquares& squares, 
 // keeps black pixels from demanding unbounded relative accuracy.
 inline constexpr double kRelativeErrorOffset = 0.01;
 
-// The pixel's relative standard error: the standard error of its mean over (mean + 0.01),
-// root mean square over R, G, B. Its square is the pixel's expected relMSE, so an image
-// whose pixels all reach E has a relMSE near E^2.
-inline double relative_standard_error(const PixelSum& sum, const PixelSquares& squares,
-                                      std::uint64_t n) {
+// The pixel's relative variance per sample: the sample variance over (mean + 0.01)^2,
+// averaged over R, G, B. Over n samples the pixel's expected relMSE is this over n, so
+// sqrt(this / n) is its relative standard error.
+inline double relative_sample_variance(const PixelSum& sum, const PixelSquares& squares,
+                                       std::uint64_t n) {
   const Vec3d variance = variance_of_mean(sum, squares, n);
   const Color mean = sum.mean(n);
   double total = 0.0;
   for (std::size_t c = 0; c < 3; ++c) {
     const double denominator = double(mean[c]) + kRelativeErrorOffset;
-    total += variance[c] / (denominator * denominator);
+    total += variance[c] * double(n) / (denominator * denominator);
   }
-  return std::sqrt(total / 3.0);
+  return total / 3.0;
 }
 
 }  // namespace rtiow

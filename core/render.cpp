@@ -52,8 +52,8 @@ void render_uniform(const Scene& scene, const Camera& camera, const Accel& accel
       break;
     }
     const auto pass_start = Clock::now();
-    result.rays_traced += render_pass(scene, camera, accel, settings,
-                                      every_pixel_to(std::uint32_t(done + pass)), pixels, progress);
+    result.rays_traced +=
+        render_pass(scene, camera, accel, settings, std::uint32_t(done + pass), pixels, progress);
     done += pass;
     const double pass_seconds = seconds_since(pass_start);
     const double seconds_per_sample = pass_seconds / double(pass);
@@ -73,12 +73,46 @@ void render_uniform(const Scene& scene, const Camera& camera, const Accel& accel
   result.samples_completed = int(done);
 }
 
+// The relative variance per sample a pixel is judged by: the mean of its neighbours' in
+// the 3x3 window around it, itself left out. A rule that looked at the pixel's own samples
+// would stop more often after lucky ones (a bright sample lowers the relative error, a
+// missed rare path the variance) and bias the pixel; its neighbours' samples are
+// independent of its own, so its mean stays unbiased. A 1x1 image has no neighbours and
+// uses its own.
+std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
+                                                    const PixelAccumulators& pixels) {
+  const int w = settings.width, h = settings.height;
+  std::vector<double> own(pixels.samples.size());
+  for (std::size_t p = 0; p < own.size(); ++p) {
+    own[p] = relative_sample_variance(pixels.sums[p], pixels.squares[p], pixels.samples[p]);
+  }
+  std::vector<double> judged(own.size());
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      double total = 0;
+      int count = 0;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+          total += own[std::size_t(ny) * std::size_t(w) + std::size_t(nx)];
+          ++count;
+        }
+      }
+      const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
+      judged[p] = count > 0 ? total / count : own[p];
+    }
+  }
+  return judged;
+}
+
 // Adaptive sampling: every pixel takes the minimum, then each round doubles the samples of
-// the pixels whose relative standard error is still above the target (up to the maximum).
-// A pixel's stopping decision depends on its own samples only, and the rounds do not depend
-// on timing, so the image is the same for any thread count. Few looks at the estimate
-// (one per doubling) keep the bias of stopping on a lucky estimate small. A stop request
-// or the time limit ends the render mid-round: untouched tiles keep their samples.
+// the pixels whose estimated relative standard error is still above the target (up to the
+// maximum). Decisions are made for all pixels before a round renders, from counts and sums
+// that do not depend on timing, so the image is the same for any thread count. Few looks
+// (one per doubling) and the neighbour-based estimate keep the stopping rule's bias small.
+// A stop request or the time limit ends the render mid-round; untouched pixels keep their
+// samples.
 template <typename Accel>
 void render_adaptive(const Scene& scene, const Camera& camera, const Accel& accel,
                      const RenderSettings& settings, RenderProgress* progress,
@@ -86,27 +120,33 @@ void render_adaptive(const Scene& scene, const Camera& camera, const Accel& acce
   const auto render_start = Clock::now();
   const auto most = std::uint32_t(settings.samples_per_pixel);
   const auto least = std::min(most, std::uint32_t(settings.min_samples));
-  const double target_error = settings.target_error;
+  const double target_variance = settings.target_error * settings.target_error;
   std::atomic<bool> stop_requested{false}, time_out{false};
   const std::function<bool()> may_skip = [&] {
-    if (progress && progress->stop_requested.load()) stop_requested = true;
+    if (progress->stop_requested.load()) stop_requested = true;
     if (settings.time_limit_seconds > 0.0 &&
         seconds_since(render_start) >= settings.time_limit_seconds) {
       time_out = true;
     }
     return stop_requested.load() || time_out.load();
   };
-  const auto target = [&](const PixelSum& sum, const PixelSquares& squares, std::uint32_t n) {
-    if (n < least) return least;
-    if (n >= most || relative_standard_error(sum, squares, n) <= target_error) return n;
-    return std::min(most, 2 * n);
-  };
-  for (;;) {
-    const std::uint64_t before = progress->samples_done.load();
-    result.rays_traced +=
-        render_pass(scene, camera, accel, settings, target, pixels, progress, may_skip);
-    const bool added = progress->samples_done.load() > before;
-    if (!added || stop_requested || time_out) break;
+  std::vector<std::uint32_t> targets(pixels.samples.size(), least);
+  std::vector<std::size_t> list(pixels.samples.size());
+  for (std::size_t p = 0; p < list.size(); ++p) list[p] = p;
+  // The first round is never cut short: every pixel gets its minimum, so none is empty.
+  const std::function<bool()> never = [] { return false; };
+  for (bool first_round = true; !list.empty(); first_round = false) {
+    result.rays_traced += render_pixel_list(scene, camera, accel, settings, list, targets, pixels,
+                                            progress, first_round ? never : may_skip);
+    if (stop_requested || time_out) break;
+    const std::vector<double> judged = neighbourhood_relative_variance(settings, pixels);
+    list.clear();
+    for (std::size_t p = 0; p < targets.size(); ++p) {
+      const std::uint32_t n = pixels.samples[p];
+      if (n >= most || judged[p] / double(n) <= target_variance) continue;
+      targets[p] = std::min(most, 2 * n);
+      list.push_back(p);
+    }
   }
   result.stopped = stop_requested.load();
   result.time_limited = time_out.load() && !result.stopped;

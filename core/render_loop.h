@@ -3,6 +3,7 @@
 // task, in sample order. Templated on the accelerator so each gets its own inlined loop
 // (and so the benchmark can wrap one to record the rays it traces).
 
+#include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/blocked_range2d.h>
 #include <oneapi/tbb/info.h>
 #include <oneapi/tbb/parallel_for.h>
@@ -61,60 +62,99 @@ struct PixelAccumulators {
       : sums(pixels), squares(pixels), samples(pixels, 0) {}
 };
 
-// One pass over the image: each pixel p is brought from its current count to
-// `target(p, sum, squares, count)` samples (no change when the target is not above it).
-// When `may_skip` is given, a tile is left untouched once it returns true (a stop request
-// or a deadline mid-pass; only renders whose pixels keep their own counts may use it).
-// Returns the number of rays traced.
-template <typename Accel, typename Target>
-std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel& accel,
-                          const RenderSettings& settings, const Target& target,
-                          PixelAccumulators& pixels, RenderProgress* progress,
-                          const std::function<bool()>& may_skip = {}) {
-  std::atomic<std::uint64_t> rays{0};
+// Runs `body` over `range` with tbb::parallel_for in an arena of the settings' thread
+// count. The fork and the join are annotated for TSan, which does not see TBB's own.
+template <typename Range, typename Body>
+void parallel_over(const RenderSettings& settings, const Range& range, const Body& body) {
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   tbb::task_arena arena(threads);
   char fork = 0, join = 0;  // their addresses name the fork and the join for TSan
   tsan_release(&fork);
   arena.execute([&] {
     tbb::parallel_for(
-        tbb::blocked_range2d<int>(0, settings.height, kTileSize, 0, settings.width, kTileSize),
-        [&](const tbb::blocked_range2d<int>& tile) {
+        range,
+        [&](const Range& part) {
           tsan_acquire(&fork);
-          if (may_skip && may_skip()) {
-            tsan_release(&join);
-            return;
-          }
-          std::uint64_t tile_rays = 0, tile_samples = 0;
-          for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
-            for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-              const std::size_t p = std::size_t(y) * std::size_t(settings.width) + std::size_t(x);
-              std::uint32_t& count = pixels.samples[p];
-              const std::uint32_t wanted = target(pixels.sums[p], pixels.squares[p], count);
-              if (wanted <= count) continue;
-              accumulate_pixel(scene, camera, accel, settings, x, y, settings.first_sample + count,
-                               settings.first_sample + wanted, pixels.sums[p], pixels.squares[p],
-                               tile_rays);
-              tile_samples += wanted - count;
-              count = wanted;
-            }
-          }
-          rays += tile_rays;
-          if (progress) {
-            progress->rays_traced += tile_rays;
-            progress->samples_done += tile_samples;
-          }
+          body(part);
           tsan_release(&join);
         },
         tbb::simple_partitioner());
   });
   tsan_acquire(&join);
+}
+
+// Brings pixel p from its current count to `wanted` samples; returns the samples added.
+template <typename Accel>
+std::uint64_t advance_pixel(const Scene& scene, const Camera& camera, const Accel& accel,
+                            const RenderSettings& settings, std::size_t p, std::uint32_t wanted,
+                            PixelAccumulators& pixels, std::uint64_t& rays) {
+  std::uint32_t& count = pixels.samples[p];
+  if (wanted <= count) return 0;
+  const int x = int(p % std::size_t(settings.width)), y = int(p / std::size_t(settings.width));
+  accumulate_pixel(scene, camera, accel, settings, x, y, settings.first_sample + count,
+                   settings.first_sample + wanted, pixels.sums[p], pixels.squares[p], rays);
+  const std::uint64_t added = wanted - count;
+  count = wanted;
+  return added;
+}
+
+// One pass over the image in 16x16 tiles: every pixel is brought to `samples` samples.
+// Returns the number of rays traced.
+template <typename Accel>
+std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel& accel,
+                          const RenderSettings& settings, std::uint32_t samples,
+                          PixelAccumulators& pixels, RenderProgress* progress) {
+  std::atomic<std::uint64_t> rays{0};
+  parallel_over(
+      settings,
+      tbb::blocked_range2d<int>(0, settings.height, kTileSize, 0, settings.width, kTileSize),
+      [&](const tbb::blocked_range2d<int>& tile) {
+        std::uint64_t tile_rays = 0, tile_samples = 0;
+        for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+          for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+            const std::size_t p = std::size_t(y) * std::size_t(settings.width) + std::size_t(x);
+            tile_samples +=
+                advance_pixel(scene, camera, accel, settings, p, samples, pixels, tile_rays);
+          }
+        }
+        rays += tile_rays;
+        if (progress) {
+          progress->rays_traced += tile_rays;
+          progress->samples_done += tile_samples;
+        }
+      });
   return rays.load();
 }
 
-// A pass target that brings every pixel to `n` samples.
-inline auto every_pixel_to(std::uint32_t n) {
-  return [n](const PixelSum&, const PixelSquares&, std::uint32_t) { return n; };
+// A pass over a list of pixels (raster order), each brought to its entry of `targets`
+// (film-sized): adaptive sampling's rounds, where few pixels may remain and tiles would
+// leave threads idle. `may_skip` is asked before each group of pixels; once it returns
+// true (a stop request, a deadline) the rest keep their counts. Returns the rays traced.
+template <typename Accel>
+std::uint64_t render_pixel_list(const Scene& scene, const Camera& camera, const Accel& accel,
+                                const RenderSettings& settings,
+                                const std::vector<std::size_t>& list,
+                                const std::vector<std::uint32_t>& targets,
+                                PixelAccumulators& pixels, RenderProgress* progress,
+                                const std::function<bool()>& may_skip) {
+  constexpr std::size_t kPixelsPerTask = 8;
+  std::atomic<std::uint64_t> rays{0};
+  parallel_over(settings, tbb::blocked_range<std::size_t>(0, list.size(), kPixelsPerTask),
+                [&](const tbb::blocked_range<std::size_t>& part) {
+                  if (may_skip()) return;
+                  std::uint64_t part_rays = 0, part_samples = 0;
+                  for (std::size_t i = part.begin(); i < part.end(); ++i) {
+                    const std::size_t p = list[i];
+                    part_samples += advance_pixel(scene, camera, accel, settings, p, targets[p],
+                                                  pixels, part_rays);
+                  }
+                  rays += part_rays;
+                  if (progress) {
+                    progress->rays_traced += part_rays;
+                    progress->samples_done += part_samples;
+                  }
+                });
+  return rays.load();
 }
 
 // Renders every pixel of `film` (already sized) at all samples in one pass and returns the
@@ -124,8 +164,7 @@ std::uint64_t render_tiles(const Scene& scene, const Camera& camera, const Accel
                            const RenderSettings& settings, Film& film, RenderProgress* progress) {
   PixelAccumulators pixels(std::size_t(settings.width) * std::size_t(settings.height));
   const auto n = std::uint32_t(settings.samples_per_pixel);
-  const std::uint64_t rays =
-      render_pass(scene, camera, accel, settings, every_pixel_to(n), pixels, progress);
+  const std::uint64_t rays = render_pass(scene, camera, accel, settings, n, pixels, progress);
   resolve(pixels.sums, n, film);
   return rays;
 }

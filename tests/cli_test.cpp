@@ -179,6 +179,92 @@ TEST(Cli, BenchWritesFiguresAndPlot) {
   EXPECT_TRUE(fs::exists(plot)) << r.stdout_text;
 }
 
+TEST(Cli, AdaptiveRenderWritesStatisticsChannelsAndItsSampleCounts) {
+  const fs::path out = output_path("adaptive.exr");
+  const CommandResult r = run_rtiow(
+      "render --scene cover --width 32 --target-error 0.2 --spp 256 "
+      "--min-spp 8 --sampler sobol --stats-channels -o " +
+      out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("target error 0.2"), std::string::npos) << r.stderr_text;
+  auto in = OIIO::ImageInput::open(out.string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec spec = in->spec();
+  ASSERT_EQ(spec.nchannels, 7);
+  EXPECT_EQ(spec.channelnames[3], "spp");
+  EXPECT_EQ(spec.channelnames[6], "variance.B");
+  EXPECT_EQ(spec.get_string_attribute("rtiow:sampler"), "sobol");
+  EXPECT_EQ(spec.get_int_attribute("rtiow:spp_min"), 8);
+  const int most = spec.get_int_attribute("rtiow:spp_max");
+  EXPECT_GT(most, 8);
+  EXPECT_LE(most, 256);
+  // The metadata's counts are the spp channel's.
+  std::vector<float> pixels(std::size_t(spec.width * spec.height * 7));
+  ASSERT_TRUE(in->read_image(0, 0, 0, 7, OIIO::TypeDesc::FLOAT, pixels.data()));
+  double total = 0, largest = 0, smallest = 1e9;
+  for (std::size_t p = 0; p < pixels.size(); p += 7) {
+    total += pixels[p + 3];
+    largest = std::max(largest, double(pixels[p + 3]));
+    smallest = std::min(smallest, double(pixels[p + 3]));
+    EXPECT_GE(pixels[p + 4], 0.0f);
+  }
+  EXPECT_EQ(largest, most);
+  EXPECT_EQ(smallest, 8);
+  EXPECT_NEAR(total / double(spec.width * spec.height), spec.get_float_attribute("rtiow:spp_mean"),
+              1e-3);
+}
+
+TEST(Cli, RefusesAdaptiveAndStatisticsOptionsWhereTheyCannotWork) {
+  expect_refused("--scene cover --width 8 --spp 4 --sampler halton", "--sampler");
+  expect_refused("--scene cover --width 8 --spp 4 --stats-channels", "float format");
+  expect_refused("--scene cover --width 8 --spp 4 --target-error -1", "--target-error");
+  expect_refused("--scene cover --width 8 --spp 4 --target-error 0.1 --min-spp 1", "--min-spp");
+  const fs::path part = output_path("part.exr");
+  const CommandResult r = run_rtiow(
+      "render -q --scene cover --width 8 --spp 4 --target-error 0.1 "
+      "--part 0/2 -o " +
+      part.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("--target-error"), std::string::npos) << r.stderr_text;
+  EXPECT_FALSE(fs::exists(part));
+}
+
+TEST(Cli, AccuracyMeasuresWritesFiguresAndReusesItsReference) {
+  const fs::path dir = output_path("accuracy");
+  fs::remove_all(dir);
+  const std::string args =
+      "accuracy -q --width 16 --reference-spp 256 --max-spp 16 "
+      "--fixed-spp 4 --depths 1,2,50 --target-errors 0.3 --repeat 1 --out " +
+      dir.string() + " --cache-dir " + (dir / "cache").string();
+  const CommandResult first = run_rtiow(args);
+  ASSERT_EQ(first.exit_code, 0) << first.stderr_text << first.stdout_text;
+  EXPECT_NE(first.stdout_text.find("RMSE slope"), std::string::npos) << first.stdout_text;
+  EXPECT_NE(first.stdout_text.find("bit-identical to embree"), std::string::npos);
+  EXPECT_EQ(first.stdout_text.find("reused from the cache"), std::string::npos);
+  const std::string figures = slurp(dir / "accuracy.json");
+  for (const char* key : {"\"rmse_slope_independent\"", "\"sobol_equal_time_factor\"",
+                          "\"depth_sweep\"", "\"fresnel\"", "\"adaptive\"", "\"intersector\""}) {
+    EXPECT_NE(figures.find(key), std::string::npos) << key;
+  }
+  const std::string csv = slurp(dir / "accuracy.csv");
+  EXPECT_EQ(csv.rfind("group,choice,parameter", 0), 0u) << csv;
+  EXPECT_EQ(count_lines(csv), 1 + 5 + 5 + 3 + 2 + 2 + 1) << csv;
+  EXPECT_TRUE(fs::exists(dir / "accuracy.png")) << first.stdout_text;
+
+  const CommandResult second = run_rtiow(args);
+  ASSERT_EQ(second.exit_code, 0) << second.stderr_text;
+  EXPECT_NE(second.stdout_text.find("reused from the cache"), std::string::npos);
+  // Other settings: a new reference, not the cached one.
+  const CommandResult other = run_rtiow(args + " --scene-seed 2");
+  ASSERT_EQ(other.exit_code, 0) << other.stderr_text;
+  EXPECT_EQ(other.stdout_text.find("reused from the cache"), std::string::npos);
+
+  const CommandResult refused =
+      run_rtiow("accuracy -q --reference-spp 64 --max-spp 64 --out " + dir.string());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.stderr_text.find("--reference-spp"), std::string::npos);
+}
+
 TEST(Cli, SphereFieldScenesRenderAndRefuseBadCounts) {
   const fs::path out = output_path("field.png");
   EXPECT_EQ(

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -63,6 +64,35 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, EveryScene,
                            for (char& c : name) c = (c == '-') ? '_' : c;
                            return name;
                          });
+
+// The Sobol sampler and adaptive sampling keep the guarantee: the same image for any
+// thread count and either accelerator (adaptive decisions are taken between rounds, from
+// counts and sums that do not depend on the schedule).
+TEST(Render, SobolAndAdaptiveRendersAreDeterministic) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  for (const bool adaptive : {false, true}) {
+    RenderSettings settings = tiny(scene);
+    settings.sampler = adaptive ? SamplerKind::Independent : SamplerKind::Sobol;
+    settings.samples_per_pixel = adaptive ? 128 : 8;
+    settings.target_error = adaptive ? 0.15 : 0.0;
+    settings.threads = 1;
+    const RenderResult one = render(scene, settings);
+    settings.threads = 2;
+    const RenderResult two = render(scene, settings);
+    settings.accel = AccelKind::Naive;
+    const RenderResult naive = render(scene, settings);
+    EXPECT_TRUE(test::bit_identical(one.film, two.film)) << "adaptive " << adaptive;
+    EXPECT_TRUE(test::bit_identical(one.film, naive.film)) << "adaptive " << adaptive;
+    EXPECT_EQ(one.pixel_samples, two.pixel_samples);
+    if (adaptive) {
+      const auto [least, most] =
+          std::minmax_element(one.pixel_samples.begin(), one.pixel_samples.end());
+      EXPECT_EQ(*least, 16u);
+      EXPECT_GT(*most, 16u) << "some pixel must need more than the minimum";
+      EXPECT_LE(*most, 128u);
+    }
+  }
+}
 
 TEST(Render, DifferentSeedsGiveDifferentNoise) {
   const Scene scene = make_builtin_scene("materials", 1);

@@ -1,0 +1,470 @@
+#include "app/accuracy_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/accuracy_reference.h"
+#include "app/plot_script.h"
+#include "core/atomic_file.h"
+#include "core/builtin_scenes.h"
+#include "core/error.h"
+#include "core/image_error.h"
+#include "core/render.h"
+#include "core/render_statistics.h"
+
+namespace rtiow {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// The seed of the reference: far from the seeds users pick, so the measured renders are
+// independent of it.
+constexpr std::uint64_t kReferenceSeed = 0x5eed0000acc0ull;
+
+struct AccuracyOptions {
+  std::string scene = "cover";
+  std::uint64_t scene_seed = 1;
+  int width = 160;
+  int reference_spp = 8192;
+  int max_spp = 1024;
+  int fixed_spp = 64;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  int repeat = 3;
+  std::vector<int> depths{1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 50};
+  std::vector<double> target_errors{0.2, 0.1, 0.07, 0.05, 0.035};
+  std::string out_dir = "accuracy";
+  std::string cache_dir;  // default: $XDG_CACHE_HOME/rtiow or ~/.cache/rtiow
+  bool quiet = false;
+};
+
+std::string default_cache_dir() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
+    return (fs::path(xdg) / "rtiow").string();
+  }
+  if (const char* home = std::getenv("HOME"); home && *home) {
+    return (fs::path(home) / ".cache" / "rtiow").string();
+  }
+  return ".rtiow-cache";
+}
+
+// One measured render: its image error against the reference and its median time.
+struct Trial {
+  json row;
+  RenderResult result;
+};
+
+class Experiment {
+ public:
+  Experiment(const AccuracyOptions& o, const Scene& scene, const RenderSettings& base,
+             const ImageEstimate& reference)
+      : o_(o), scene_(scene), base_(base), reference_(reference) {}
+
+  // Renders `repeat` times (the image is the same each time; only the time varies) and
+  // measures the first against the reference.
+  Trial run(const std::string& group, const std::string& choice, double parameter,
+            const RenderSettings& settings, const Scene* scene = nullptr) const {
+    const Scene& s = scene ? *scene : scene_;
+    std::vector<double> seconds;
+    Trial trial;
+    for (int i = 0; i < o_.repeat; ++i) {
+      RenderResult r = render(s, settings);
+      seconds.push_back(r.render_seconds);
+      if (i == 0) trial.result = std::move(r);
+    }
+    std::sort(seconds.begin(), seconds.end());
+    const double median = seconds[seconds.size() / 2];
+    const ImageError e = measure_error(to_estimate(trial.result), reference_);
+    trial.row = {{"group", group},
+                 {"choice", choice},
+                 {"parameter", parameter},
+                 {"spp_mean", mean_samples(trial.result)},
+                 {"depth", settings.max_depth},
+                 {"seconds", median},
+                 {"rays", trial.result.rays_traced},
+                 {"rmse", e.rmse},
+                 {"rel_mse", e.rel_mse},
+                 {"efficiency", e.rel_mse > 0 ? 1.0 / (e.rel_mse * median) : 0.0},
+                 {"mean_difference", e.mean_difference},
+                 {"mean_difference_error", e.mean_difference_error},
+                 {"rms_bias", e.rms_bias},
+                 {"rms_noise", e.rms_noise}};
+    if (!o_.quiet) {
+      std::fprintf(stderr, "accuracy: %-10s %-12s %8g: %7.3f s, relMSE %.3g\n", group.c_str(),
+                   choice.c_str(), parameter, median, e.rel_mse);
+    }
+    return trial;
+  }
+
+  RenderSettings settings() const { return base_; }
+
+ private:
+  const AccuracyOptions& o_;
+  const Scene& scene_;
+  const RenderSettings base_;
+  const ImageEstimate& reference_;
+};
+
+// Least-squares slope and intercept of log(y) against log(x).
+std::pair<double, double> log_log_fit(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = double(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double lx = std::log(x[i]), ly = std::log(y[i]);
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+  }
+  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  return {slope, (sy - slope * sx) / n};
+}
+
+std::vector<double> column(const json& rows, const std::string& key) {
+  std::vector<double> values;
+  for (const json& r : rows) values.push_back(r[key].get<double>());
+  return values;
+}
+
+json sweep_spp(const Experiment& x, const AccuracyOptions& o, SamplerKind sampler) {
+  json rows = json::array();
+  for (int spp = 1; spp <= o.max_spp; spp *= 2) {
+    RenderSettings s = x.settings();
+    s.samples_per_pixel = spp;
+    s.sampler = sampler;
+    rows.push_back(x.run("spp", to_string(sampler), spp, s).row);
+  }
+  return rows;
+}
+
+json sweep_depth(const Experiment& x, const AccuracyOptions& o) {
+  json rows = json::array();
+  for (const int depth : o.depths) {
+    RenderSettings s = x.settings();
+    s.samples_per_pixel = o.fixed_spp;
+    s.max_depth = depth;
+    rows.push_back(x.run("depth", "independent", depth, s).row);
+  }
+  return rows;
+}
+
+// Embree against the naive loop: the same sphere test, so the same image is expected.
+json compare_intersectors(const Experiment& x, const AccuracyOptions& o) {
+  json rows = json::array();
+  RenderSettings s = x.settings();
+  s.samples_per_pixel = o.fixed_spp;
+  const Trial embree = x.run("intersector", "embree", o.fixed_spp, s);
+  s.accel = AccelKind::Naive;
+  Trial naive = x.run("intersector", "naive", o.fixed_spp, s);
+  naive.row["identical_to_embree"] = naive.result.film.pixels() == embree.result.film.pixels();
+  rows.push_back(embree.row);
+  rows.push_back(naive.row);
+  return rows;
+}
+
+// The reference uses the scene's Fresnel model (Schlick for the book's scenes); an exact
+// render at more samples shows the bias between the two.
+json compare_fresnel(const Experiment& x, const AccuracyOptions& o, const Scene& scene) {
+  json rows = json::array();
+  RenderSettings s = x.settings();
+  s.samples_per_pixel = 4 * o.fixed_spp;
+  for (const FresnelModel model : {FresnelModel::Schlick, FresnelModel::Exact}) {
+    Scene variant = scene;
+    for (Material& m : variant.materials) {
+      if (auto* d = std::get_if<Dielectric>(&m)) d->fresnel = model;
+    }
+    const char* name = model == FresnelModel::Schlick ? "schlick" : "exact";
+    rows.push_back(x.run("fresnel", name, s.samples_per_pixel, s, &variant).row);
+  }
+  return rows;
+}
+
+json sweep_adaptive(const Experiment& x, const AccuracyOptions& o) {
+  json rows = json::array();
+  for (const double target : o.target_errors) {
+    RenderSettings s = x.settings();
+    s.samples_per_pixel = 4 * o.max_spp;
+    s.target_error = target;
+    Trial t = x.run("adaptive", "independent", target, s);
+    t.row["achieved_error"] = std::sqrt(t.row["rel_mse"].get<double>());
+    rows.push_back(t.row);
+  }
+  return rows;
+}
+
+// How much lower a method's relMSE is than independent sampling's at the same time, from
+// the independent sweep's log-log fit (spp >= 4, where times are long enough to trust).
+json equal_time_factors(const json& independent, const json& rows) {
+  std::vector<double> t, e;
+  for (const json& r : independent) {
+    if (r["parameter"].get<double>() >= 4) {
+      t.push_back(r["seconds"].get<double>());
+      e.push_back(r["rel_mse"].get<double>());
+    }
+  }
+  const auto [slope, intercept] = log_log_fit(t, e);
+  json factors = json::array();
+  for (const json& r : rows) {
+    const double seconds = r["seconds"].get<double>();
+    const double expected = std::exp(intercept + slope * std::log(seconds));
+    factors.push_back({{"parameter", r["parameter"]},
+                       {"seconds", seconds},
+                       {"factor", expected / r["rel_mse"].get<double>()}});
+  }
+  return factors;
+}
+
+double median_factor(const json& factors, double min_parameter) {
+  std::vector<double> f;
+  for (const json& r : factors) {
+    if (r["parameter"].get<double>() >= min_parameter) f.push_back(r["factor"].get<double>());
+  }
+  if (f.empty()) return 0.0;
+  std::sort(f.begin(), f.end());
+  return f[f.size() / 2];
+}
+
+void print_table(const json& r) {
+  std::printf("%s %dx%d, reference %d spp (seed %llu)%s\n", r["scene"].get<std::string>().c_str(),
+              r["width"].get<int>(), r["height"].get<int>(), r["reference_spp"].get<int>(),
+              r["reference_seed"].get<unsigned long long>(),
+              r["reference_reused"].get<bool>() ? ", reused from the cache" : "");
+  std::printf("\nsamples per pixel (relMSE = mean (v-ref)^2/(ref+0.01)^2)\n");
+  std::printf("  %-11s %5s %9s %9s %10s %11s\n", "sampler", "spp", "seconds", "RMSE", "relMSE",
+              "efficiency");
+  for (const char* sampler : {"independent", "sobol"}) {
+    for (const json& row : r["spp"][sampler]) {
+      std::printf("  %-11s %5.0f %9.4f %9.5f %10.3e %11.4g\n", sampler,
+                  row["parameter"].get<double>(), row["seconds"].get<double>(),
+                  row["rmse"].get<double>(), row["rel_mse"].get<double>(),
+                  row["efficiency"].get<double>());
+    }
+  }
+  const json& s = r["summary"];
+  std::printf("  RMSE slope against spp (log-log): independent %.3f, sobol %.3f (ideal -0.5)\n",
+              s["rmse_slope_independent"].get<double>(), s["rmse_slope_sobol"].get<double>());
+  std::printf("  sobol vs independent, relMSE ratio at equal spp (median, spp >= 16): %.2fx\n",
+              s["sobol_equal_spp_factor"].get<double>());
+  std::printf("  sobol vs independent, relMSE ratio at equal time (median, spp >= 16): %.2fx\n",
+              s["sobol_equal_time_factor"].get<double>());
+
+  std::printf(
+      "\ndepth limit at %d spp (bias: image-sum difference from depth %d, +- its "
+      "standard error)\n",
+      r["fixed_spp"].get<int>(), r["depth"].get<int>());
+  std::printf("  %5s %9s %10s %20s %10s %10s %10s\n", "depth", "seconds", "time saved",
+              "mean difference", "RMS bias", "RMS noise", "relMSE");
+  double full = 0, deepest = 0;  // the time at the deepest limit compared
+  for (const json& row : r["depth_sweep"]) {
+    if (row["parameter"].get<double>() > deepest) {
+      deepest = row["parameter"].get<double>();
+      full = row["seconds"].get<double>();
+    }
+  }
+  for (const json& row : r["depth_sweep"]) {
+    std::printf("  %5.0f %9.4f %9.0f%% %+9.5f +- %7.5f %10.5f %10.5f %10.3e\n",
+                row["parameter"].get<double>(), row["seconds"].get<double>(),
+                100.0 * (1.0 - row["seconds"].get<double>() / full),
+                row["mean_difference"].get<double>(), row["mean_difference_error"].get<double>(),
+                row["rms_bias"].get<double>(), row["rms_noise"].get<double>(),
+                row["rel_mse"].get<double>());
+  }
+
+  std::printf("\nintersector at %d spp\n", r["fixed_spp"].get<int>());
+  for (const json& row : r["intersector"]) {
+    std::printf("  %-7s %9.4f s  relMSE %.4e%s\n", row["choice"].get<std::string>().c_str(),
+                row["seconds"].get<double>(), row["rel_mse"].get<double>(),
+                row.contains("identical_to_embree")
+                    ? (row["identical_to_embree"].get<bool>() ? "  (bit-identical to embree)"
+                                                              : "  (DIFFERS from embree)")
+                    : "");
+  }
+
+  std::printf("\nglass Fresnel at %d spp (the reference uses the scene's: schlick)\n",
+              4 * r["fixed_spp"].get<int>());
+  for (const json& row : r["fresnel"]) {
+    std::printf("  %-7s %9.4f s  mean difference %+.5f +- %.5f  RMS bias %.5f  relMSE %.4e\n",
+                row["choice"].get<std::string>().c_str(), row["seconds"].get<double>(),
+                row["mean_difference"].get<double>(), row["mean_difference_error"].get<double>(),
+                row["rms_bias"].get<double>(), row["rel_mse"].get<double>());
+  }
+
+  std::printf("\nadaptive sampling (--target-error, min 16 spp, at most %d)\n",
+              4 * r["max_spp"].get<int>());
+  std::printf("  %6s %9s %9s %10s %9s %20s %12s\n", "target", "mean spp", "seconds", "relMSE",
+              "achieved", "mean difference", "equal-time");
+  for (std::size_t i = 0; i < r["adaptive"].size(); ++i) {
+    const json& row = r["adaptive"][i];
+    std::printf("  %6.3f %9.1f %9.4f %10.3e %9.4f %+9.5f +- %7.5f %11.2fx\n",
+                row["parameter"].get<double>(), row["spp_mean"].get<double>(),
+                row["seconds"].get<double>(), row["rel_mse"].get<double>(),
+                row["achieved_error"].get<double>(), row["mean_difference"].get<double>(),
+                row["mean_difference_error"].get<double>(),
+                s["adaptive_equal_time_factors"][i]["factor"].get<double>());
+  }
+  std::printf(
+      "  (achieved = sqrt(relMSE); equal-time = independent's relMSE at the same time / "
+      "adaptive's)\n");
+}
+
+void write_csv(const json& r, const std::string& path) {
+  const char* keys[] = {
+      "group",    "choice",   "parameter", "spp_mean",   "depth",           "seconds",
+      "rays",     "rmse",     "rel_mse",   "efficiency", "mean_difference", "mean_difference_error",
+      "rms_bias", "rms_noise"};
+  std::string text;
+  for (const char* k : keys) text.append(text.empty() ? "" : ",").append(k);
+  text += "\n";
+  std::vector<const json*> rows;
+  for (const char* sampler : {"independent", "sobol"}) {
+    for (const json& row : r["spp"][sampler]) rows.push_back(&row);
+  }
+  for (const char* group : {"depth_sweep", "intersector", "fresnel", "adaptive"}) {
+    for (const json& row : r[group]) rows.push_back(&row);
+  }
+  for (const json* row : rows) {
+    std::string line;
+    for (const char* k : keys) {
+      const json& v = (*row)[k];
+      line.append(line.empty() ? "" : ",").append(v.is_string() ? v.get<std::string>() : v.dump());
+    }
+    text += line + "\n";
+  }
+  write_text_atomically(path, text);
+}
+
+int run_accuracy(const AccuracyOptions& o) {
+  if (o.width < 1) throw InvalidInput("--width must be >= 1");
+  if (o.reference_spp < 2 || o.max_spp < 1 || o.fixed_spp < 2) {
+    throw InvalidInput("--reference-spp and --fixed-spp must be >= 2, --max-spp >= 1");
+  }
+  if (o.reference_spp < 4 * o.max_spp) {
+    throw InvalidInput("--reference-spp must be at least 4x --max-spp (" +
+                       std::to_string(4 * o.max_spp) + "), or its noise swamps the errors");
+  }
+  if (o.repeat < 1) throw InvalidInput("--repeat must be >= 1");
+  if (o.depths.empty() || *std::min_element(o.depths.begin(), o.depths.end()) < 1) {
+    throw InvalidInput("--depths must list depth limits >= 1");
+  }
+  for (const double e : o.target_errors) {
+    if (!(e > 0) || !std::isfinite(e)) throw InvalidInput("--target-errors must be > 0");
+  }
+  const Scene scene = make_builtin_scene(o.scene, o.scene_seed);
+  RenderSettings base;
+  base.width = o.width;
+  base.height = std::max(1, int(std::lround(o.width / scene.image.aspect_ratio)));
+  base.max_depth = scene.image.max_depth;
+  base.threads = o.threads;
+  base.seed = o.seed;
+  base.samples_per_pixel = o.reference_spp;
+  validate(base);
+  fs::create_directories(o.out_dir);
+  const std::string cache_dir = o.cache_dir.empty() ? default_cache_dir() : o.cache_dir;
+
+  RenderSettings reference_settings = base;
+  reference_settings.seed = kReferenceSeed;
+  const Reference reference =
+      load_or_render_reference(scene, reference_settings, cache_dir, o.quiet);
+  if (!o.quiet && reference.reused) {
+    std::fprintf(stderr, "accuracy: reusing the reference %s\n", reference.path.c_str());
+  }
+  const Experiment x(o, scene, base, reference.image);
+
+  json r = {{"scene", scene.name},
+            {"width", base.width},
+            {"height", base.height},
+            {"depth", base.max_depth},
+            {"seed", o.seed},
+            {"reference_spp", o.reference_spp},
+            {"reference_seed", kReferenceSeed},
+            {"reference_path", reference.path},
+            {"reference_reused", reference.reused},
+            {"fixed_spp", o.fixed_spp},
+            {"max_spp", o.max_spp},
+            {"repeat", o.repeat},
+            {"threads", o.threads}};
+  r["spp"]["independent"] = sweep_spp(x, o, SamplerKind::Independent);
+  r["spp"]["sobol"] = sweep_spp(x, o, SamplerKind::Sobol);
+  r["depth_sweep"] = sweep_depth(x, o);
+  r["intersector"] = compare_intersectors(x, o);
+  r["fresnel"] = compare_fresnel(x, o, scene);
+  r["adaptive"] = sweep_adaptive(x, o);
+
+  json& s = r["summary"];
+  const json& independent = r["spp"]["independent"];
+  const json& sobol = r["spp"]["sobol"];
+  s["rmse_slope_independent"] =
+      log_log_fit(column(independent, "parameter"), column(independent, "rmse")).first;
+  s["rmse_slope_sobol"] = log_log_fit(column(sobol, "parameter"), column(sobol, "rmse")).first;
+  json equal_spp = json::array();
+  for (std::size_t i = 0; i < sobol.size(); ++i) {
+    equal_spp.push_back(
+        {{"parameter", sobol[i]["parameter"]},
+         {"factor", independent[i]["rel_mse"].get<double>() / sobol[i]["rel_mse"].get<double>()}});
+  }
+  s["sobol_equal_spp_factors"] = equal_spp;
+  s["sobol_equal_spp_factor"] = median_factor(equal_spp, 16);
+  s["sobol_equal_time_factors"] = equal_time_factors(independent, sobol);
+  s["sobol_equal_time_factor"] = median_factor(s["sobol_equal_time_factors"], 16);
+  s["adaptive_equal_time_factors"] = equal_time_factors(independent, r["adaptive"]);
+
+  print_table(r);
+  const std::string json_path = (fs::path(o.out_dir) / "accuracy.json").string();
+  const std::string csv_path = (fs::path(o.out_dir) / "accuracy.csv").string();
+  const std::string png_path = (fs::path(o.out_dir) / "accuracy.png").string();
+  write_text_atomically(json_path, r.dump(2) + "\n");
+  write_csv(r, csv_path);
+  std::printf("\nfigures: %s\n         %s\n", fs::absolute(json_path).c_str(),
+              fs::absolute(csv_path).c_str());
+  run_plot_script("accuracy_plot.py", json_path, png_path);
+  return 0;
+}
+
+}  // namespace
+
+std::function<int()> add_accuracy_command(CLI::App& app) {
+  auto options = std::make_shared<AccuracyOptions>();
+  AccuracyOptions& o = *options;
+  CLI::App* cmd = app.add_subcommand(
+      "accuracy",
+      "Measure speed against accuracy on a scene: error against a cached high-spp reference "
+      "for spp 1..N with each sampler, the depth limit, the intersector, the Fresnel model and "
+      "adaptive sampling; prints tables, writes JSON, CSV and a PNG plot");
+  cmd->add_option("--scene", o.scene, "Built-in scene")->capture_default_str();
+  cmd->add_option("--scene-seed", o.scene_seed, "Seed of the scene's random layout")
+      ->capture_default_str();
+  cmd->add_option("--width", o.width, "Image width (height from the scene's aspect ratio)")
+      ->capture_default_str();
+  cmd->add_option("--reference-spp", o.reference_spp, "Samples per pixel of the reference")
+      ->capture_default_str();
+  cmd->add_option("--max-spp", o.max_spp, "Largest spp of the sweep (1, 2, 4, ... up to it)")
+      ->capture_default_str();
+  cmd->add_option("--fixed-spp", o.fixed_spp,
+                  "Spp of the depth and intersector comparisons (Fresnel: 4x this)")
+      ->capture_default_str();
+  cmd->add_option("--depths", o.depths, "Depth limits to compare")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--target-errors", o.target_errors, "Adaptive sampling targets to compare")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Seed of the measured renders")->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--repeat", o.repeat,
+                  "Renders per measurement; the median time is kept (the image is the same)")
+      ->capture_default_str();
+  cmd->add_option("--out", o.out_dir, "Directory for accuracy.json, accuracy.csv, accuracy.png")
+      ->capture_default_str();
+  cmd->add_option("--cache-dir", o.cache_dir,
+                  "Where references are kept (default: $XDG_CACHE_HOME/rtiow or ~/.cache/rtiow)");
+  cmd->add_flag("-q,--quiet", o.quiet, "No progress on stderr");
+  return [options, cmd] { return cmd->parsed() ? run_accuracy(*options) : -1; };
+}
+
+}  // namespace rtiow

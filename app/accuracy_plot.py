@@ -1,0 +1,87 @@
+"""Draws `rtiow accuracy`'s figures: error against time (log-log, one line per choice),
+RMSE against spp with the fitted slopes, and the depth limit's bias against its time."""
+import json
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def xy(rows, x, y):
+    return [r[x] for r in rows], [r[y] for r in rows]
+
+
+def main(json_path, png_path):
+    with open(json_path) as f:
+        r = json.load(f)
+    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(16, 5))
+
+    ax1.plot(*xy(r["spp"]["independent"], "seconds", "rel_mse"), "o-",
+             label="independent (spp 1..%d)" % r["max_spp"])
+    ax1.plot(*xy(r["spp"]["sobol"], "seconds", "rel_mse"), "s-", label="sobol (spp 1..%d)" %
+             r["max_spp"])
+    ax1.plot(*xy(r["adaptive"], "seconds", "rel_mse"), "^-", label="adaptive (target error)")
+    for row in r["adaptive"]:
+        ax1.annotate("%g" % row["parameter"], (row["seconds"], row["rel_mse"]),
+                     textcoords="offset points", xytext=(4, 4), fontsize=7)
+    ax1.plot(*xy(r["depth_sweep"], "seconds", "rel_mse"), "d:", color="gray",
+             label="depth limit 1..%d at %d spp" % (r["depth"], r["fixed_spp"]))
+    for row in r["fresnel"]:
+        ax1.plot([row["seconds"]], [row["rel_mse"]], "P", ms=9,
+                 label="fresnel %s, %d spp" % (row["choice"], row["parameter"]))
+    for row in r["intersector"]:
+        ax1.plot([row["seconds"]], [row["rel_mse"]], "x" if row["choice"] == "naive" else "+",
+                 ms=10, label="%s, %d spp" % (row["choice"], row["parameter"]))
+    ax1.set_xscale("log")
+    ax1.set_yscale("log")
+    ax1.set_xlabel("render time (s)")
+    ax1.set_ylabel("relMSE against the reference")
+    ax1.set_title("error against time")
+    ax1.grid(True, which="both", alpha=0.3)
+    ax1.legend(fontsize=7)
+
+    s = r["summary"]
+    ax2.plot(*xy(r["spp"]["independent"], "parameter", "rmse"), "o-",
+             label="independent, slope %.3f" % s["rmse_slope_independent"])
+    ax2.plot(*xy(r["spp"]["sobol"], "parameter", "rmse"), "s-",
+             label="sobol, slope %.3f" % s["rmse_slope_sobol"])
+    first = r["spp"]["independent"][0]
+    spp = [row["parameter"] for row in r["spp"]["independent"]]
+    ax2.plot(spp, [first["rmse"] * (n / first["parameter"]) ** -0.5 for n in spp], "k--",
+             alpha=0.4, label="slope -0.5")
+    ax2.set_xscale("log", base=2)
+    ax2.set_yscale("log")
+    ax2.set_xlabel("samples per pixel")
+    ax2.set_ylabel("RMSE")
+    ax2.set_title("convergence")
+    ax2.grid(True, which="both", alpha=0.3)
+    ax2.legend(fontsize=8)
+
+    rows = r["depth_sweep"]
+    t, bias = xy(rows, "seconds", "mean_difference")
+    err = [row["mean_difference_error"] for row in rows]
+    ax3.errorbar(t, [-b for b in bias], yerr=err, fmt="o-", label="energy lost: -(mean difference)")
+    ax3.plot(*xy(rows, "seconds", "rms_bias"), "s--", label="RMS bias per pixel")
+    ax3.plot(*xy(rows, "seconds", "rms_noise"), ":", color="gray",
+             label="RMS noise at %d spp" % r["fixed_spp"])
+    for row in rows:
+        ax3.annotate("%d" % row["parameter"], (row["seconds"], row["rms_bias"]),
+                     textcoords="offset points", xytext=(4, 4), fontsize=7)
+    ax3.set_xscale("log")
+    ax3.set_yscale("symlog", linthresh=1e-4)
+    ax3.set_xlabel("render time (s)")
+    ax3.set_ylabel("bias")
+    ax3.set_title("depth limit (labels: depth)")
+    ax3.grid(True, which="both", alpha=0.3)
+    ax3.legend(fontsize=8)
+
+    fig.suptitle("rtiow accuracy: %s %dx%d, reference %d spp" %
+                 (r["scene"], r["width"], r["height"], r["reference_spp"]))
+    fig.tight_layout()
+    fig.savefig(png_path, dpi=80)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])
