@@ -59,21 +59,25 @@ def main(json_path, png_path):
     ax2.grid(True, which="both", alpha=0.3)
     ax2.legend(fontsize=8)
 
+    # Bias against time for the depth limit: values at or below the noise floor are drawn
+    # on it (the floor is the difference's standard error, so they are indistinguishable).
     rows = r["depth_sweep"]
-    t, bias = xy(rows, "seconds", "mean_difference")
-    err = [row["mean_difference_error"] for row in rows]
-    ax3.errorbar(t, [-b for b in bias], yerr=err, fmt="o-", label="energy lost: -(mean difference)")
-    ax3.plot(*xy(rows, "seconds", "rms_bias"), "s--", label="RMS bias per pixel")
-    ax3.plot(*xy(rows, "seconds", "rms_noise"), ":", color="gray",
-             label="RMS noise at %d spp" % r["fixed_spp"])
-    for row in rows:
-        ax3.annotate("%d" % row["parameter"], (row["seconds"], row["rms_bias"]),
-                     textcoords="offset points", xytext=(4, 4), fontsize=7)
-    ax3.set_xscale("log")
-    ax3.set_yscale("symlog", linthresh=1e-4)
-    ax3.set_xlabel("render time (s)")
-    ax3.set_ylabel("bias")
-    ax3.set_title("depth limit (labels: depth)")
+    full = max(rows, key=lambda row: row["parameter"])["seconds"]
+    floor = min(row["mean_difference_error"] for row in rows)
+    rel_time = [row["seconds"] / full for row in rows]
+    lost = [max(-row["mean_difference"], floor) for row in rows]
+    rms_bias = [max(row["rms_bias"], floor) for row in rows]
+    ax3.plot(rel_time, lost, "o-", label="energy lost: -(mean difference)")
+    ax3.plot(rel_time, rms_bias, "s--", label="RMS bias per pixel")
+    ax3.plot(rel_time, [row["mean_difference_error"] for row in rows], ":", color="gray",
+             label="standard error of the mean difference")
+    for x, y, row in zip(rel_time, lost, rows):
+        ax3.annotate("%d" % row["parameter"], (x, y), textcoords="offset points",
+                     xytext=(4, 4), fontsize=7)
+    ax3.set_yscale("log")
+    ax3.set_xlabel("render time relative to depth %d" % r["depth"])
+    ax3.set_ylabel("bias (relative to the image sum / per pixel)")
+    ax3.set_title("depth limit at %d spp (labels: depth)" % r["fixed_spp"])
     ax3.grid(True, which="both", alpha=0.3)
     ax3.legend(fontsize=8)
 

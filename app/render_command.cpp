@@ -367,8 +367,8 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--sampler", o.sampler,
                   "Sampler of the pixel position, lens and first bounce: independent (the book's) "
-                  "or sobol (Owen-scrambled Sobol: about 2.5x lower relMSE on the cover at the "
-                  "same spp)")
+                  "or sobol (Owen-scrambled Sobol: on the cover 1.9x lower relMSE at 16 spp, 2.5x "
+                  "at 64, 4x at 1024)")
       ->check(CLI::IsMember({"independent", "sobol"}))
       ->capture_default_str();
   cmd->add_option("--target-error", o.target_error,
