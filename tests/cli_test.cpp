@@ -230,8 +230,8 @@ TEST(Cli, RefusesAdaptiveAndStatisticsOptionsWhereTheyCannotWork) {
 }
 
 TEST(Cli, AccuracyMeasuresWritesFiguresAndReusesItsReference) {
-  const fs::path dir = output_path("accuracy");
-  fs::remove_all(dir);
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + "-accuracy");
+  fs::remove_all(dir);  // a previous run's reference must not be reused
   const std::string args =
       "accuracy -q --width 16 --reference-spp 256 --max-spp 16 "
       "--fixed-spp 4 --depths 1,2,50 --target-errors 0.3 --repeat 1 --out " +
