@@ -45,6 +45,10 @@ void ProgressDisplay::run() {
 void ProgressDisplay::report(bool final_report) {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (total_samples_ == 0) {
+    report_open_ended(final_report, elapsed);
+    return;
+  }
   const double fraction =
       total_samples_ ? double(progress_.samples_done) / double(total_samples_) : 1;
   const double mrays = elapsed > 0 ? double(progress_.rays_traced) / elapsed * 1e-6 : 0.0;
@@ -64,6 +68,27 @@ void ProgressDisplay::report(bool final_report) {
   last_decile_ = decile;
   std::fprintf(stderr, "progress: %3d%%  elapsed %s  ETA %s  %.1f Mrays/s\n", decile * 10,
                elapsed_text, eta_text, mrays);
+}
+
+// The total is not known in advance (adaptive sampling, a time limit without --spp): the
+// samples done so far instead of a percentage, and no ETA.
+void ProgressDisplay::report_open_ended(bool final_report, double elapsed) {
+  const double mrays = elapsed > 0 ? double(progress_.rays_traced) / elapsed * 1e-6 : 0.0;
+  char elapsed_text[32];
+  format_duration(elapsed_text, sizeof elapsed_text, elapsed);
+  const double samples = double(progress_.samples_done);
+  if (terminal_) {
+    std::fprintf(stderr, "\r\033[K%.3g samples  elapsed %s  %.1f Mrays/s", samples, elapsed_text,
+                 mrays);
+    std::fflush(stderr);
+    return;
+  }
+  // Not a terminal: a line every ten seconds.
+  const int tens = int(elapsed / 10.0);
+  if (final_report || tens <= last_decile_) return;
+  last_decile_ = tens;
+  std::fprintf(stderr, "progress: %.3g samples  elapsed %s  %.1f Mrays/s\n", samples, elapsed_text,
+               mrays);
 }
 
 }  // namespace rtiow

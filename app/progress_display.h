@@ -15,6 +15,7 @@ namespace rtiow {
 
 class ProgressDisplay {
  public:
+  // `total_samples` 0: not known in advance; the display counts samples instead.
   ProgressDisplay(const RenderProgress& progress, std::uint64_t total_samples);
   ~ProgressDisplay();  // stops the thread and finishes the live line
   ProgressDisplay(const ProgressDisplay&) = delete;
@@ -23,6 +24,7 @@ class ProgressDisplay {
  private:
   void run();
   void report(bool final_report);
+  void report_open_ended(bool final_report, double elapsed);
 
   const RenderProgress& progress_;
   const std::uint64_t total_samples_;

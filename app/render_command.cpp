@@ -275,9 +275,13 @@ int run_render(const RenderOptions& o, bool scene_option_given, const MpiSession
     std::unique_ptr<ProgressDisplay> display;
     // Under MPI rank 0 shows its own share, which moves with the others' (equal shares).
     if (!o.quiet && mpi.rank() == 0) {
+      // Adaptive sampling and an open-ended time limit have no total to show progress against.
+      const bool open_ended = settings.target_error > 0 ||
+                              settings.samples_per_pixel == std::numeric_limits<int>::max();
       display = std::make_unique<ProgressDisplay>(
-          progress, std::uint64_t(settings.width) * std::uint64_t(settings.height) *
-                        std::uint64_t(settings.samples_per_pixel));
+          progress, open_ended ? 0
+                               : std::uint64_t(settings.width) * std::uint64_t(settings.height) *
+                                     std::uint64_t(settings.samples_per_pixel));
     }
     result = render(scene, settings, &progress);
   }
