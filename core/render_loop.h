@@ -98,6 +98,16 @@ std::uint64_t advance_pixel(const Scene& scene, const Camera& camera, const Acce
   return added;
 }
 
+// Adds a task's rays to the pass's total and its rays and samples to the progress counters.
+inline void count_work(std::uint64_t task_rays, std::uint64_t task_samples,
+                       std::atomic<std::uint64_t>& pass_rays, RenderProgress* progress) {
+  pass_rays += task_rays;
+  if (progress) {
+    progress->rays_traced += task_rays;
+    progress->samples_done += task_samples;
+  }
+}
+
 // One pass over the image in 16x16 tiles: every pixel is brought to `samples` samples.
 // Returns the number of rays traced.
 template <typename Accel>
@@ -117,11 +127,7 @@ std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel&
                 advance_pixel(scene, camera, accel, settings, p, samples, pixels, tile_rays);
           }
         }
-        rays += tile_rays;
-        if (progress) {
-          progress->rays_traced += tile_rays;
-          progress->samples_done += tile_samples;
-        }
+        count_work(tile_rays, tile_samples, rays, progress);
       });
   return rays.load();
 }
@@ -148,11 +154,7 @@ std::uint64_t render_pixel_list(const Scene& scene, const Camera& camera, const 
                     part_samples += advance_pixel(scene, camera, accel, settings, p, targets[p],
                                                   pixels, part_rays);
                   }
-                  rays += part_rays;
-                  if (progress) {
-                    progress->rays_traced += part_rays;
-                    progress->samples_done += part_samples;
-                  }
+                  count_work(part_rays, part_samples, rays, progress);
                 });
   return rays.load();
 }

@@ -28,17 +28,28 @@ RenderSettings tiny(const Scene& scene) {
   return s;
 }
 
+// The same render with 1 thread, 2 threads and the naive intersector: all must agree.
+struct ThreeWays {
+  RenderResult one, two, naive;
+};
+
+ThreeWays render_three_ways(const Scene& scene, RenderSettings settings) {
+  ThreeWays r;
+  settings.threads = 1;
+  r.one = render(scene, settings);
+  settings.threads = 2;
+  r.two = render(scene, settings);
+  settings.accel = AccelKind::Naive;
+  r.naive = render(scene, settings);
+  return r;
+}
+
 class EveryScene : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EveryScene, RendersFiniteNonBlackAndDeterministic) {
   const Scene scene = make_builtin_scene(GetParam(), 1);
-  RenderSettings settings = tiny(scene);
-  settings.threads = 1;
-  const RenderResult one = render(scene, settings);
-  settings.threads = 2;
-  const RenderResult two = render(scene, settings);
-  settings.accel = AccelKind::Naive;
-  const RenderResult naive = render(scene, settings);
+  const RenderSettings settings = tiny(scene);
+  const auto [one, two, naive] = render_three_ways(scene, settings);
 
   double sum = 0;
   for (const Color& c : one.film.pixels()) {
@@ -75,12 +86,7 @@ TEST(Render, SobolAndAdaptiveRendersAreDeterministic) {
     settings.sampler = adaptive ? SamplerKind::Independent : SamplerKind::Sobol;
     settings.samples_per_pixel = adaptive ? 128 : 8;
     settings.target_error = adaptive ? 0.15 : 0.0;
-    settings.threads = 1;
-    const RenderResult one = render(scene, settings);
-    settings.threads = 2;
-    const RenderResult two = render(scene, settings);
-    settings.accel = AccelKind::Naive;
-    const RenderResult naive = render(scene, settings);
+    const auto [one, two, naive] = render_three_ways(scene, settings);
     EXPECT_TRUE(test::bit_identical(one.film, two.film)) << "adaptive " << adaptive;
     EXPECT_TRUE(test::bit_identical(one.film, naive.film)) << "adaptive " << adaptive;
     EXPECT_EQ(one.pixel_samples, two.pixel_samples);

@@ -1,4 +1,5 @@
 #include "core/rng.h"
+#include "tests/stream_draws.h"
 
 #include <gtest/gtest.h>
 
@@ -8,11 +9,7 @@
 namespace rtiow {
 namespace {
 
-std::vector<float> draws(SampleStream s, int n) {
-  std::vector<float> v;
-  for (int i = 0; i < n; ++i) v.push_back(s.next_1d());
-  return v;
-}
+using test::draws;
 
 TEST(SampleStream, IsAPureFunctionOfSeedPixelAndSample) {
   // Visit (pixel, sample) pairs forwards and backwards: the values must not depend on order.

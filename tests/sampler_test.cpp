@@ -11,6 +11,7 @@
 
 #include "core/rng.h"
 #include "core/sobol.h"
+#include "tests/stream_draws.h"
 
 namespace rtiow {
 namespace {
@@ -74,11 +75,7 @@ TEST(Sobol, ScramblingIsUniformAcrossSeeds) {
   }
 }
 
-std::vector<float> draws(SampleStream s, int n) {
-  std::vector<float> v;
-  for (int i = 0; i < n; ++i) v.push_back(s.next_1d());
-  return v;
-}
+using test::draws;
 
 TEST(SobolSampleStream, IsAPureFunctionOfSeedPixelAndSample) {
   std::vector<std::vector<float>> forward;
