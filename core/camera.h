@@ -16,9 +16,17 @@ struct CameraSettings {
   double focus_distance = 1.0;  // distance to the plane in focus
 };
 
+// The smallest focus distance: below it float film vectors lose their direction.
+inline constexpr double kMinFocusDistance = 1e-12;
+
 // Throws InvalidInput naming the offending setting: lookfrom == lookat, vup parallel to
-// the view direction, vfov outside (0, 180), aperture < 0, focus distance <= 0, non-finite.
+// the view direction, vfov outside (0, 180), aperture < 0, a focus distance outside
+// [kMinFocusDistance, limits::kMaxCoordinate], a position beyond limits::kMaxCoordinate.
 void validate(const CameraSettings& settings);
+
+// The same, and the camera rays of an image of this size must be traceable (every component
+// within limits::kMaxRayComponent).
+void validate(const CameraSettings& settings, int image_width, int image_height);
 
 class Camera {
  public:
@@ -29,6 +37,9 @@ class Camera {
   Ray generate_ray(float s, float t, float lens_u, float lens_v) const;
 
   bool has_lens() const { return lens_radius_ > 0.0f; }
+
+  // A bound on the magnitude of any component of any ray's origin or direction.
+  double max_ray_component() const;
 
  private:
   Vec3 origin_;

@@ -1,8 +1,15 @@
 #pragma once
 // InvalidInput: the user asked for something the renderer refuses (a degenerate camera,
 // a zero-sized image). The message names the setting and the problem, in one line.
+//
+// Any user value echoed in a message goes through quote_value(): control characters and
+// newlines escaped, and cut to a sensible length, so the error stays one safe line even
+// for a 50 MB key. one_line() is the last guard, applied by the CLI to every message.
 
+#include <cstddef>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 
 namespace rtiow {
 
@@ -10,5 +17,12 @@ class InvalidInput : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// `value` between single quotes, printable: bytes below 0x20 and 0x7f as \n, \t or \xNN,
+// a backslash doubled, and anything past `max_chars` replaced by "...".
+std::string quote_value(std::string_view value, std::size_t max_chars = 80);
+
+// `text` made printable as quote_value() does (no quotes added) and cut to `max_chars`.
+std::string one_line(std::string_view text, std::size_t max_chars = 600);
 
 }  // namespace rtiow

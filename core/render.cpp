@@ -10,6 +10,7 @@
 #include "core/camera.h"
 #include "core/embree_accel.h"
 #include "core/error.h"
+#include "core/input_limits.h"
 #include "core/naive_accel.h"
 #include "core/render_loop.h"
 
@@ -207,12 +208,27 @@ void validate(const RenderSettings& s) {
   if (s.samples_per_pixel <= 0) {
     throw InvalidInput("spp must be > 0, got " + std::to_string(s.samples_per_pixel));
   }
-  if (s.max_depth < 0) throw InvalidInput("depth must be >= 0, got " + std::to_string(s.max_depth));
-  if (s.threads < 0) throw InvalidInput("threads must be >= 0, got " + std::to_string(s.threads));
+  if (s.width > limits::kMaxImageSide || s.height > limits::kMaxImageSide) {
+    throw InvalidInput("image " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                       ": each side must be at most " + std::to_string(limits::kMaxImageSide));
+  }
+  if (s.max_depth < 0 || s.max_depth > limits::kMaxDepth) {
+    throw InvalidInput("depth must be from 0 to " + std::to_string(limits::kMaxDepth) + ", got " +
+                       std::to_string(s.max_depth));
+  }
+  if (s.threads < 0 || s.threads > limits::kMaxThreads) {
+    throw InvalidInput("threads must be from 0 (all cores) to " +
+                       std::to_string(limits::kMaxThreads) + ", got " + std::to_string(s.threads));
+  }
   if (!(s.time_limit_seconds >= 0.0) || !std::isfinite(s.time_limit_seconds)) {
     throw InvalidInput("time limit must be a finite number of seconds >= 0");
   }
-  if (s.first_sample > (1ull << 62)) throw InvalidInput("first sample index is out of range");
+  if (s.first_sample > limits::kMaxSampleIndex ||
+      s.first_sample + std::uint64_t(std::max(s.samples_per_pixel, 0)) > limits::kMaxSampleIndex) {
+    throw InvalidInput("samples " + std::to_string(s.first_sample) + " to " +
+                       std::to_string(s.first_sample + std::uint64_t(s.samples_per_pixel)) +
+                       " go beyond sample index 2^32");
+  }
   if (!(s.target_error >= 0.0) || !std::isfinite(s.target_error)) {
     throw InvalidInput("target error must be a finite number >= 0 (0: off)");
   }
@@ -237,9 +253,14 @@ void validate(const RenderSettings& s) {
   }
 }
 
-RenderResult render(const Scene& scene, const RenderSettings& settings, RenderProgress* progress) {
+void validate(const Scene& scene, const RenderSettings& settings) {
   validate(settings);
   validate(scene);
+  validate(scene.camera, settings.width, settings.height);
+}
+
+RenderResult render(const Scene& scene, const RenderSettings& settings, RenderProgress* progress) {
+  validate(scene, settings);
   const Camera camera(scene.camera, settings.width, settings.height);
   switch (settings.accel) {
     case AccelKind::Embree:

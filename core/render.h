@@ -75,6 +75,10 @@ struct RenderResult {
   std::uint64_t rays_traced = 0;
 };
 
+// Everything a render checks before any work: the settings, the scene, and that the camera
+// rays of this image size are traceable. Throws InvalidInput.
+void validate(const Scene& scene, const RenderSettings& settings);
+
 // Validates the scene's camera and the settings (throwing InvalidInput before any work),
 // builds the accelerator and renders in passes: each pass adds a few samples to every
 // pixel, and the pixel sums continue across passes in sample order, so the image does not

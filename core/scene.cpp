@@ -1,9 +1,11 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "core/error.h"
+#include "core/input_limits.h"
 
 namespace rtiow {
 namespace {
@@ -22,8 +24,11 @@ void validate(const Scene& scene) {
   const SphereSet& s = scene.spheres;
   if (s.size() == 0) throw InvalidInput("scene: it has no spheres");
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!is_finite(s.center(i)) || !std::isfinite(s.radius[i])) {
-      throw InvalidInput(sphere_name(i) + "centre and radius must be finite");
+    const Vec3 c = s.center(i);
+    const double extent = std::max({std::abs(double(c.x)), std::abs(double(c.y)),
+                                    std::abs(double(c.z)), std::abs(double(s.radius[i]))});
+    if (!is_finite(c) || !std::isfinite(s.radius[i]) || extent > limits::kMaxCoordinate) {
+      throw InvalidInput(sphere_name(i) + "centre and radius must be finite and within +-1e15");
     }
     // A zero radius would give the hit no normal (0/0); it would be invisible anyway.
     if (s.radius[i] == 0.0f) throw InvalidInput(sphere_name(i) + "radius must not be 0");
@@ -43,8 +48,9 @@ void validate(const Scene& scene) {
         throw InvalidInput(where + "fuzz must be in [0, 1]");
       }
     }
-    if (const auto* d = std::get_if<Dielectric>(&m); d && !(std::isfinite(d->ior) && d->ior > 0)) {
-      throw InvalidInput(where + "index of refraction must be finite and > 0");
+    if (const auto* d = std::get_if<Dielectric>(&m);
+        d && !(d->ior >= limits::kMinIor && d->ior <= limits::kMaxIor)) {
+      throw InvalidInput(where + "index of refraction must be from 0.001 to 1000");
     }
   }
   if (!is_finite(scene.background.horizon) || !is_finite(scene.background.zenith) ||

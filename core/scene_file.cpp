@@ -3,15 +3,24 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <sstream>
 #include <unordered_map>
+#include <vector>
+
+#include "core/input_file.h"
+#include "core/input_limits.h"
+#include "core/json_stream.h"
 
 namespace rtiow {
 namespace {
@@ -20,12 +29,13 @@ using json = nlohmann::json;
 using ordered_json = nlohmann::ordered_json;
 
 constexpr int kVersion = 1;
-constexpr int kMaxDimension = 1 << 20;
 
 // Reading: every accessor knows where it is (a JSON pointer) and says so when it refuses.
 class Reader {
  public:
   explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  const std::string& source() const { return source_; }
 
   [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
     throw InvalidInput(source_ + ": " + (pointer.empty() ? "/" : pointer) + ": " + what);
@@ -79,28 +89,44 @@ class Reader {
 
   int integer(const json& v, const std::string& pointer, int lo, int hi) const {
     if (!v.is_number_integer()) fail(pointer, "must be a whole number, got " + describe(v));
-    const auto i = v.get<std::int64_t>();
-    if (i < lo || i > hi) {
+    // An unsigned value beyond int64 would wrap to a negative one: compare it unconverted.
+    const bool in_range = v.is_number_unsigned()
+                              ? v.get<std::uint64_t>() <= std::uint64_t(std::max(hi, 0)) &&
+                                    std::int64_t(v.get<std::uint64_t>()) >= lo
+                              : v.get<std::int64_t>() >= lo && v.get<std::int64_t>() <= hi;
+    if (!in_range) {
       fail(pointer, "must be from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
-                        std::to_string(i));
+                        describe(v));
     }
-    return int(i);
+    return int(v.get<std::int64_t>());
+  }
+
+  // A coordinate or length: within the range float rays and Embree trace.
+  double bounded(const json& v, const std::string& pointer) const {
+    const double d = number(v, pointer);
+    if (std::abs(d) > limits::kMaxCoordinate) {
+      fail(pointer, "is beyond the limit of +-" + format(limits::kMaxCoordinate) +
+                        " (the range rtiow traces), got " + format(d));
+    }
+    return d;
   }
 
   Vec3 vec3f(const json& v, const std::string& pointer) const {
-    if (!v.is_array() || v.size() != 3) fail(pointer, "must be an array of 3 numbers");
-    return {single(v[0], pointer + "/0"), single(v[1], pointer + "/1"),
-            single(v[2], pointer + "/2")};
+    const Vec3d d = vec3(v, pointer);
+    return Vec3(d);
   }
 
+  // A position or direction: three bounded numbers.
   Vec3d vec3(const json& v, const std::string& pointer) const {
     if (!v.is_array() || v.size() != 3) fail(pointer, "must be an array of 3 numbers");
-    return {number(v[0], pointer + "/0"), number(v[1], pointer + "/1"),
-            number(v[2], pointer + "/2")};
+    return {bounded(v[0], pointer + "/0"), bounded(v[1], pointer + "/1"),
+            bounded(v[2], pointer + "/2")};
   }
 
   Color color(const json& v, const std::string& pointer) const {
-    const Vec3d c = vec3(v, pointer);
+    if (!v.is_array() || v.size() != 3) fail(pointer, "must be an array of 3 numbers");
+    const Vec3d c{number(v[0], pointer + "/0"), number(v[1], pointer + "/1"),
+                  number(v[2], pointer + "/2")};
     for (int i = 0; i < 3; ++i) {
       if (c[std::size_t(i)] < 0.0 || c[std::size_t(i)] > 1.0) {
         fail(pointer + "/" + std::to_string(i),
@@ -116,10 +142,12 @@ class Reader {
     return s.str();
   }
 
+  // A short, safe description of a value: never the dump of a whole container.
   static std::string describe(const json& v) {
-    std::string text = v.dump();
-    if (text.size() > 40) text = text.substr(0, 37) + "...";
-    return std::string(v.type_name()) + " " + text;
+    if (v.is_object()) return "an object of " + std::to_string(v.size()) + " members";
+    if (v.is_array()) return "an array of " + std::to_string(v.size()) + " values";
+    if (v.is_string()) return "string " + quote_value(v.get_ref<const std::string&>(), 40);
+    return std::string(v.type_name()) + " " + v.dump();
   }
 
  private:
@@ -138,13 +166,13 @@ void read_camera(const Reader& r, const json& v, CameraSettings& cam) {
   cam.vfov_degrees = r.number(r.require(v, p, "vfov"), p + "/vfov");
   cam.focus_distance = length(cam.lookat - cam.lookfrom);
   if (const json* f = r.find(v, "focus_distance")) {
-    cam.focus_distance = r.number(*f, p + "/focus_distance");
+    cam.focus_distance = r.bounded(*f, p + "/focus_distance");
   }
   const json* aperture = r.find(v, "aperture");
   const json* angle = r.find(v, "defocus_angle");
   if (aperture && angle) r.fail(p, "give either \"aperture\" or \"defocus_angle\", not both");
   cam.aperture = 0.0;
-  if (aperture) cam.aperture = r.number(*aperture, p + "/aperture");
+  if (aperture) cam.aperture = r.bounded(*aperture, p + "/aperture");
   if (angle) {
     // The book's later editions: the lens subtends this angle (degrees) from the focus plane.
     const double degrees = r.number(*angle, p + "/defocus_angle");
@@ -166,17 +194,24 @@ void read_image(const Reader& r, const json& v, ImageSettings& image) {
   const std::string p = "/image";
   r.object(v, p);
   r.only(v, p, {"width", "height", "aspect_ratio", "spp", "depth"});
-  image.width = r.integer(r.require(v, p, "width"), p + "/width", 1, kMaxDimension);
+  image.width = r.integer(r.require(v, p, "width"), p + "/width", 1, limits::kMaxImageSide);
   const json* height = r.find(v, "height");
   const json* aspect = r.find(v, "aspect_ratio");
   if (height && aspect) r.fail(p, "give either \"height\" or \"aspect_ratio\", not both");
   if (!height && !aspect) r.fail(p, "missing field \"height\" (or \"aspect_ratio\")");
   if (height) {
-    const int h = r.integer(*height, p + "/height", 1, kMaxDimension);
+    const int h = r.integer(*height, p + "/height", 1, limits::kMaxImageSide);
     image.aspect_ratio = double(image.width) / double(h);
   } else {
     image.aspect_ratio = r.number(*aspect, p + "/aspect_ratio");
     if (image.aspect_ratio <= 0.0) r.fail(p + "/aspect_ratio", "must be > 0");
+    // The height it implies must be a size rtiow renders: checked here, never clamped.
+    const double h = std::round(double(image.width) / image.aspect_ratio);
+    if (!(h >= 1.0 && h <= double(limits::kMaxImageSide))) {
+      r.fail(p + "/aspect_ratio", "gives a height of " + Reader::format(h) + " pixels for width " +
+                                      std::to_string(image.width) + " (must be 1 to " +
+                                      std::to_string(limits::kMaxImageSide) + ")");
+    }
   }
   image.samples_per_pixel = 100;
   if (const json* spp = r.find(v, "spp")) {
@@ -184,7 +219,7 @@ void read_image(const Reader& r, const json& v, ImageSettings& image) {
   }
   image.max_depth = 50;
   if (const json* depth = r.find(v, "depth"))
-    image.max_depth = r.integer(*depth, p + "/depth", 0, 1 << 16);
+    image.max_depth = r.integer(*depth, p + "/depth", 0, limits::kMaxDepth);
 }
 
 FresnelModel parse_fresnel(const std::string& name, const Reader& r, const std::string& p) {
@@ -213,9 +248,12 @@ Material read_material(const Reader& r, const json& v, const std::string& p) {
   }
   if (kind == "dielectric") {
     r.only(v, p, {"type", "ior", "fresnel"});
-    const float ior = r.single(r.require(v, p, "ior"), p + "/ior");
-    if (!(ior > 0.0f)) r.fail(p + "/ior", "must be > 0, got " + Reader::format(ior));
-    Dielectric d{ior};
+    const double ior = r.number(r.require(v, p, "ior"), p + "/ior");
+    if (!(ior >= limits::kMinIor && ior <= limits::kMaxIor)) {
+      r.fail(p + "/ior", "must be from " + Reader::format(limits::kMinIor) + " to " +
+                             Reader::format(limits::kMaxIor) + ", got " + Reader::format(ior));
+    }
+    Dielectric d{float(ior)};
     if (const json* f = r.find(v, "fresnel")) {
       if (!f->is_string()) r.fail(p + "/fresnel", "must be \"schlick\" or \"exact\"");
       d.fresnel = parse_fresnel(f->get<std::string>(), r, p + "/fresnel");
@@ -226,9 +264,11 @@ Material read_material(const Reader& r, const json& v, const std::string& p) {
          "unknown material type \"" + kind + "\" (expected lambertian, metal or dielectric)");
 }
 
+// A key as a JSON-pointer token, cut so that an error line stays short.
 std::string escape_pointer_token(const std::string& key) {
+  constexpr std::size_t kMaxShown = 40;
   std::string out;
-  for (char c : key) {
+  for (char c : key.substr(0, kMaxShown)) {
     if (c == '~')
       out += "~0";
     else if (c == '/')
@@ -236,17 +276,105 @@ std::string escape_pointer_token(const std::string& key) {
     else
       out += c;
   }
+  if (key.size() > kMaxShown) out += "...";
   return out;
 }
 
-Scene read_scene(const Reader& r, const json& root) {
+// Material names to indices. Spheres may name a material before /materials defines it
+// (keys have no order), so a name gets its index when first seen by either.
+class MaterialTable {
+ public:
+  explicit MaterialTable(const Reader& r) : r_(r) {}
+
+  void define(const std::string& name, const Material& m, const std::string& pointer) {
+    Slot& slot = slots_[lookup(name)];
+    if (slot.defined) r_.fail(pointer, "a second material of this name (duplicate key)");
+    slot.defined = true;
+    slot.material = m;
+  }
+
+  std::uint32_t refer(const std::string& name, std::size_t sphere) {
+    const std::uint32_t index = lookup(name);
+    if (!slots_[index].defined && slots_[index].first_user == kNoUser) {
+      slots_[index].first_user = sphere;
+      slots_[index].name = name;
+    }
+    return index;
+  }
+
+  // All materials, once every name a sphere used is defined.
+  std::vector<Material> take() {
+    std::vector<Material> materials;
+    materials.reserve(slots_.size());
+    for (const Slot& slot : slots_) {
+      if (!slot.defined) {
+        r_.fail("/spheres/" + std::to_string(slot.first_user) + "/material",
+                "no material named " + quote_value(slot.name, 40) + " in /materials");
+      }
+      materials.push_back(slot.material);
+    }
+    return materials;
+  }
+
+ private:
+  static constexpr std::size_t kNoUser = ~std::size_t(0);
+  struct Slot {
+    Material material{Lambertian{}};
+    bool defined = false;
+    std::size_t first_user = kNoUser;
+    std::string name;  // kept only for an undefined name, for the error
+  };
+
+  std::uint32_t lookup(const std::string& name) {
+    const auto [it, inserted] = index_.try_emplace(name, std::uint32_t(slots_.size()));
+    if (inserted) {
+      if (slots_.size() >= std::numeric_limits<std::uint32_t>::max()) {
+        r_.fail("/materials", "more materials than rtiow indexes");
+      }
+      slots_.emplace_back();
+    }
+    return it->second;
+  }
+
+  const Reader& r_;
+  std::unordered_map<std::string, std::uint32_t> index_;
+  std::vector<Slot> slots_;
+};
+
+void read_sphere(const Reader& r, const json& s, std::size_t i, MaterialTable& table,
+                 SphereSet& spheres) {
+  const std::string p = "/spheres/" + std::to_string(i);
+  r.object(s, p);
+  r.only(s, p, {"center", "radius", "material"});
+  const Vec3 center = r.vec3f(r.require(s, p, "center"), p + "/center");
+  const auto radius = float(r.bounded(r.require(s, p, "radius"), p + "/radius"));
+  if (radius == 0.0f) r.fail(p + "/radius", "must not be 0 (negative makes a hollow sphere)");
+  const json& m = r.require(s, p, "material");
+  if (!m.is_string())
+    r.fail(p + "/material", "must be a material name, got " + Reader::describe(m));
+  spheres.add(center, radius, table.refer(m.get_ref<const std::string&>(), i));
+}
+
+// Reads a scene from a stream: materials and spheres are converted as they are parsed and
+// their text dropped; the rest (camera, image, background) is small and read at the end.
+Scene read_scene(const Reader& r, CountingInput& input) {
+  Scene scene;
+  MaterialTable table(r);
+  std::map<std::string, StreamedMember> streamed;
+  streamed["materials"] = {true, [&](const std::string& key, std::size_t, const json& v) {
+                             const std::string p = "/materials/" + escape_pointer_token(key);
+                             table.define(key, read_material(r, v, p), p);
+                           }};
+  streamed["spheres"] = {false, [&](const std::string&, std::size_t i, const json& v) {
+                           read_sphere(r, v, i, table, scene.spheres);
+                         }};
+  const json root = parse_json_stream(input, r.source(), streamed);
+
   r.object(root, "");
   r.only(
       root, "",
       {"version", "name", "scene_seed", "camera", "image", "background", "materials", "spheres"});
   r.integer(r.require(root, "", "version"), "/version", kVersion, kVersion);
-
-  Scene scene;
   if (const json* name = r.find(root, "name")) {
     if (!name->is_string()) r.fail("/name", "must be a string, got " + Reader::describe(*name));
     scene.name = name->get<std::string>();
@@ -267,35 +395,20 @@ Scene read_scene(const Reader& r, const json& root) {
         r.color(r.require(*bg, "/background", "zenith"), "/background/zenith");
   }
 
-  const json& materials = r.object(r.require(root, "", "materials"), "/materials");
-  std::unordered_map<std::string, std::uint32_t> index;
-  index.reserve(materials.size());
-  scene.materials.reserve(materials.size());
-  for (const auto& item : materials.items()) {
-    const std::string p = "/materials/" + escape_pointer_token(item.key());
-    index.emplace(item.key(), scene.add_material(read_material(r, item.value(), p)));
-  }
-
+  r.object(r.require(root, "", "materials"), "/materials");
   const json& spheres = r.require(root, "", "spheres");
   if (!spheres.is_array()) r.fail("/spheres", "must be an array, got " + Reader::describe(spheres));
-  if (spheres.empty()) r.fail("/spheres", "the scene has no spheres");
-  scene.spheres.reserve(spheres.size());
-  for (std::size_t i = 0; i < spheres.size(); ++i) {
-    const std::string p = "/spheres/" + std::to_string(i);
-    const json& s = r.object(spheres[i], p);
-    r.only(s, p, {"center", "radius", "material"});
-    const Vec3 center = r.vec3f(r.require(s, p, "center"), p + "/center");
-    const float radius = r.single(r.require(s, p, "radius"), p + "/radius");
-    if (radius == 0.0f) r.fail(p + "/radius", "must not be 0 (negative makes a hollow sphere)");
-    const json& m = r.require(s, p, "material");
-    if (!m.is_string())
-      r.fail(p + "/material", "must be a material name, got " + Reader::describe(m));
-    const auto found = index.find(m.get<std::string>());
-    if (found == index.end()) {
-      r.fail(p + "/material", "no material named \"" + m.get<std::string>() + "\" in /materials");
-    }
-    scene.spheres.add(center, radius, found->second);
-  }
+  if (scene.spheres.size() == 0) r.fail("/spheres", "the scene has no spheres");
+  scene.materials = table.take();
+  return scene;
+}
+
+Scene read_scene_from(CountingInput::Source source, std::uint64_t max_bytes,
+                      const std::string& name) {
+  const std::string shown = one_line(name, 120);
+  CountingInput input(std::move(source), max_bytes, shown);
+  Scene scene = read_scene(Reader(shown), input);
+  if (scene.name.empty()) scene.name = std::filesystem::path(name).stem().string();
   return scene;
 }
 
@@ -338,44 +451,31 @@ ordered_json material_json(const Material& m) {
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source) {
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // nlohmann's message already says "at line L, column C"; drop its "[json.exception...]".
-    std::string what = e.what();
-    const auto bracket = what.find("] ");
-    if (bracket != std::string::npos) what = what.substr(bracket + 2);
-    throw InvalidInput(source + ": " + what);
-  } catch (const json::out_of_range& e) {
-    // A number too large for a double (e.g. 1e999): nlohmann names the token, not the place,
-    // so find the token's line ourselves.
-    std::string what = e.what();
-    const auto bracket = what.find("] ");
-    if (bracket != std::string::npos) what = what.substr(bracket + 2);
-    std::string where;
-    const auto open = what.find('\''), close = what.rfind('\'');
-    if (open != std::string::npos && close > open) {
-      const auto at = text.find(what.substr(open + 1, close - open - 1));
-      if (at != std::string::npos) {
-        where = "line " +
-                std::to_string(1 + std::count(text.begin(), text.begin() + long(at), '\n')) + ": ";
-      }
-    }
-    throw InvalidInput(source + ": " + where + what);
-  }
-  Scene scene = read_scene(Reader(source), root);
-  if (scene.name.empty()) scene.name = std::filesystem::path(source).stem().string();
-  return scene;
+  std::size_t offset = 0;
+  return read_scene_from(
+      [&](char* buffer, std::size_t size) {
+        const std::size_t n = std::min(size, text.size() - offset);
+        std::memcpy(buffer, text.data() + offset, n);
+        offset += n;
+        return n;
+      },
+      limits::kMaxSceneFileBytes, source);
 }
 
 Scene load_scene_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidInput(path + ": cannot open the scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InvalidInput(path + ": cannot read the scene file");
-  return parse_scene(text.str(), path);
+  check_input_file(path, limits::kMaxSceneFileBytes, "scene file");
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) throw InvalidInput("scene file " + quote_value(path) + ": cannot open it");
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(file, &std::fclose);
+  return read_scene_from(
+      [&](char* buffer, std::size_t size) {
+        const std::size_t n = std::fread(buffer, 1, size, file);
+        if (n == 0 && std::ferror(file)) {
+          throw InvalidInput("scene file " + quote_value(path) + ": cannot read it");
+        }
+        return n;
+      },
+      limits::kMaxSceneFileBytes, path);
 }
 
 std::string scene_to_json(const Scene& scene) {

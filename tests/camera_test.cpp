@@ -83,7 +83,27 @@ TEST(Camera, RefusesDegenerateSettings) {
   expect_refused(c, "focus distance");
   c = cover_like();
   c.lookfrom.x = std::numeric_limits<double>::quiet_NaN();
-  expect_refused(c, "lookfrom is not finite");
+  expect_refused(c, "lookfrom[0] must be finite");
+  c = cover_like();
+  c.lookat.z = 1e19;  // Embree asserts on rays this far out
+  expect_refused(c, "lookat[2] must be finite and within +-1e+15");
+  c = cover_like();
+  c.focus_distance = 1e-300;
+  expect_refused(c, "focus distance must be from 1e-12");
+}
+
+TEST(Camera, RefusesRaysBeyondWhatEmbreeTraces) {
+  CameraSettings c = cover_like();
+  c.vfov_degrees = 179.9999999;
+  c.focus_distance = 1e14;
+  EXPECT_NO_THROW(validate(c));
+  try {
+    validate(c, 1 << 20, 1);
+    ADD_FAILURE() << "accepted rays of about 1e27";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("its rays reach"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(validate(cover_like(), 1200, 800));
 }
 
 TEST(Camera, AcceptsExtremeButValidFieldsOfView) {

@@ -122,7 +122,7 @@ std::vector<BadCase> bad_cases() {
       {"misspelt field", replace(v, "\"vfov\": 90", "\"vfow\": 90"), "/camera/vfow: unknown field"},
       {"missing camera", replace(v, "\"camera\"", "\"kamera\""), "/kamera: unknown field"},
       {"wrong type", replace(v, "\"width\": 32", "\"width\": \"32\""),
-       "/image/width: must be a whole number, got string \"32\""},
+       "/image/width: must be a whole number, got string '32'"},
       {"fractional size", replace(v, "\"width\": 32", "\"width\": 32.5"),
        "/image/width: must be a whole number"},
       {"zero width", replace(v, "\"width\": 32", "\"width\": 0"), "/image/width: must be from 1"},
@@ -152,17 +152,18 @@ std::vector<BadCase> bad_cases() {
        "/materials/glass/type: unknown material type \"glass\""},
       {"material field of another type", replace(v, "\"ior\": 1.5", "\"ior\": 1.5, \"fuzz\": 0"),
        "/materials/glass/fuzz: unknown field"},
-      {"zero ior", replace(v, "\"ior\": 1.5", "\"ior\": 0"), "/materials/glass/ior: must be > 0"},
+      {"zero ior", replace(v, "\"ior\": 1.5", "\"ior\": 0"),
+       "/materials/glass/ior: must be from 0.001 to 1000, got 0"},
       {"negative fuzz", replace(v, "\"fuzz\": 0.2", "\"fuzz\": -0.2"),
        "/materials/steel/fuzz: must be >= 0"},
       {"huge number", replace(v, "\"radius\": 100,", "\"radius\": 1e39,"),
-       "/spheres/1/radius: is too large for single precision"},
+       "/spheres/1/radius: is beyond the limit of +-1e+15"},
       {"overflowing number", replace(v, "\"radius\": 100,", "\"radius\": 1e999,"),
        "line 9: number overflow parsing '1e999'"},
       {"zero radius", replace(v, "\"radius\": 0.5", "\"radius\": 0"),
        "/spheres/0/radius: must not be 0"},
       {"unknown material", replace(v, "\"material\": \"red\"", "\"material\": \"blue\""),
-       "/spheres/0/material: no material named \"blue\""},
+       "/spheres/0/material: no material named 'blue'"},
       {"material not a name", replace(v, "\"material\": \"red\"", "\"material\": 3"),
        "/spheres/0/material: must be a material name"},
       {"no spheres", replace(v, "\"spheres\": [", "\"spheres\": [], \"x\": ["),
@@ -173,6 +174,57 @@ std::vector<BadCase> bad_cases() {
           "image": {"width": 8, "height": 8}, "materials": {}, "spheres": []})"),
        "/spheres: the scene has no spheres"},
       {"nan literal", replace(v, "\"radius\": 0.5", "\"radius\": NaN"), "line 8, column 48"},
+      // Structure: nesting, duplicates, sizes of strings.
+      {"deep nesting",
+       replace(
+           v, "\"version\": 1,",
+           "\"version\": 1, \"x\": " + std::string(100000, '[') + std::string(100000, ']') + ","),
+       "nested deeper than the limit of 32 levels"},
+      {"deep nesting unclosed", std::string(1000000, '['), "nested deeper than the limit"},
+      {"duplicate top key", replace(v, "\"version\": 1,", "\"version\": 1, \"version\": 1,"),
+       "the key 'version' appears twice in one object"},
+      {"duplicate camera key", replace(v, "\"vfov\": 90", "\"vfov\": 90, \"vfov\": 40"),
+       "the key 'vfov' appears twice"},
+      {"duplicate material", replace(v, "\"steel\":", "\"red\":"),
+       "/materials/red: a second material of this name (duplicate key)"},
+      {"duplicate sphere key", replace(v, "\"radius\": 0.5", "\"radius\": 0.5, \"radius\": 0.7"),
+       "appears twice"},
+      {"huge key", replace(v, "\"red\":", "\"" + std::string(100000, 'k') + "\":"),
+       "a key of 100000 bytes is longer than the limit of 4096"},
+      {"huge string",
+       replace(v, "\"material\": \"red\"", "\"material\": \"" + std::string(100000, 'r') + "\""),
+       "a string of 100000 bytes is longer than the limit"},
+      {"huge array as a value",
+       replace(
+           v, "\"vfov\": 90",
+           "\"vfov\": [" +
+               [] {
+                 std::string a = "0";
+                 for (int i = 0; i < 10000; ++i) a += ",0";
+                 return a;
+               }() +
+               "]"),
+       "/camera/vfov: must be a number, got an array of 10001 values"},
+      // Numbers the engine cannot trace.
+      {"camera far away", replace(v, "\"lookfrom\": [0, 0, 0]", "\"lookfrom\": [1e19, 0, 0]"),
+       "/camera/lookfrom/0: is beyond the limit of +-1e+15"},
+      {"camera at float infinity",
+       replace(v, "\"lookfrom\": [0, 0, 0]", "\"lookfrom\": [0, 1e39, 0]"),
+       "/camera/lookfrom/1: is beyond the limit"},
+      {"huge focus distance", replace(v, "\"vfov\": 90", "\"vfov\": 90, \"focus_distance\": 1e20"),
+       "/camera/focus_distance: is beyond the limit"},
+      {"huge aperture", replace(v, "\"vfov\": 90", "\"vfov\": 90, \"aperture\": 1e20"),
+       "/camera/aperture: is beyond the limit"},
+      {"far sphere", replace(v, "[0, -100.5, -1]", "[0, -1e16, -1]"),
+       "/spheres/1/center/1: is beyond the limit"},
+      {"huge ior", replace(v, "\"ior\": 1.5", "\"ior\": 1e30"),
+       "/materials/glass/ior: must be from"},
+      {"aspect ratio too small", replace(v, "\"height\": 18", "\"aspect_ratio\": 1e-300"),
+       "/image/aspect_ratio: gives a height of"},
+      {"aspect ratio too large", replace(v, "\"height\": 18", "\"aspect_ratio\": 1e300"),
+       "/image/aspect_ratio: gives a height of 0 pixels"},
+      {"width beyond int64", replace(v, "\"width\": 32", "\"width\": 18446744073709551615"),
+       "/image/width: must be from 1 to"},
   };
 }
 
@@ -195,8 +247,9 @@ TEST(SceneFile, MissingFileIsNamed) {
     load_scene_file("/nonexistent/scene.json");
     ADD_FAILURE() << "accepted";
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.json: cannot open"),
-              std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("'/nonexistent/scene.json': No such file"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -1,0 +1,44 @@
+#pragma once
+// The ranges rtiow accepts, in one place. Every input (scene files, command-line values,
+// part files, output paths) is checked against these before any work, and the README lists
+// them. Each number says why it is what it is.
+
+#include <cstddef>
+#include <cstdint>
+
+namespace rtiow::limits {
+
+// Embree asserts on a ray whose origin or direction has a component beyond 1.844e18
+// (FLT_LARGE). Scene coordinates and lengths stay three orders of magnitude below, so
+// that the sums a render takes (a centre plus a radius, a camera plus its film) stay
+// traceable; camera rays are checked themselves against kMaxRayComponent.
+inline constexpr double kMaxCoordinate = 1e15;
+inline constexpr double kMaxRayComponent = 1e18;
+
+// An index of refraction outside this range is no material and only produces rays of
+// extreme direction; the book's glass is 1.5, real materials lie within 1 to 4.
+inline constexpr double kMinIor = 1e-3, kMaxIor = 1e3;
+
+// Image sizes: each side at most 2^20 pixels (the pixel count and memory are checked
+// separately, in validate(RenderSettings)).
+inline constexpr int kMaxImageSide = 1 << 20;
+inline constexpr int kMaxDepth = 1 << 16;
+inline constexpr int kMaxThreads = 1024;  // beyond, TBB's pool refuses or crashes
+
+// Sample indices: a share of a render names samples A..B-1 with B at most 2^32 (the
+// samplers index samples with 32 bits).
+inline constexpr std::uint64_t kMaxSampleIndex = std::uint64_t(1) << 32;
+
+// Scene files: read as a stream (memory grows with the spheres, not the text), but no file
+// is read past this size, nested deeper than this, or holds a string longer than this.
+inline constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t(2) << 30;  // 2 GiB
+inline constexpr int kMaxJsonDepth = 32;
+inline constexpr std::size_t kMaxJsonStringBytes = 4096;
+
+// Part files: far larger than any share of a 2^20 x 2^20 render cannot be a part.
+inline constexpr std::uint64_t kMaxPartFileBytes = std::uint64_t(64) << 30;
+
+// Echoed values in an error line are cut to this many characters.
+inline constexpr std::size_t kMaxEchoedChars = 80;
+
+}  // namespace rtiow::limits
