@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/accuracy_reference.h"
+#include "app/cli_checks.h"
 #include "app/plot_script.h"
 #include "core/atomic_file.h"
 #include "core/builtin_scenes.h"
@@ -344,9 +345,19 @@ int run_accuracy(const AccuracyOptions& o) {
   if (o.reference_spp < 2 || o.max_spp < 1 || o.fixed_spp < 2) {
     throw InvalidInput("--reference-spp and --fixed-spp must be >= 2, --max-spp >= 1");
   }
-  if (o.reference_spp < 4 * o.max_spp) {
+  if (std::int64_t(o.reference_spp) < 4 * std::int64_t(o.max_spp)) {
     throw InvalidInput("--reference-spp must be at least 4x --max-spp (" +
-                       std::to_string(4 * o.max_spp) + "), or its noise swamps the errors");
+                       std::to_string(4 * std::int64_t(o.max_spp)) +
+                       "), or its noise swamps the errors");
+  }
+  // The two directories: missing ones are made, but a path that is a file is refused.
+  for (const auto& [dir, option] : {std::pair{o.out_dir, "--out"}, {o.cache_dir, "--cache-dir"}}) {
+    if (std::string(option) == "--out" && dir.empty())
+      throw InvalidInput("--out: the path is empty");
+    std::error_code error;
+    if (!dir.empty() && fs::exists(dir, error) && !fs::is_directory(dir, error)) {
+      throw InvalidInput(std::string(option) + " " + quote_value(dir) + ": is not a directory");
+    }
   }
   if (o.repeat < 1) throw InvalidInput("--repeat must be >= 1");
   if (o.depths.empty() || *std::min_element(o.depths.begin(), o.depths.end()) < 1) {
@@ -358,7 +369,7 @@ int run_accuracy(const AccuracyOptions& o) {
   const Scene scene = make_builtin_scene(o.scene, o.scene_seed);
   RenderSettings base;
   base.width = o.width;
-  base.height = std::max(1, int(std::lround(o.width / scene.image.aspect_ratio)));
+  base.height = int(std::min(std::round(o.width / scene.image.aspect_ratio), 1e9));
   base.max_depth = scene.image.max_depth;
   base.threads = o.threads;
   base.seed = o.seed;
@@ -438,6 +449,7 @@ std::function<int()> add_accuracy_command(CLI::App& app) {
       "adaptive sampling; prints tables, writes JSON, CSV and a PNG plot");
   cmd->add_option("--scene", o.scene, "Built-in scene")->capture_default_str();
   cmd->add_option("--scene-seed", o.scene_seed, "Seed of the scene's random layout")
+      ->check(kNotNegative)
       ->capture_default_str();
   cmd->add_option("--width", o.width, "Image width (height from the scene's aspect ratio)")
       ->capture_default_str();
@@ -454,7 +466,9 @@ std::function<int()> add_accuracy_command(CLI::App& app) {
   cmd->add_option("--target-errors", o.target_errors, "Adaptive sampling targets to compare")
       ->delimiter(',')
       ->capture_default_str();
-  cmd->add_option("--seed", o.seed, "Seed of the measured renders")->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Seed of the measured renders")
+      ->check(kNotNegative)
+      ->capture_default_str();
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
   cmd->add_option("--repeat", o.repeat,
                   "Renders per measurement; the median time is kept (the image is the same)")

@@ -18,6 +18,7 @@
 #include "app/trace_rate.h"
 #include "core/builtin_scenes.h"
 #include "core/error.h"
+#include "core/output_path.h"
 #include "core/render.h"
 
 namespace rtiow {
@@ -207,13 +208,8 @@ int run_bench(const BenchOptions& o) {
   if (o.repeat < 1) throw InvalidInput("--repeat must be >= 1");
   if (o.naive_budget <= 0) throw InvalidInput("--naive-budget must be > 0");
   if (o.max_spheres < 10) throw InvalidInput("--max-spheres must be >= 10");
-  for (const std::string& path : {o.json_path, o.plot_path}) {
-    const auto parent = std::filesystem::path(path).parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent)) {
-      throw InvalidInput("output '" + path + "': directory '" + parent.string() +
-                         "' does not exist");
-    }
-  }
+  check_output_path(o.json_path, {}, "--json");
+  check_output_path(o.plot_path, {o.json_path}, "--plot");
   RenderSettings check;
   check.width = o.width, check.height = o.height, check.samples_per_pixel = o.spp;
   check.max_depth = o.depth, check.threads = o.threads;

@@ -3,9 +3,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <functional>
+#include <iostream>
+#include <new>
+#include <string>
 #include <vector>
 
 #include "app/accuracy_command.h"
@@ -16,7 +21,37 @@
 #include "app/scene_command.h"
 #include "core/error.h"
 
+namespace {
+
+// Every message leaves as one printable line, whatever a value in it held.
+void report(const char* what) {
+  std::fprintf(stderr, "rtiow: error: %s\n", rtiow::one_line(what).c_str());
+}
+
+// The last guard: should an exception escape where none may (a noexcept frame), say so in
+// one line and exit 1 rather than print terminate's text and abort.
+[[noreturn]] void on_terminate() {
+  std::fputs("rtiow: error: internal error (an exception escaped); nothing was written\n", stderr);
+  std::_Exit(1);
+}
+
+// Help and version text; a failed write (a full disk, a closed pipe) is an error too.
+int print_and_exit(const CLI::App& app, const CLI::Error& e) {
+  const int code = app.exit(e);
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0) {
+    report("cannot write to standard output");
+    return 1;
+  }
+  return code;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  std::set_terminate(on_terminate);
+  // A closed pipe is an error to report (exit 1), not a signal that kills silently.
+  std::signal(SIGPIPE, SIG_IGN);
   const rtiow::MpiSession mpi(argc, argv);
   CLI::App app{
       "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend, "
@@ -32,13 +67,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return print_and_exit(app, e);
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return print_and_exit(app, e);
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return print_and_exit(app, e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "rtiow: error: %s (see rtiow --help)\n", e.what());
+    report((std::string(e.what()) + " (see rtiow --help)").c_str());
     return 2;
   }
 
@@ -49,14 +84,20 @@ int main(int argc, char** argv) {
     }
   } catch (const rtiow::InvalidInput& e) {
     // Bad input is seen alike by every rank before any work: say it once, all exit.
-    if (mpi.rank() == 0) std::fprintf(stderr, "rtiow: error: %s\n", e.what());
+    if (mpi.rank() == 0) report(e.what());
     return 2;
   } catch (const std::exception& e) {
+    const bool memory = dynamic_cast<const std::bad_alloc*>(&e) != nullptr;
+    const std::string what = memory ? "out of memory; nothing was written" : e.what();
     if (mpi.distributed()) {
-      std::fprintf(stderr, "rtiow: error on rank %d of %d: %s\n", mpi.rank(), mpi.size(), e.what());
+      std::fprintf(stderr, "rtiow: error on rank %d of %d: %s\n", mpi.rank(), mpi.size(),
+                   rtiow::one_line(what).c_str());
       mpi.abort(1);  // the other ranks may be waiting for this one
     }
-    std::fprintf(stderr, "rtiow: error: %s\n", e.what());
+    report(what.c_str());
+    return 1;
+  } catch (...) {
+    report("internal error (an unknown exception); nothing was written");
     return 1;
   }
   return 0;

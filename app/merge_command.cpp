@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/image_output.h"
+#include "core/output_path.h"
 #include "core/render_part.h"
 
 namespace rtiow {
@@ -21,14 +22,7 @@ struct MergeOptions {
 
 int run_merge(const MergeOptions& o) {
   namespace fs = std::filesystem;
-  const fs::path parent = fs::path(o.output).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent)) {
-    throw InvalidInput("output '" + o.output + "': directory '" + parent.string() +
-                       "' does not exist");
-  }
-  if (!is_writable_image_path(o.output)) {
-    throw InvalidInput("output '" + o.output + "': unknown image format");
-  }
+  check_image_output(o.output, o.parts);
   std::vector<RenderPart> parts;
   for (const std::string& path : o.parts) parts.push_back(read_part(path));
   const MergedRender merged = merge_parts(parts);
@@ -49,10 +43,10 @@ std::function<int()> add_merge_command(CLI::App& app) {
       "merge",
       "Add part files (rtiow render --sample-range/--part) into the image one render "
       "would have produced; checks they belong together, overlap nowhere and miss nothing");
-  cmd->add_option("parts", options->parts, "Part files (.exr)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", options->output, "The merged image (any format)")->required();
+  cmd->add_option("parts", options->parts, "Part files (.exr)")->required();
+  cmd->add_option("-o,--output", options->output,
+                  "The merged image (" + image_extensions() + "); not one of the parts")
+      ->required();
   cmd->add_flag("-q,--quiet", options->quiet, "No summary on stderr");
   return [options, cmd] { return cmd->parsed() ? run_merge(*options) : -1; };
 }

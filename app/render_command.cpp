@@ -1,6 +1,7 @@
 #include "app/render_command.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,14 +9,18 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "app/cli_checks.h"
 #include "app/interrupt.h"
 #include "app/mpi_session.h"
 #include "app/progress_display.h"
 #include "core/builtin_scenes.h"
 #include "core/error.h"
 #include "core/image_output.h"
+#include "core/input_limits.h"
+#include "core/output_path.h"
 #include "core/render.h"
 #include "core/render_loop.h"
 #include "core/render_part.h"
@@ -55,6 +60,20 @@ Vec3d to_vec3(const std::vector<double>& v) {
   return {v[0], v[1], v[2]};
 }
 
+// The side an image takes from the other and the aspect ratio: checked, never clamped.
+int derived_side(int given, double ratio, const char* side, const char* option) {
+  if (given < 1 || given > limits::kMaxImageSide) return given;  // validate() names it
+  const double derived = std::round(double(given) * ratio);
+  if (!(derived >= 1.0 && derived <= double(limits::kMaxImageSide))) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.6g", derived);
+    throw InvalidInput(std::string("the scene's aspect ratio gives a ") + side + " of " + text +
+                       " pixels for " + option + " " + std::to_string(given) + " (must be 1 to " +
+                       std::to_string(limits::kMaxImageSide) + "): give both sides");
+  }
+  return int(derived);
+}
+
 // The scene's own camera and image settings, overridden by whatever the user gave.
 void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& settings) {
   CameraSettings& cam = scene.camera;
@@ -76,10 +95,10 @@ void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& setti
     settings.width = *o.width, settings.height = *o.height;
   } else if (o.height) {
     settings.height = *o.height;
-    settings.width = std::max(1, int(std::lround(*o.height * image.aspect_ratio)));
+    settings.width = derived_side(*o.height, image.aspect_ratio, "width", "--height");
   } else {
     settings.width = o.width.value_or(image.width);
-    settings.height = std::max(1, int(std::lround(settings.width / image.aspect_ratio)));
+    settings.height = derived_side(settings.width, 1.0 / image.aspect_ratio, "height", "--width");
   }
   // With a target error and no --spp, a pixel takes at most kDefaultAdaptiveMaxSpp; with
   // only a time limit, samples are added until the time is spent.
@@ -95,24 +114,9 @@ void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& setti
   settings.threads = o.threads;
 }
 
+// The default output: the scene's name made a safe file name, in the working directory.
 std::string default_output(const std::string& scene) {
-  std::string name = scene;
-  for (char& c : name) {
-    if (c == ':' || c == '/' || c == ' ') c = '-';
-  }
-  return name + ".png";
-}
-
-void check_output_path(const std::string& path) {
-  namespace fs = std::filesystem;
-  const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent)) {
-    throw InvalidInput("output '" + path + "': directory '" + parent.string() + "' does not exist");
-  }
-  if (!is_writable_image_path(path)) {
-    throw InvalidInput("output '" + path +
-                       "': unknown image format (use .png, .exr, .ppm, .jpg, .tif, ...)");
-  }
+  return safe_file_stem(scene) + ".png";
 }
 
 int list_scenes() {
@@ -179,37 +183,63 @@ Scene load_scene(const RenderOptions& o, bool scene_option_given) {
   return load_scene_file(o.scene_file);
 }
 
+// The output: as given (an empty -o is an error, not the default), or named after the scene.
+std::string output_path(const RenderOptions& o, bool output_given, const Scene& scene) {
+  if (output_given && o.output.empty()) throw InvalidInput("-o/--output: the path is empty");
+  return output_given ? o.output : default_output(scene.name);
+}
+
+// "A<sep>B" as two whole numbers, or nothing (no sign, no spaces, no overflow).
+std::optional<std::pair<std::uint64_t, std::uint64_t>> parse_pair(const std::string& text,
+                                                                  char separator) {
+  const auto at = text.find(separator);
+  if (at == std::string::npos) return std::nullopt;
+  std::uint64_t a = 0, b = 0;
+  const char* end = text.data() + text.size();
+  const auto first = std::from_chars(text.data(), text.data() + at, a);
+  const auto second = std::from_chars(text.data() + at + 1, end, b);
+  if (at == 0 || first.ec != std::errc() || first.ptr != text.data() + at ||
+      second.ec != std::errc() || second.ptr != end || at + 1 == text.size()) {
+    return std::nullopt;
+  }
+  return std::pair{a, b};
+}
+
 // "A:B" or "i/n" into the share of samples this process renders; nothing when neither.
+// The job is settings.samples_per_pixel samples; a share must lie within it.
 void apply_share(const RenderOptions& o, const std::string& output, RenderSettings& settings) {
   if (o.sample_range.empty() && o.part.empty()) return;
   if (!o.sample_range.empty() && !o.part.empty()) {
     throw InvalidInput("give --sample-range or --part, not both");
   }
-  if (std::filesystem::path(output).extension() != ".exr") {
-    throw InvalidInput("output '" + output +
-                       "': a share of a render is written as a part file, which must be .exr");
+  if (image_format(output) == nullptr || !image_format(output)->extra_channels) {
+    throw InvalidInput("output " + quote_value(output) +
+                       ": a share of a render is written as a part file, which must be .exr");
   }
-  unsigned long long a = 0, b = 0;
-  char separator = 0, rest = 0;
-  const std::string& text = o.sample_range.empty() ? o.part : o.sample_range;
-  const char expected = o.sample_range.empty() ? '/' : ':';
-  if (std::sscanf(text.c_str(), "%llu%c%llu%c", &a, &separator, &b, &rest) != 3 ||
-      separator != expected || text.find('-') != std::string::npos) {
-    throw InvalidInput(o.sample_range.empty()
-                           ? "--part '" + text + "': expected i/n, e.g. 0/4"
-                           : "--sample-range '" + text + "': expected A:B, e.g. 0:100");
-  }
-  if (o.sample_range.empty()) {
-    if (b == 0 || a >= b) throw InvalidInput("--part '" + text + "': need 0 <= i < n");
-    const auto total = std::uint64_t(settings.samples_per_pixel);
-    const std::uint64_t first = total * a / b, last = total * (a + 1) / b;
-    if (first == last) {
-      throw InvalidInput("--part '" + text + "': " + std::to_string(total) +
-                         " samples per pixel do not make " + std::to_string(b) + " shares");
+  const auto total = std::uint64_t(settings.samples_per_pixel);
+  if (!o.part.empty()) {
+    const auto share = parse_pair(o.part, '/');
+    if (!share) throw InvalidInput("--part " + quote_value(o.part) + ": expected i/n, e.g. 0/4");
+    const auto [i, n] = *share;
+    if (n == 0 || i >= n) throw InvalidInput("--part " + quote_value(o.part) + ": need 0 <= i < n");
+    if (n > total) {
+      throw InvalidInput("--part " + quote_value(o.part) + ": " + std::to_string(total) +
+                         " samples per pixel do not make " + std::to_string(n) + " shares");
     }
-    a = first, b = last;
-  } else if (a >= b || b - a > std::uint64_t(std::numeric_limits<int>::max())) {
-    throw InvalidInput("--sample-range '" + text + "': need A < B");
+    settings.first_sample = total * i / n;  // n <= total < 2^31: no overflow
+    settings.samples_per_pixel = int(total * (i + 1) / n - settings.first_sample);
+    return;
+  }
+  const auto range = parse_pair(o.sample_range, ':');
+  if (!range) {
+    throw InvalidInput("--sample-range " + quote_value(o.sample_range) +
+                       ": expected A:B, e.g. 0:100");
+  }
+  const auto [a, b] = *range;
+  if (a >= b || b > total) {
+    throw InvalidInput("--sample-range " + quote_value(o.sample_range) +
+                       ": need A < B <= the job's " + std::to_string(total) +
+                       " samples per pixel (--spp)");
   }
   settings.first_sample = a;
   settings.samples_per_pixel = int(b - a);
@@ -234,39 +264,50 @@ void apply_rank_share(const RenderOptions& o, const MpiSession& mpi, RenderSetti
 }
 
 // Adaptive sampling decides each pixel's stop on all its samples, so it cannot be split
-// into shares; the statistics channels need a float format.
+// into shares; the statistics channels need a format with room for them.
 void check_adaptive_options(const RenderOptions& o, const std::string& output,
                             const MpiSession& mpi) {
+  const ImageFormat* format = image_format(output);
+  if (o.stats_channels && format && !format->extra_channels) {
+    throw InvalidInput("--stats-channels: output " + quote_value(output) +
+                       " must be .exr to hold the spp and variance channels");
+  }
   if (o.target_error > 0 && (!o.sample_range.empty() || !o.part.empty() || mpi.distributed())) {
     throw InvalidInput(
         "--target-error needs all of a pixel's samples in one process: it cannot be combined "
         "with --sample-range, --part or mpirun");
-  }
-  if (o.stats_channels && !is_float_format(output)) {
-    throw InvalidInput("--stats-channels: output '" + output +
-                       "' must be a float format (.exr) to hold the spp and variance channels");
   }
   if (o.stats_channels && (!o.sample_range.empty() || !o.part.empty() || mpi.distributed())) {
     throw InvalidInput("--stats-channels is for a render in one process, not a part or mpirun");
   }
 }
 
-int run_render(const RenderOptions& o, bool scene_option_given, const MpiSession& mpi) {
+int run_render(const RenderOptions& o, bool scene_option_given, bool output_given,
+               const MpiSession& mpi) {
   if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
 
+  // Cheap checks of the output first, so a bad -o is refused before a large scene loads.
+  if (output_given) {
+    check_output_path(
+        output_path(o, output_given, Scene{}),
+        o.scene_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{o.scene_file});
+  }
   Scene scene = load_scene(o, scene_option_given);
   RenderSettings settings;
   settings.accel = parse_accel(o.accel);
   apply_overrides(o, scene, settings);
   const int samples_asked = settings.samples_per_pixel;
-  const std::string output = o.output.empty() ? default_output(scene.name) : o.output;
+  const std::string output = output_path(o, output_given, scene);
+  const bool share = !o.sample_range.empty() || !o.part.empty();
+  validate(settings);  // the whole job, before it is cut into a share
   apply_share(o, output, settings);
   apply_rank_share(o, mpi, settings);
-  const bool share = !o.sample_range.empty() || !o.part.empty();
-  validate(settings);
-  validate(scene);
-  check_output_path(output);
   check_adaptive_options(o, output, mpi);
+  check_image_output(
+      output,
+      o.scene_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{o.scene_file},
+      o.stats_channels);
+  validate(scene, settings);
 
   RenderProgress progress;
   RenderResult result;
@@ -303,6 +344,7 @@ int run_render(const RenderOptions& o, bool scene_option_given, const MpiSession
     part.width = settings.width, part.height = settings.height;
     part.first_sample = settings.first_sample;
     part.samples = std::uint64_t(result.samples_completed);
+    part.job_samples = std::uint64_t(samples_asked);
     part.digest = render_digest(scene, settings);
     part.metadata = make_metadata(o, scene, settings, result);
     part.sums = std::move(result.sums);
@@ -345,30 +387,35 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
       "Render a scene file or a built-in scene to an image (with no options: the book's cover "
       "at its final settings, to cover.png)");
   cmd->add_option("scene_file", o.scene_file,
-                  "Scene file (JSON, see the README); its settings are overridden by the options")
-      ->check(CLI::ExistingFile);
+                  "Scene file (JSON, see the README); its settings are overridden by the options");
   CLI::Option* scene_option =
       cmd->add_option("--scene", o.scene, "Built-in scene to render (see --list-scenes)")
           ->capture_default_str();
   cmd->add_flag("--list-scenes", o.list_scenes, "List the built-in scenes and exit");
   cmd->add_option("--scene-seed", o.scene_seed, "Seed of the random layout of cover and spheres:N")
+      ->check(kNotNegative)
       ->capture_default_str();
-  cmd->add_option("-o,--output", o.output,
-                  "Output image; the format follows the extension (.png .exr .ppm .jpg .tif). "
-                  "Default: <scene>.png");
-  cmd->add_option("--width", o.width, "Image width in pixels (default: the scene's)");
+  CLI::Option* output_option =
+      cmd->add_option("-o,--output", o.output,
+                      "Output image; the format follows the extension (" + image_extensions() +
+                          "). Default: <scene>.png in the working directory");
+  cmd->add_option("--width", o.width, "Image width in pixels, 1 to 2^20 (default: the scene's)");
   cmd->add_option("--height", o.height,
-                  "Image height in pixels (default: from the width and the scene's aspect ratio)");
+                  "Image height in pixels, 1 to 2^20 (default: from the width and the scene's "
+                  "aspect ratio)");
   cmd->add_option("--spp", o.spp, "Samples per pixel (default: the scene's)");
-  cmd->add_option("--depth", o.depth, "Maximum rays per path (default: the scene's)");
-  cmd->add_option("--seed", o.seed, "Seed of the sample streams")->capture_default_str();
-  cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--depth", o.depth, "Maximum rays per path, 0 to 65536 (default: the scene's)");
+  cmd->add_option("--seed", o.seed, "Seed of the sample streams, 0 to 2^64-1")
+      ->check(kNotNegative)
+      ->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Worker threads, 0 (all cores) to 1024")
+      ->capture_default_str();
   cmd->add_option("--accel", o.accel, "Intersector: embree or naive (same image, other speed)")
       ->capture_default_str();
   cmd->add_option("--time-limit", o.time_limit,
                   "Render in passes until this many seconds are spent (ends within one pass); "
                   "the file holds the samples completed. With --spp, stop at that many")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kFiniteNotNegative);
   cmd->add_option("--sampler", o.sampler,
                   "Sampler of the pixel position, lens and first bounce: independent (the book's) "
                   "or sobol (Owen-scrambled Sobol: on the cover 1.9x lower relMSE at 16 spp, 2.5x "
@@ -378,7 +425,7 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
   cmd->add_option("--target-error", o.target_error,
                   "Adaptive sampling: each pixel stops once its relative standard error is below "
                   "this (e.g. 0.05); --spp is then the most a pixel takes (default 8192)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kFiniteNotNegative);
   cmd->add_option("--min-spp", o.min_spp,
                   "Adaptive sampling: samples every pixel takes before it may stop")
       ->check(CLI::Range(2, std::numeric_limits<int>::max()))
@@ -392,8 +439,8 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
       ->check(CLI::IsMember({"schlick", "exact"}));
   cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
   cmd->add_option("--sample-range", o.sample_range,
-                  "Render only samples A..B-1 of every pixel into a part file (.exr) for "
-                  "'rtiow merge' (render farms)");
+                  "Render only samples A..B-1 (B at most --spp, the job's total) of every pixel "
+                  "into a part file (.exr) for 'rtiow merge' (render farms)");
   cmd->add_option("--part", o.part,
                   "Render the i-th of n equal shares of the samples (i/n, from 0) into a part "
                   "file (.exr)");
@@ -410,8 +457,10 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
   cmd->add_option("--vfov", o.vfov, "Vertical field of view in degrees, in (0, 180)");
   cmd->add_option("--aperture", o.aperture, "Lens diameter (0: pinhole)");
   cmd->add_option("--focus-dist", o.focus_distance, "Distance to the plane in focus");
-  return [options, cmd, scene_option, &mpi] {
-    return cmd->parsed() ? run_render(*options, scene_option->count() > 0, mpi) : -1;
+  return [options, cmd, scene_option, output_option, &mpi] {
+    return cmd->parsed()
+               ? run_render(*options, scene_option->count() > 0, output_option->count() > 0, mpi)
+               : -1;
   };
 }
 

@@ -1,13 +1,19 @@
 #include "app/scene_command.h"
 
+#include "app/cli_checks.h"
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "core/atomic_file.h"
 #include "core/builtin_scenes.h"
 #include "core/error.h"
+#include "core/output_path.h"
 #include "core/scene_file.h"
 
 namespace rtiow {
@@ -19,16 +25,18 @@ struct SceneOptions {
   std::string output;
 };
 
-int run_scene(const SceneOptions& o) {
+int run_scene(const SceneOptions& o, bool output_given) {
+  if (output_given && o.output.empty()) throw InvalidInput("-o/--output: the path is empty");
+  const bool to_stdout = o.output.empty() || o.output == "-";
+  if (!to_stdout) check_output_path(o.output, {});
   const std::string text = scene_to_json(make_builtin_scene(o.name, o.scene_seed));
-  if (o.output.empty() || o.output == "-") {
+  if (to_stdout) {
     std::fwrite(text.data(), 1, text.size(), stdout);
-    return std::fflush(stdout) == 0 ? 0 : 1;
-  }
-  const std::filesystem::path parent = std::filesystem::path(o.output).parent_path();
-  if (!parent.empty() && !std::filesystem::is_directory(parent)) {
-    throw InvalidInput("output '" + o.output + "': directory '" + parent.string() +
-                       "' does not exist");
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      throw std::runtime_error(std::string("cannot write to standard output: ") +
+                               std::strerror(errno));
+    }
+    return 0;
   }
   write_text_atomically(o.output, text);
   return 0;
@@ -44,9 +52,13 @@ std::function<int()> add_scene_command(CLI::App& app) {
       ->required();
   cmd->add_option("--scene-seed", options->scene_seed,
                   "Seed of the random layout of cover and spheres:N")
+      ->check(kNotNegative)
       ->capture_default_str();
-  cmd->add_option("-o,--output", options->output, "Write here instead of to stdout");
-  return [options, cmd] { return cmd->parsed() ? run_scene(*options) : -1; };
+  CLI::Option* output =
+      cmd->add_option("-o,--output", options->output, "Write here instead of to stdout ('-')");
+  return [options, cmd, output] {
+    return cmd->parsed() ? run_scene(*options, output->count() > 0) : -1;
+  };
 }
 
 }  // namespace rtiow

@@ -1,5 +1,6 @@
 #include "core/error.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace rtiow {
@@ -33,8 +34,19 @@ bool append_printable(std::string& out, std::string_view text, std::size_t max_c
 }  // namespace
 
 std::string quote_value(std::string_view value, std::size_t max_chars) {
+  // A long value keeps its head and tail (a path keeps its file name and extension) around
+  // "...": each part escaped on its own and cut to half the room.
   std::string out = "'";
-  if (!append_printable(out, value, max_chars)) out += "...";
+  if (value.size() <= max_chars) {
+    if (!append_printable(out, value, 4 * max_chars)) out += "...";
+  } else {
+    const std::size_t half = std::max<std::size_t>(max_chars / 2, 1);
+    std::string head, tail;
+    append_printable(head, value.substr(0, half), half);
+    append_printable(tail, value.substr(value.size() - half), 4 * half);
+    if (tail.size() > half) tail.erase(0, tail.size() - half);
+    out += head + "..." + tail;
+  }
   out += '\'';
   return out;
 }

@@ -19,7 +19,7 @@ class InvalidInput : public std::runtime_error {
 };
 
 // `value` between single quotes, printable: bytes below 0x20 and 0x7f as \n, \t or \xNN,
-// a backslash doubled, and anything past `max_chars` replaced by "...".
+// a backslash doubled; a value longer than `max_chars` keeps its head and tail around "...".
 std::string quote_value(std::string_view value, std::size_t max_chars = 80);
 
 // `text` made printable as quote_value() does (no quotes added) and cut to `max_chars`.

@@ -1,6 +1,7 @@
 #include "core/image_output.h"
 
 #include "core/atomic_file.h"
+#include "core/output_path.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -15,13 +16,6 @@ namespace rtiow {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lowercase_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
 
 std::string metadata_string(const MetadataValue& v) {
   if (const auto* i = std::get_if<std::int64_t>(&v)) return std::to_string(*i);
@@ -60,16 +54,6 @@ void add_metadata(OIIO::ImageSpec& spec, const Metadata& unordered, bool typed) 
 
 }  // namespace
 
-bool is_writable_image_path(const std::string& path) {
-  auto out = OIIO::ImageOutput::create(path);
-  return out != nullptr;
-}
-
-bool is_float_format(const std::string& path) {
-  const std::string ext = lowercase_extension(path);
-  return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
-}
-
 std::uint8_t encode_gamma2_8bit(float linear) {
   const float v = std::sqrt(std::clamp(std::isnan(linear) ? 0.0f : linear, 0.0f, 1.0f));
   return static_cast<std::uint8_t>(std::lround(v * 255.0f));
@@ -77,16 +61,13 @@ std::uint8_t encode_gamma2_8bit(float linear) {
 
 void write_image(const std::string& path, const Film& film, const Metadata& metadata,
                  const std::vector<ExtraChannel>& extra) {
+  const ImageFormat* image = image_format(path);
+  if (!image || (!extra.empty() && !image->extra_channels)) {
+    throw std::invalid_argument("cannot write '" + path + "': not a format for this image");
+  }
   auto out = OIIO::ImageOutput::create(path);
-  if (!out) {
-    throw std::runtime_error("cannot write '" + path + "': no image format for extension '" +
-                             lowercase_extension(path) + "'");
-  }
-  const bool linear_float = is_float_format(path);
-  if (!extra.empty() && !linear_float) {
-    throw std::invalid_argument("cannot write '" + path +
-                                "': extra channels need a float format such as .exr");
-  }
+  if (!out) throw std::runtime_error("cannot write '" + path + "': " + OIIO::geterror());
+  const bool linear_float = image->linear_float;
   const int channels = 3 + int(extra.size());
   OIIO::ImageSpec spec(film.width(), film.height(), channels,
                        linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);

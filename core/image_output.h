@@ -1,8 +1,9 @@
 #pragma once
-// Writing a film through OpenImageIO. The format follows the file extension: float formats
-// (.exr, .hdr, .pfm) get linear values, 8-bit formats (.png, .jpg, .ppm, .tif, ...) the
-// book's gamma 2. Writes go to a temporary file in the target directory that is renamed
-// over the target only when complete, so a failed write never leaves a truncated image.
+// Writing a film through OpenImageIO. The format follows the file extension (the list is in
+// core/output_path.h): float formats (.exr, .hdr) get linear values, 8-bit formats (.png,
+// .jpg, .ppm, .tif, ...) the book's gamma 2. Writes go to a temporary file in the target directory
+// that is renamed over the target only when complete, so a failed write never leaves a truncated
+// image.
 
 #include <cstdint>
 #include <string>
@@ -18,12 +19,6 @@ namespace rtiow {
 using MetadataValue = std::variant<std::int64_t, double, std::string>;
 using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
 
-// True if the extension names a format OpenImageIO can write.
-bool is_writable_image_path(const std::string& path);
-
-// True if the format of `path` stores linear floating-point pixels.
-bool is_float_format(const std::string& path);
-
 // A named per-pixel value written after R, G, B (float formats only), e.g. "spp".
 struct ExtraChannel {
   std::string name;
@@ -31,7 +26,8 @@ struct ExtraChannel {
 };
 
 // Throws std::runtime_error with OIIO's reason on failure; the target is then untouched.
-// Extra channels need a float format (throws std::invalid_argument otherwise).
+// The format must be one of image_format()'s, and extra channels need one that holds them
+// (throws std::invalid_argument otherwise): check_image_output() refuses both before work.
 void write_image(const std::string& path, const Film& film, const Metadata& metadata,
                  const std::vector<ExtraChannel>& extra = {});
 

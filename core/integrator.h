@@ -16,6 +16,7 @@ Color trace_path(const Scene& scene, const Accel& accel, Ray ray, int max_depth,
                  std::uint64_t& rays_traced) {
   Color throughput{1.0f, 1.0f, 1.0f};
   for (int depth = 0; depth < max_depth; ++depth) {
+    if (!is_traceable(ray)) return Color{};
     Hit hit;
     ++rays_traced;
     if (!accel.intersect(ray, std::numeric_limits<float>::infinity(), hit)) {

@@ -1,6 +1,8 @@
 #pragma once
 // A ray: origin and direction (not necessarily unit length).
 
+#include <cmath>
+
 #include "core/vec3.h"
 
 namespace rtiow {
@@ -14,6 +16,17 @@ struct RayT {
 };
 
 using Ray = RayT<float>;
+
+// Embree asserts on a ray with a NaN or a component beyond 1.844e18 in its origin or
+// direction. Camera rays are bounded by validation; this guards every ray a material
+// spawns, for both accelerators alike (a path with such a ray ends, black).
+inline bool is_traceable(const Ray& r) {
+  constexpr float kLimit = 1e18f;
+  // Written so that NaN fails every comparison.
+  return std::abs(r.origin.x) <= kLimit && std::abs(r.origin.y) <= kLimit &&
+         std::abs(r.origin.z) <= kLimit && std::abs(r.direction.x) <= kLimit &&
+         std::abs(r.direction.y) <= kLimit && std::abs(r.direction.z) <= kLimit;
+}
 using Rayd = RayT<double>;
 
 }  // namespace rtiow

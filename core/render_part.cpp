@@ -3,12 +3,15 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/input_file.h"
+#include "core/input_limits.h"
 #include "core/rng.h"
 #include "core/scene_file.h"
 
@@ -24,6 +27,19 @@ std::string hex(std::uint64_t v) {
   char buffer[17];
   std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(v));
   return buffer;
+}
+
+// A whole number from a header field, or InvalidInput naming the file and the field.
+std::uint64_t header_number(const OIIO::ImageSpec& spec, const std::string& path,
+                            const char* field) {
+  const std::string text = spec.get_string_attribute(field);
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+    throw InvalidInput("part file " + quote_value(path) + ": header field " + field +
+                       " is missing or not a whole number (" + quote_value(text, 40) + ")");
+  }
+  return value;
 }
 
 std::int64_t metadata_int(const Metadata& m, const std::string& key) {
@@ -73,6 +89,7 @@ void write_part(const std::string& path, const RenderPart& part) {
   }
   spec.attribute("rtiow:part_first_sample", std::to_string(part.first_sample));
   spec.attribute("rtiow:part_samples", std::to_string(part.samples));
+  spec.attribute("rtiow:part_job_samples", std::to_string(part.job_samples));
   spec.attribute("rtiow:digest", part.digest);
 
   // Native layout: per pixel 3 floats then 12 words, all 4 bytes wide.
@@ -101,50 +118,76 @@ void write_part(const std::string& path, const RenderPart& part) {
 }
 
 RenderPart read_part(const std::string& path) {
+  check_input_file(path, limits::kMaxPartFileBytes, "part file");
+  const std::string name = "part file " + quote_value(path);
   auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InvalidInput(path + ": cannot read: " + OIIO::geterror());
+  if (!in) throw InvalidInput(name + ": cannot read: " + one_line(OIIO::geterror(), 200));
   const OIIO::ImageSpec& spec = in->spec();
   // EXR stores channels sorted by name, so find each word of each sum by its name.
   int word_channel[kColorChannels][kWordsPerSum];
   bool complete = spec.nchannels == kChannels && !spec.get_string_attribute("rtiow:digest").empty();
   for (int c = 0; c < kColorChannels && complete; ++c) {
     for (int w = 0; w < kWordsPerSum && complete; ++w) {
-      const std::string name = std::string("sum.") + "RGB"[c] + "." + std::to_string(w);
-      const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
+      const std::string channel = std::string("sum.") + "RGB"[c] + "." + std::to_string(w);
+      const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), channel);
       complete = it != spec.channelnames.end();
       if (complete) word_channel[c][w] = int(it - spec.channelnames.begin());
     }
   }
   if (!complete) {
-    throw InvalidInput(path + ": not a part file (render one with --sample-range or --part)");
+    throw InvalidInput(name + ": not a part file (render one with --sample-range or --part)");
+  }
+  // The header decides what is allocated: check it all first.
+  if (spec.width < 1 || spec.height < 1 || spec.width > limits::kMaxImageSide ||
+      spec.height > limits::kMaxImageSide || spec.depth != 1 || spec.x != 0 || spec.y != 0 ||
+      spec.full_width != spec.width || spec.full_height != spec.height) {
+    throw InvalidInput(name + ": header field size " + std::to_string(spec.width) + "x" +
+                       std::to_string(spec.height) + " is not an image rtiow renders");
+  }
+  RenderSettings size;
+  size.width = spec.width, size.height = spec.height;
+  try {
+    validate(size);  // pixel count and memory
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(name + ": " + e.what());
   }
   RenderPart part;
   part.path = path;
   part.width = spec.width;
   part.height = spec.height;
-  part.first_sample = std::stoull(spec.get_string_attribute("rtiow:part_first_sample", "0"));
-  part.samples = std::stoull(spec.get_string_attribute("rtiow:part_samples", "0"));
+  part.first_sample = header_number(spec, path, "rtiow:part_first_sample");
+  part.samples = header_number(spec, path, "rtiow:part_samples");
+  part.job_samples = header_number(spec, path, "rtiow:part_job_samples");
+  if (part.samples == 0 || part.job_samples == 0 || part.job_samples > limits::kMaxSampleIndex ||
+      part.first_sample >= part.job_samples ||
+      part.samples > part.job_samples - part.first_sample) {
+    throw InvalidInput(name + ": header fields say samples [" + std::to_string(part.first_sample) +
+                       ", +" + std::to_string(part.samples) + ") of a job of " +
+                       std::to_string(part.job_samples) + ": not a share of it");
+  }
   part.digest = spec.get_string_attribute("rtiow:digest");
   for (const auto& attribute : spec.extra_attribs) {
-    const std::string name = attribute.name().string();
-    if (name.rfind("rtiow:", 0) != 0 || name.rfind("rtiow:part_", 0) == 0 ||
-        name == "rtiow:digest") {
+    const std::string attribute_name = attribute.name().string();
+    if (attribute_name.rfind("rtiow:", 0) != 0 || attribute_name.rfind("rtiow:part_", 0) == 0 ||
+        attribute_name == "rtiow:digest") {
       continue;
     }
-    const std::string key = name.substr(6);
+    const std::string key = attribute_name.substr(6);
     if (attribute.type() == OIIO::TypeDesc::FLOAT) {
       part.metadata.emplace_back(key, double(attribute.get_float()));
     } else {
       const std::string text = attribute.get_string();
-      const bool integer =
-          !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
-      part.metadata.emplace_back(
-          key, integer ? MetadataValue(std::int64_t(std::stoll(text))) : MetadataValue(text));
+      std::int64_t number = 0;
+      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
+      const bool integer = !text.empty() && text.front() != '-' && error == std::errc() &&
+                           end == text.data() + text.size();
+      part.metadata.emplace_back(key, integer ? MetadataValue(number) : MetadataValue(text));
     }
   }
+  // Every channel read as 32-bit words, whatever the file stores: the layout is fixed.
   std::vector<std::uint32_t> data(std::size_t(spec.width) * std::size_t(spec.height) * kChannels);
-  if (!in->read_image(0, 0, 0, kChannels, OIIO::TypeDesc::UNKNOWN, data.data())) {
-    throw InvalidInput(path + ": cannot read its pixels: " + in->geterror());
+  if (!in->read_image(0, 0, 0, kChannels, OIIO::TypeDesc::UINT, data.data())) {
+    throw InvalidInput(name + ": cannot read its pixels: " + one_line(in->geterror(), 200));
   }
   part.sums.resize(std::size_t(spec.width) * std::size_t(spec.height));
   for (std::size_t p = 0; p < part.sums.size(); ++p) {
@@ -165,9 +208,9 @@ MergedRender merge_parts(const std::vector<RenderPart>& input) {
   const RenderPart& reference = *parts.front();
   for (const RenderPart* p : parts) {
     if (p->digest != reference.digest || p->width != reference.width ||
-        p->height != reference.height) {
+        p->height != reference.height || p->job_samples != reference.job_samples) {
       throw InvalidInput("merge: " + p->path + " is a share of a different render than " +
-                         reference.path + " (scene, size, depth or seed differ)");
+                         reference.path + " (scene, size, depth, seed or spp differ)");
     }
   }
   std::sort(parts.begin(), parts.end(), [](const RenderPart* a, const RenderPart* b) {
@@ -191,6 +234,11 @@ MergedRender merge_parts(const std::vector<RenderPart>& input) {
     }
     next = p->first_sample + p->samples;
     previous = p;
+  }
+  if (next != reference.job_samples) {
+    throw InvalidInput("merge: samples [" + std::to_string(next) + ", " +
+                       std::to_string(reference.job_samples) + ") of the job are missing (after " +
+                       previous->path + ")");
   }
 
   MergedRender merged;

@@ -21,8 +21,9 @@ struct RenderPart {
   std::string path;
   int width = 0, height = 0;
   std::uint64_t first_sample = 0, samples = 0;
-  std::string digest;  // scene + settings that change pixels
-  Metadata metadata;   // everything else the part recorded (scene, seed, rays...)
+  std::uint64_t job_samples = 0;  // the whole job's samples per pixel, so a missing share shows
+  std::string digest;             // scene + settings that change pixels
+  Metadata metadata;              // everything else the part recorded (scene, seed, rays...)
   std::vector<PixelSum> sums;
 };
 
@@ -33,7 +34,8 @@ std::string render_digest(const Scene& scene, const RenderSettings& settings);
 // Writes a share atomically. `path` must end in .exr.
 void write_part(const std::string& path, const RenderPart& part);
 
-// Reads a share; throws InvalidInput naming the file when it is not one.
+// Reads a share; throws InvalidInput naming the file (and the field) when it is not one:
+// every header field is checked before the pixels are allocated.
 RenderPart read_part(const std::string& path);
 
 struct MergedRender {
@@ -42,9 +44,9 @@ struct MergedRender {
   Metadata metadata;  // the parts' common metadata, with spp and rays_traced totalled
 };
 
-// Checks that the parts belong to one render (same digest and size), that they neither
-// overlap nor leave a gap from sample 0 on, and adds them. Throws InvalidInput naming the
-// files at fault.
+// Checks that the parts belong to one render (same digest, size and job), that they neither
+// overlap nor leave a gap from sample 0 to the job's last, and adds them. Throws InvalidInput
+// naming the files at fault.
 MergedRender merge_parts(const std::vector<RenderPart>& parts);
 
 }  // namespace rtiow

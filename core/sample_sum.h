@@ -35,8 +35,11 @@ class PixelSum {
     return std::isfinite(v) ? std::clamp(double(v), 0.0, kMaxSample) : 0.0;
   }
 
+  // Added as unsigned words: the same bits for sums that fit, and no undefined behaviour
+  // for sums read from a hostile part file that do not.
   PixelSum& operator+=(const PixelSum& other) {
-    for (int i = 0; i < 3; ++i) channel_[i] += other.channel_[i];
+    for (int i = 0; i < 3; ++i)
+      channel_[i] = int128(uint128(channel_[i]) + uint128(other.channel_[i]));
     return *this;
   }
 

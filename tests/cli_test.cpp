@@ -107,7 +107,7 @@ TEST(Cli, RefusesUnwritableOutputsBeforeRendering) {
   const CommandResult bad_ext =
       run_rtiow("render -q --spp 1 --width 8 -o " + output_path("image.nosuchformat").string());
   EXPECT_EQ(bad_ext.exit_code, 2);
-  EXPECT_NE(bad_ext.stderr_text.find("unknown image format"), std::string::npos);
+  EXPECT_NE(bad_ext.stderr_text.find("not an image format rtiow writes"), std::string::npos);
   const CommandResult bad_dir = run_rtiow("render -q --spp 1 --width 8 -o /nonexistent-dir/x.png");
   EXPECT_EQ(bad_dir.exit_code, 2);
   EXPECT_NE(bad_dir.stderr_text.find("does not exist"), std::string::npos);
@@ -216,7 +216,7 @@ TEST(Cli, AdaptiveRenderWritesStatisticsChannelsAndItsSampleCounts) {
 
 TEST(Cli, RefusesAdaptiveAndStatisticsOptionsWhereTheyCannotWork) {
   expect_refused("--scene cover --width 8 --spp 4 --sampler halton", "--sampler");
-  expect_refused("--scene cover --width 8 --spp 4 --stats-channels", "float format");
+  expect_refused("--scene cover --width 8 --spp 4 --stats-channels", "must be .exr");
   expect_refused("--scene cover --width 8 --spp 4 --target-error -1", "--target-error");
   expect_refused("--scene cover --width 8 --spp 4 --target-error 0.1 --min-spp 1", "--min-spp");
   const fs::path part = output_path("part.exr");

@@ -1,0 +1,40 @@
+#pragma once
+// Output paths are input too. Before any work, an output must be a path rtiow can write
+// without losing anything: not empty, in an existing writable directory, not a directory
+// or a device itself, not one of the command's input files (compared as files, not as
+// strings), and, for images, one of the formats rtiow writes. Nothing here touches the
+// file system beyond looking.
+
+#include <string>
+#include <vector>
+
+namespace rtiow {
+
+// An image format rtiow writes, chosen by the file extension (lower case, with the dot).
+struct ImageFormat {
+  const char* extension;
+  bool linear_float;    // linear float pixels; otherwise 8-bit with the book's gamma 2
+  bool extra_channels;  // can hold channels beyond R, G, B (--stats-channels, part files)
+};
+
+// The format of `path`, or nullptr when rtiow does not write that extension.
+const ImageFormat* image_format(const std::string& path);
+
+// ".png .jpg .jpeg .ppm .bmp .tga .tif .tiff .exr .hdr", for messages and --help.
+std::string image_extensions();
+
+// Throws InvalidInput "<what> '<path>': <reason>" unless `path` may be written as described
+// above; `inputs` are the files the command reads.
+void check_output_path(const std::string& path, const std::vector<std::string>& inputs,
+                       const char* what = "output");
+
+// check_output_path, and the extension must name an image format (with extra channels
+// when `extra_channels`).
+void check_image_output(const std::string& path, const std::vector<std::string>& inputs,
+                        bool extra_channels = false);
+
+// A file name stem made from a scene name for a default output: letters, digits, '.', '_'
+// and '-' only, no leading dot, at most 64 characters, "render" when nothing is left.
+std::string safe_file_stem(const std::string& scene_name);
+
+}  // namespace rtiow
