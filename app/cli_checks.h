@@ -4,15 +4,23 @@
 
 #include <CLI/CLI.hpp>
 
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 namespace rtiow {
 
-// A seed or count: a whole number, not negative (an unsigned option would wrap "-1").
+// A seed: a whole number from 0 to 2^64-1 (an unsigned option would wrap "-1", and CLI11
+// saturates a value beyond 2^64 instead of refusing it).
 inline const CLI::Validator kNotNegative(
     [](std::string& text) -> std::string {
-      return text.find('-') == std::string::npos ? "" : "must not be negative";
+      if (text.find('-') != std::string::npos) return "must not be negative";
+      std::uint64_t value = 0;
+      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+      return error == std::errc() && end == text.data() + text.size()
+                 ? ""
+                 : "must be a whole number from 0 to 2^64-1";
     },
     "NUMBER >= 0");
 

@@ -52,6 +52,8 @@ int main(int argc, char** argv) {
   std::set_terminate(on_terminate);
   // A closed pipe is an error to report (exit 1), not a signal that kills silently.
   std::signal(SIGPIPE, SIG_IGN);
+  // Likewise a file-size limit: the write fails (EFBIG), the target is left as it was.
+  std::signal(SIGXFSZ, SIG_IGN);
   const rtiow::MpiSession mpi(argc, argv);
   CLI::App app{
       "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend, "
@@ -64,6 +66,18 @@ int main(int argc, char** argv) {
       rtiow::add_merge_command(app), rtiow::add_bench_command(app),
       rtiow::add_accuracy_command(app)};
 
+  // A first word that is no option and no command: name it (CLI11 would only say that a
+  // command is required).
+  std::string known;
+  bool is_known = false;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    known += (known.empty() ? "" : ", ") + sub->get_name();
+    is_known = is_known || (argc > 1 && sub->get_name() == argv[1]);
+  }
+  if (argc > 1 && argv[1][0] != '-' && !is_known) {
+    report(("unknown command " + rtiow::quote_value(argv[1]) + " (known: " + known + ")").c_str());
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

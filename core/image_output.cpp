@@ -5,12 +5,16 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 namespace rtiow {
 namespace {
@@ -59,6 +63,45 @@ std::uint8_t encode_gamma2_8bit(float linear) {
   return static_cast<std::uint8_t>(std::lround(v * 255.0f));
 }
 
+// Quiets stderr while alive: libpng prints its own complaint about a truncated file, and the
+// error line rtiow prints is to be the only one. (Used after the render: no other thread
+// writes to stderr then.)
+class QuietStderr {
+ public:
+  QuietStderr() : saved_(::dup(STDERR_FILENO)) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+      ::dup2(null, STDERR_FILENO);
+      ::close(null);
+    }
+  }
+  ~QuietStderr() {
+    if (saved_ >= 0) {
+      ::dup2(saved_, STDERR_FILENO);
+      ::close(saved_);
+    }
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  int saved_;
+};
+
+bool reads_back(const std::string& path, std::string& reason) {
+  const QuietStderr quiet;
+  auto in = OIIO::ImageInput::open(path);
+  std::vector<float> pixels;
+  if (in) {
+    const OIIO::ImageSpec& spec = in->spec();
+    pixels.resize(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
+    if (in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) return true;
+  }
+  reason = "the file written does not read back (is the disk full, or a file-size limit set?)";
+  OIIO::geterror();  // clear it: the reason above is the one that helps
+  return false;
+}
+
 void write_image(const std::string& path, const Film& film, const Metadata& metadata,
                  const std::vector<ExtraChannel>& extra) {
   const ImageFormat* image = image_format(path);
@@ -101,7 +144,7 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
         out->open(temporary, spec) && out->write_image(format, data) && out->close();
     if (!written) reason = out->geterror();
     out.reset();  // closes the file before the rename
-    return written;
+    return written && reads_back(temporary, reason);
   });
 }
 

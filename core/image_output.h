@@ -31,6 +31,12 @@ struct ExtraChannel {
 void write_image(const std::string& path, const Film& film, const Metadata& metadata,
                  const std::vector<ExtraChannel>& extra = {});
 
+// True if the image file at `path` opens and all its pixels read; otherwise sets `reason`.
+// Some writers (PNG in OpenImageIO 2.4) do not report a failed write, so a disk that
+// fills up would leave a truncated image: every file is read back before it replaces
+// the target.
+bool reads_back(const std::string& path, std::string& reason);
+
 // The book's gamma 2 and 8-bit quantisation, applied to one linear value.
 std::uint8_t encode_gamma2_8bit(float linear);
 

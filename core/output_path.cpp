@@ -120,7 +120,8 @@ std::string safe_file_stem(const std::string& scene_name) {
                        c == '.' || c == '_' || c == '-';
     stem += plain ? c : '-';
   }
-  while (!stem.empty() && stem.front() == '.') stem.erase(stem.begin());
+  // No leading dot (a hidden file) or dash (read as an option by other tools).
+  while (!stem.empty() && (stem.front() == '.' || stem.front() == '-')) stem.erase(stem.begin());
   return stem.empty() ? "render" : stem;
 }
 

@@ -34,7 +34,7 @@ void check_image_output(const std::string& path, const std::vector<std::string>&
                         bool extra_channels = false);
 
 // A file name stem made from a scene name for a default output: letters, digits, '.', '_'
-// and '-' only, no leading dot, at most 64 characters, "render" when nothing is left.
+// and '-' only, no leading dot or dash, at most 64 characters, "render" when nothing is left.
 std::string safe_file_stem(const std::string& scene_name);
 
 }  // namespace rtiow

@@ -113,7 +113,7 @@ void write_part(const std::string& path, const RenderPart& part) {
                          out->write_image(OIIO::TypeDesc::UNKNOWN, data.data()) && out->close();
     if (!written) reason = out->geterror();
     out.reset();
-    return written;
+    return written && reads_back(temporary, reason);
   });
 }
 

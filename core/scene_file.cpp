@@ -30,6 +30,22 @@ using ordered_json = nlohmann::ordered_json;
 
 constexpr int kVersion = 1;
 
+// A key as a JSON-pointer token, cut so that an error line stays short.
+std::string escape_pointer_token(const std::string& key) {
+  constexpr std::size_t kMaxShown = 40;
+  std::string out;
+  for (char c : key.substr(0, kMaxShown)) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
+  }
+  if (key.size() > kMaxShown) out += "...";
+  return one_line(out, 4 * kMaxShown);  // NUL and control characters escaped
+}
+
 // Reading: every accessor knows where it is (a JSON pointer) and says so when it refuses.
 class Reader {
  public:
@@ -55,7 +71,8 @@ class Reader {
       if (!known) {
         std::string list;
         for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-        fail(pointer + "/" + item.key(), "unknown field (expected one of: " + list + ")");
+        fail(pointer + "/" + escape_pointer_token(item.key()),
+             "unknown field (expected one of: " + list + ")");
       }
     }
   }
@@ -262,22 +279,6 @@ Material read_material(const Reader& r, const json& v, const std::string& p) {
   }
   r.fail(p + "/type",
          "unknown material type \"" + kind + "\" (expected lambertian, metal or dielectric)");
-}
-
-// A key as a JSON-pointer token, cut so that an error line stays short.
-std::string escape_pointer_token(const std::string& key) {
-  constexpr std::size_t kMaxShown = 40;
-  std::string out;
-  for (char c : key.substr(0, kMaxShown)) {
-    if (c == '~')
-      out += "~0";
-    else if (c == '/')
-      out += "~1";
-    else
-      out += c;
-  }
-  if (key.size() > kMaxShown) out += "...";
-  return out;
 }
 
 // Material names to indices. Spheres may name a material before /materials defines it
