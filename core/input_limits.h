@@ -15,9 +15,9 @@ namespace rtiow::limits {
 inline constexpr double kMaxCoordinate = 1e15;
 inline constexpr double kMaxRayComponent = 1e18;
 
-// An index of refraction outside this range is no material and only produces rays of
-// extreme direction; the book's glass is 1.5, real materials lie within 1 to 4.
-inline constexpr double kMinIor = 1e-3, kMaxIor = 1e3;
+// Indices of refraction the extremes tests render without NaN (the book's glass is 1.5,
+// real materials lie within 1 to 4).
+inline constexpr double kMinIor = 1e-3, kMaxIor = 1e6;
 
 // Image sizes: each side at most 2^20 pixels (the pixel count and memory are checked
 // separately, in validate(RenderSettings)).

@@ -50,7 +50,7 @@ void validate(const Scene& scene) {
     }
     if (const auto* d = std::get_if<Dielectric>(&m);
         d && !(d->ior >= limits::kMinIor && d->ior <= limits::kMaxIor)) {
-      throw InvalidInput(where + "index of refraction must be from 0.001 to 1000");
+      throw InvalidInput(where + "index of refraction must be from 0.001 to 1e6");
     }
   }
   if (!is_finite(scene.background.horizon) || !is_finite(scene.background.zenith) ||

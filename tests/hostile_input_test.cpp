@@ -386,7 +386,7 @@ std::vector<Case> number_cases() {
        {{"s.json", scene_with("\"radius\": 0.5", "\"radius\": 1e-60")}}},
       {"IorZero",
        2,
-       "/materials/glass/ior: must be from 0.001 to 1000",
+       "/materials/glass/ior: must be from 0.001 to 1e+06",
        render({"s.json"}),
        {{"s.json", scene_with("\"ior\": 1.5", "\"ior\": 0")}}},
       {"IorHuge",

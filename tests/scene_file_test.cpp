@@ -153,7 +153,7 @@ std::vector<BadCase> bad_cases() {
       {"material field of another type", replace(v, "\"ior\": 1.5", "\"ior\": 1.5, \"fuzz\": 0"),
        "/materials/glass/fuzz: unknown field"},
       {"zero ior", replace(v, "\"ior\": 1.5", "\"ior\": 0"),
-       "/materials/glass/ior: must be from 0.001 to 1000, got 0"},
+       "/materials/glass/ior: must be from 0.001 to 1e+06, got 0"},
       {"negative fuzz", replace(v, "\"fuzz\": 0.2", "\"fuzz\": -0.2"),
        "/materials/steel/fuzz: must be >= 0"},
       {"huge number", replace(v, "\"radius\": 100,", "\"radius\": 1e39,"),
