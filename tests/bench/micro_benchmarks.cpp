@@ -1,16 +1,22 @@
 // Micro-benchmarks (Google Benchmark): the sphere test, one rtcIntersect1 on the cover
-// scene, and one scatter of each material. Not part of the test run:
+// scene, one scatter of each material, and loading a scene file of N spheres. Not part of
+// the test run:
 //   build/bin/rtiow_microbench --benchmark_repetitions=5 --benchmark_report_aggregates_only
 
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "core/builtin_scenes.h"
 #include "core/embree_accel.h"
 #include "core/naive_accel.h"
 #include "core/sampling.h"
+#include "core/scene_file.h"
 #include "core/sphere_intersect.h"
 #include "materials/material.h"
 
@@ -80,6 +86,28 @@ void BM_Scatter(benchmark::State& state, M material) {
 BENCHMARK_CAPTURE(BM_Scatter, lambertian, Lambertian{{0.5f, 0.5f, 0.5f}});
 BENCHMARK_CAPTURE(BM_Scatter, metal_fuzz_0_3, make_metal({0.8f, 0.8f, 0.8f}, 0.3f));
 BENCHMARK_CAPTURE(BM_Scatter, dielectric, Dielectric{1.5f});
+
+// Loading a file of `spheres:N` (as `rtiow scene spheres:N` writes it, a material per
+// sphere): the streaming parse, the material names and the scene's validation.
+void BM_LoadSceneFile(benchmark::State& state) {
+  const auto spheres = std::size_t(state.range(0));
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                     ("rtiow_bench_spheres_" + std::to_string(spheres) + ".json");
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << scene_to_json(make_builtin_scene("spheres:" + std::to_string(spheres), 1));
+  }
+  const auto bytes = std::filesystem::file_size(path);
+  for (auto _ : state) benchmark::DoNotOptimize(load_scene_file(path.string()));
+  std::filesystem::remove(path);
+  state.SetBytesProcessed(std::int64_t(state.iterations() * bytes));
+  state.counters["spheres"] = double(spheres);
+}
+BENCHMARK(BM_LoadSceneFile)
+    ->Arg(100000)
+    ->Arg(1000000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 }  // namespace
 }  // namespace rtiow
