@@ -14,12 +14,12 @@
 #include "app/accuracy_reference.h"
 #include "app/cli_checks.h"
 #include "app/plot_script.h"
-#include "core/atomic_file.h"
-#include "core/builtin_scenes.h"
-#include "core/error.h"
-#include "core/image_error.h"
-#include "core/render.h"
-#include "core/render_statistics.h"
+#include "core/film/image_error.h"
+#include "core/film/render_statistics.h"
+#include "core/io/atomic_file.h"
+#include "core/io/error.h"
+#include "core/render/render.h"
+#include "core/scene/builtin_scenes.h"
 
 namespace rtiow {
 namespace {

@@ -8,10 +8,10 @@
 #include <optional>
 
 #include "app/progress_display.h"
-#include "core/error.h"
-#include "core/image_output.h"
-#include "core/render_part.h"
-#include "core/render_statistics.h"
+#include "core/film/render_statistics.h"
+#include "core/io/error.h"
+#include "core/io/image_output.h"
+#include "core/render/render_part.h"
 
 namespace rtiow {
 namespace {

@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "core/image_error.h"
-#include "core/render.h"
-#include "core/scene.h"
+#include "core/film/image_error.h"
+#include "core/render/render.h"
+#include "core/scene/scene.h"
 
 namespace rtiow {
 

@@ -16,10 +16,10 @@
 
 #include "app/bench_report.h"
 #include "app/trace_rate.h"
-#include "core/builtin_scenes.h"
-#include "core/error.h"
-#include "core/output_path.h"
-#include "core/render.h"
+#include "core/io/error.h"
+#include "core/io/output_path.h"
+#include "core/render/render.h"
+#include "core/scene/builtin_scenes.h"
 
 namespace rtiow {
 namespace {

@@ -2,7 +2,7 @@
 
 #include "app/plot_script.h"
 
-#include "core/atomic_file.h"
+#include "core/io/atomic_file.h"
 
 #include <cstdio>
 #include <cstdlib>

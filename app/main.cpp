@@ -19,7 +19,7 @@
 #include "app/mpi_session.h"
 #include "app/render_command.h"
 #include "app/scene_command.h"
-#include "core/error.h"
+#include "core/io/error.h"
 
 namespace {
 

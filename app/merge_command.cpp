@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/image_output.h"
-#include "core/output_path.h"
-#include "core/render_part.h"
+#include "core/io/error.h"
+#include "core/io/image_output.h"
+#include "core/io/output_path.h"
+#include "core/render/render_part.h"
 
 namespace rtiow {
 namespace {

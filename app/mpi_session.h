@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/sample_sum.h"
+#include "core/film/sample_sum.h"
 
 namespace rtiow {
 

@@ -9,7 +9,7 @@
 #include <mutex>
 #include <thread>
 
-#include "core/render.h"
+#include "core/render/render.h"
 
 namespace rtiow {
 

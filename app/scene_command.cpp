@@ -10,11 +10,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/atomic_file.h"
-#include "core/builtin_scenes.h"
-#include "core/error.h"
-#include "core/output_path.h"
-#include "core/scene_file.h"
+#include "core/io/atomic_file.h"
+#include "core/io/error.h"
+#include "core/io/output_path.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/scene/scene_file.h"
 
 namespace rtiow {
 namespace {

@@ -8,8 +8,8 @@
 #include <chrono>
 #include <limits>
 
-#include "core/embree_accel.h"
-#include "core/render_loop.h"
+#include "core/accel/embree_accel.h"
+#include "core/render/render_loop.h"
 
 namespace rtiow {
 namespace {

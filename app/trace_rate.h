@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/ray.h"
-#include "core/render.h"
-#include "core/scene.h"
+#include "core/geometry/ray.h"
+#include "core/render/render.h"
+#include "core/scene/scene.h"
 
 namespace rtiow {
 

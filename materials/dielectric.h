@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "core/rng.h"
-#include "core/surface_hit.h"
+#include "core/geometry/surface_hit.h"
+#include "core/sampling/rng.h"
 #include "materials/fresnel.h"
 
 namespace rtiow {

@@ -2,9 +2,9 @@
 // Lambertian (ideal diffuse) reflection as in the book: the scattered direction is the
 // normal plus a uniform unit vector, which is cosine-distributed about the normal.
 
-#include "core/rng.h"
-#include "core/sampling.h"
-#include "core/surface_hit.h"
+#include "core/geometry/surface_hit.h"
+#include "core/sampling/rng.h"
+#include "core/sampling/sampling.h"
 
 namespace rtiow {
 

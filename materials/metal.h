@@ -4,9 +4,9 @@
 
 #include <algorithm>
 
-#include "core/rng.h"
-#include "core/sampling.h"
-#include "core/surface_hit.h"
+#include "core/geometry/surface_hit.h"
+#include "core/sampling/rng.h"
+#include "core/sampling/sampling.h"
 
 namespace rtiow {
 

@@ -2,11 +2,11 @@
 
 #include <cmath>
 
-#include "core/builtin_scenes.h"
-#include "core/embree_accel.h"
-#include "core/naive_accel.h"
-#include "core/rng.h"
-#include "core/sampling.h"
+#include "core/accel/embree_accel.h"
+#include "core/accel/naive_accel.h"
+#include "core/sampling/rng.h"
+#include "core/sampling/sampling.h"
+#include "core/scene/builtin_scenes.h"
 
 namespace rtiow {
 namespace {

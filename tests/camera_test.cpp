@@ -1,8 +1,8 @@
-#include "core/camera.h"
+#include "core/scene/camera.h"
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "core/io/error.h"
 
 namespace rtiow {
 namespace {

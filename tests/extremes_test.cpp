@@ -7,12 +7,12 @@
 #include <cstdio>
 #include <limits>
 
-#include "core/builtin_scenes.h"
-#include "core/error.h"
-#include "core/ray_offset.h"
-#include "core/render.h"
-#include "core/rng.h"
-#include "core/sphere_intersect.h"
+#include "core/geometry/ray_offset.h"
+#include "core/geometry/sphere_intersect.h"
+#include "core/io/error.h"
+#include "core/render/render.h"
+#include "core/sampling/rng.h"
+#include "core/scene/builtin_scenes.h"
 #include "tests/image_compare.h"
 
 #include <OpenImageIO/imagebufalgo.h>

@@ -3,7 +3,7 @@
 
 #include <cstring>
 
-#include "core/film.h"
+#include "core/film/film.h"
 
 namespace rtiow::test {
 

@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "core/film.h"
+#include "core/film/film.h"
 
 namespace rtiow::test {
 

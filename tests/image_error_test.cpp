@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/image_error.h"
+#include "core/film/image_error.h"
 
 namespace rtiow {
 namespace {

@@ -18,8 +18,8 @@
 #include <numbers>
 #include <vector>
 
-#include "core/builtin_scenes.h"
-#include "core/render.h"
+#include "core/render/render.h"
+#include "core/scene/builtin_scenes.h"
 #include "tests/image_compare.h"
 #include "tests/student_t.h"
 

@@ -2,7 +2,7 @@
 // them (RapidJSON's own full-precision reader has known misroundings), tokens and error
 // positions right across buffer boundaries and short reads, and names interned densely.
 
-#include "core/json_stream.h"
+#include "core/scene/json_stream.h"
 
 #include <gtest/gtest.h>
 
@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/name_index.h"
+#include "core/io/error.h"
+#include "core/scene/name_index.h"
 
 namespace rtiow {
 namespace {

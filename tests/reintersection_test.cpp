@@ -11,10 +11,10 @@
 #include <cstdio>
 #include <limits>
 
-#include "core/ray_offset.h"
-#include "core/rng.h"
-#include "core/sampling.h"
-#include "core/sphere_intersect.h"
+#include "core/geometry/ray_offset.h"
+#include "core/geometry/sphere_intersect.h"
+#include "core/sampling/rng.h"
+#include "core/sampling/sampling.h"
 
 namespace rtiow {
 namespace {

@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/builtin_scenes.h"
-#include "core/error.h"
-#include "core/render.h"
+#include "core/io/error.h"
+#include "core/render/render.h"
+#include "core/scene/builtin_scenes.h"
 #include "tests/film_equality.h"
 
 namespace rtiow {

@@ -9,8 +9,8 @@
 #include <set>
 #include <vector>
 
-#include "core/rng.h"
-#include "core/sobol.h"
+#include "core/sampling/rng.h"
+#include "core/sampling/sobol.h"
 #include "tests/stream_draws.h"
 
 namespace rtiow {

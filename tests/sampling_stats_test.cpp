@@ -8,10 +8,10 @@
 #include <cmath>
 #include <vector>
 
-#include "core/builtin_scenes.h"
-#include "core/image_error.h"
-#include "core/render.h"
-#include "core/render_statistics.h"
+#include "core/film/image_error.h"
+#include "core/film/render_statistics.h"
+#include "core/render/render.h"
+#include "core/scene/builtin_scenes.h"
 
 namespace rtiow {
 namespace {

@@ -1,7 +1,7 @@
 // Scene files: every built-in scene survives the round trip to JSON bit for bit, and every
 // kind of bad file is refused with one line naming the file, the place and the problem.
 
-#include "core/scene_file.h"
+#include "core/scene/scene_file.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/builtin_scenes.h"
-#include "core/render.h"
+#include "core/render/render.h"
+#include "core/scene/builtin_scenes.h"
 #include "tests/film_equality.h"
 
 namespace rtiow {

@@ -1,11 +1,11 @@
-#include "core/sphere_intersect.h"
+#include "core/geometry/sphere_intersect.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "core/rng.h"
+#include "core/sampling/rng.h"
 
 namespace rtiow {
 namespace {

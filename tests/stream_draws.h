@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "core/rng.h"
+#include "core/sampling/rng.h"
 
 namespace rtiow::test {
 

@@ -6,8 +6,8 @@
 
 #include <chrono>
 
-#include "core/builtin_scenes.h"
-#include "core/render_loop.h"
+#include "core/render/render_loop.h"
+#include "core/scene/builtin_scenes.h"
 
 namespace rtiow {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/vec3.h"
+#include "core/geometry/vec3.h"
 
 #include <gtest/gtest.h>
 

@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "core/builtin_scenes.h"
-#include "core/embree_accel.h"
-#include "core/naive_accel.h"
-#include "core/sampling.h"
-#include "core/scene_file.h"
-#include "core/sphere_intersect.h"
+#include "core/accel/embree_accel.h"
+#include "core/accel/naive_accel.h"
+#include "core/geometry/sphere_intersect.h"
+#include "core/sampling/sampling.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/scene/scene_file.h"
 #include "materials/material.h"
 
 namespace rtiow {

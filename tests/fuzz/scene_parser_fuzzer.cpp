@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/scene_file.h"
+#include "core/scene/scene_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

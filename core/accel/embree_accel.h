@@ -1,0 +1,56 @@
+#pragma once
+// Embree BVH over the scene's spheres: ONE geometry of type RTC_GEOMETRY_TYPE_USER whose
+// bounds, intersect and occluded callbacks call the shared sphere test.
+
+#include <embree3/rtcore.h>
+
+#include "core/geometry/hit.h"
+#include "core/geometry/ray.h"
+#include "core/geometry/sphere_set.h"
+
+namespace rtiow {
+
+class EmbreeAccel {
+ public:
+  // Builds and commits the BVH. The spheres must outlive the accelerator.
+  explicit EmbreeAccel(const SphereSet& spheres);
+  ~EmbreeAccel();
+  EmbreeAccel(const EmbreeAccel&) = delete;
+  EmbreeAccel& operator=(const EmbreeAccel&) = delete;
+
+  static constexpr const char* name() { return "embree"; }
+
+  // Closest hit with 0 < t < t_max, through rtcIntersect1.
+  bool intersect(const Ray& ray, float t_max, Hit& hit) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray.org_x = ray.origin.x;
+    rh.ray.org_y = ray.origin.y;
+    rh.ray.org_z = ray.origin.z;
+    rh.ray.dir_x = ray.direction.x;
+    rh.ray.dir_y = ray.direction.y;
+    rh.ray.dir_z = ray.direction.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = t_max;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = ~0u;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit = Hit{rh.ray.tfar, rh.hit.primID};
+    return true;
+  }
+
+  // Any hit with 0 < t < t_max, through rtcOccluded1.
+  bool occluded(const Ray& ray, float t_max) const;
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+};
+
+}  // namespace rtiow

@@ -1,0 +1,25 @@
+#pragma once
+// What a render knows about its own noise, in the forms its users want: per-pixel
+// variances of the mean, the statistics channels of an EXR, the mean sample count.
+
+#include <string>
+#include <vector>
+
+#include "core/film/image_error.h"
+#include "core/io/image_output.h"
+#include "core/render/render.h"
+
+namespace rtiow {
+
+// The variance of each pixel's mean, per channel (infinite for a pixel with < 2 samples).
+std::vector<Vec3d> pixel_mean_variances(const RenderResult& result);
+
+// The film with its variances, for measure_error.
+ImageEstimate to_estimate(const RenderResult& result);
+
+// "spp" and "variance.R/G/B": the channels --stats-channels adds to an EXR.
+std::vector<ExtraChannel> statistics_channels(const RenderResult& result);
+
+double mean_samples(const RenderResult& result);
+
+}  // namespace rtiow

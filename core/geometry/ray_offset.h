@@ -1,0 +1,75 @@
+#pragma once
+// Where a hit lies and where the next ray starts. Instead of the book's fixed
+// t_min = 0.001 (wrong at large and small scales), the hit point is re-projected onto the
+// sphere, its floating-point error is bounded, and the spawned ray starts just outside that
+// error box on the side it leaves to (Woop/Wächter & Binder, Ray Tracing Gems ch. 6;
+// pbrt-v4 OffsetRayOrigin). The offset scales with the hit point, so it holds at any scale.
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "core/geometry/hit.h"
+#include "core/geometry/ray.h"
+#include "core/geometry/sphere_set.h"
+#include "core/geometry/surface_hit.h"
+
+namespace rtiow {
+
+// gamma(n) bounds the relative error of n chained float operations (Higham).
+constexpr float float_error_gamma(int n) {
+  constexpr float u = std::numeric_limits<float>::epsilon() * 0.5f;
+  return float(n) * u / (1.0f - float(n) * u);
+}
+
+// The next representable float above v (pbrt-v4 NextFloatUp), inline: std::nextafter is a
+// library call on the per-bounce path.
+inline float next_float_up(float v) {
+  if (std::isinf(v) && v > 0.0f) return v;
+  if (v == -0.0f) v = 0.0f;  // also catches +0: step from +0 to the smallest subnormal
+  std::uint32_t bits = std::bit_cast<std::uint32_t>(v);
+  bits = v >= 0.0f ? bits + 1 : bits - 1;
+  return std::bit_cast<float>(bits);
+}
+
+inline SurfaceHit make_surface_hit(const SphereSet& spheres, const Ray& ray, const Hit& hit) {
+  const Vec3d center(spheres.center(hit.sphere));
+  const double radius = spheres.radius[hit.sphere];
+  // In double, then rounded once: the point relative to a far-away centre (a huge ground
+  // sphere) keeps its precision. Re-projection removes the error t carries along the ray.
+  Vec3d offset = Vec3d(ray.origin) + double(hit.t) * Vec3d(ray.direction) - center;
+  const double dist = length(offset);
+  if (dist > 0.0) offset *= std::abs(radius) / dist;
+  const Vec3d point = center + offset;
+  SurfaceHit s;
+  s.point = Vec3(point);
+  // |stored - exact|: the rounding to float (half an ulp of the point) plus the double
+  // computation's own error, a few ulps of double of the centre and radius.
+  s.point_error =
+      float_error_gamma(1) * abs(s.point) +
+      Vec3(1e-14 * (abs(center) + Vec3d(std::abs(radius), std::abs(radius), std::abs(radius))));
+  const Vec3 outward(offset / radius);  // negative radius flips it: hollow spheres
+  s.front_face = dot(ray.direction, outward) < 0.0f;
+  s.normal = s.front_face ? outward : -outward;
+  s.material = spheres.material[hit.sphere];
+  return s;
+}
+
+// A ray leaving the surface in `direction`, with an origin outside the hit point's error box.
+inline Ray spawn_ray(const SurfaceHit& s, const Vec3& direction) {
+  const float d = dot(abs(s.normal), s.point_error);
+  Vec3 offset = d * s.normal;
+  if (dot(direction, s.normal) < 0.0f) offset = -offset;
+  Vec3 origin = s.point + offset;
+  // Round away from the surface so rounding in the addition cannot pull the origin back.
+  auto away = [](float p, float o) {
+    if (o > 0.0f) return next_float_up(p);
+    if (o < 0.0f) return -next_float_up(-p);
+    return p;
+  };
+  origin = {away(origin.x, offset.x), away(origin.y, offset.y), away(origin.z, offset.z)};
+  return Ray{origin, direction};
+}
+
+}  // namespace rtiow

@@ -1,0 +1,151 @@
+#include "core/io/image_output.h"
+
+#include "core/io/atomic_file.h"
+#include "core/io/output_path.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+namespace rtiow {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string metadata_string(const MetadataValue& v) {
+  if (const auto* i = std::get_if<std::int64_t>(&v)) return std::to_string(*i);
+  if (const auto* d = std::get_if<double>(&v)) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.9g", *d);
+    return buffer;
+  }
+  return std::get<std::string>(v);
+}
+
+void add_metadata(OIIO::ImageSpec& spec, const Metadata& unordered, bool typed) {
+  // In key order, as EXR itself stores attributes: the same metadata gives the same bytes
+  // however it was gathered (a render, or a merge of parts read back from EXR).
+  Metadata metadata = unordered;
+  std::sort(metadata.begin(), metadata.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [key, value] : metadata) {
+    const std::string name = "rtiow:" + key;
+    if (typed && std::holds_alternative<std::int64_t>(value)) {
+      // EXR has no 64-bit integer attribute: larger counts are stored as strings.
+      const auto i = std::get<std::int64_t>(value);
+      if (i >= INT32_MIN && i <= INT32_MAX) {
+        spec.attribute(name, int(i));
+      } else {
+        spec.attribute(name, std::to_string(i));
+      }
+    } else if (typed && std::holds_alternative<double>(value)) {
+      spec.attribute(name, float(std::get<double>(value)));
+    } else {
+      spec.attribute(name, metadata_string(value));
+    }
+  }
+  spec.attribute("Software", "rtiow");
+}
+
+}  // namespace
+
+std::uint8_t encode_gamma2_8bit(float linear) {
+  const float v = std::sqrt(std::clamp(std::isnan(linear) ? 0.0f : linear, 0.0f, 1.0f));
+  return static_cast<std::uint8_t>(std::lround(v * 255.0f));
+}
+
+// Quiets stderr while alive: libpng prints its own complaint about a truncated file, and the
+// error line rtiow prints is to be the only one. (Used after the render: no other thread
+// writes to stderr then.)
+class QuietStderr {
+ public:
+  QuietStderr() : saved_(::dup(STDERR_FILENO)) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+      ::dup2(null, STDERR_FILENO);
+      ::close(null);
+    }
+  }
+  ~QuietStderr() {
+    if (saved_ >= 0) {
+      ::dup2(saved_, STDERR_FILENO);
+      ::close(saved_);
+    }
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  int saved_;
+};
+
+bool reads_back(const std::string& path, std::string& reason) {
+  const QuietStderr quiet;
+  auto in = OIIO::ImageInput::open(path);
+  std::vector<float> pixels;
+  if (in) {
+    const OIIO::ImageSpec& spec = in->spec();
+    pixels.resize(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
+    if (in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) return true;
+  }
+  reason = "the file written does not read back (is the disk full, or a file-size limit set?)";
+  OIIO::geterror();  // clear it: the reason above is the one that helps
+  return false;
+}
+
+void write_image(const std::string& path, const Film& film, const Metadata& metadata,
+                 const std::vector<ExtraChannel>& extra) {
+  const ImageFormat* image = image_format(path);
+  if (!image || (!extra.empty() && !image->extra_channels)) {
+    throw std::invalid_argument("cannot write '" + path + "': not a format for this image");
+  }
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw std::runtime_error("cannot write '" + path + "': " + OIIO::geterror());
+  const bool linear_float = image->linear_float;
+  const int channels = 3 + int(extra.size());
+  OIIO::ImageSpec spec(film.width(), film.height(), channels,
+                       linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  for (std::size_t i = 0; i < extra.size(); ++i) spec.channelnames[3 + i] = extra[i].name;
+  add_metadata(spec, metadata, linear_float);
+  if (!linear_float) spec.attribute("oiio:ColorSpace", "Gamma2.0");
+
+  std::vector<float> floats;
+  std::vector<std::uint8_t> bytes;
+  const void* data;
+  if (linear_float) {
+    floats.reserve(film.pixels().size() * std::size_t(channels));
+    for (std::size_t p = 0; p < film.pixels().size(); ++p) {
+      const Color& c = film.pixels()[p];
+      floats.insert(floats.end(), {c.x, c.y, c.z});
+      for (const ExtraChannel& e : extra) floats.push_back(e.values[p]);
+    }
+    data = floats.data();
+  } else {
+    bytes.reserve(film.pixels().size() * 3);
+    for (const Color& c : film.pixels()) {
+      bytes.insert(bytes.end(),
+                   {encode_gamma2_8bit(c.x), encode_gamma2_8bit(c.y), encode_gamma2_8bit(c.z)});
+    }
+    data = bytes.data();
+  }
+
+  const OIIO::TypeDesc format = linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+  write_atomically(path, [&](const std::string& temporary, std::string& reason) {
+    const bool written =
+        out->open(temporary, spec) && out->write_image(format, data) && out->close();
+    if (!written) reason = out->geterror();
+    out.reset();  // closes the file before the rename
+    return written && reads_back(temporary, reason);
+  });
+}
+
+}  // namespace rtiow

@@ -1,0 +1,43 @@
+#pragma once
+// Writing a film through OpenImageIO. The format follows the file extension (the list is in
+// core/io/output_path.h): float formats (.exr, .hdr) get linear values, 8-bit formats (.png,
+// .jpg, .ppm, .tif, ...) the book's gamma 2. Writes go to a temporary file in the target directory
+// that is renamed over the target only when complete, so a failed write never leaves a truncated
+// image.
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "core/film/film.h"
+
+namespace rtiow {
+
+// Metadata stored with the image: typed where the format allows, as strings otherwise.
+using MetadataValue = std::variant<std::int64_t, double, std::string>;
+using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
+
+// A named per-pixel value written after R, G, B (float formats only), e.g. "spp".
+struct ExtraChannel {
+  std::string name;
+  std::vector<float> values;  // one per pixel, row major
+};
+
+// Throws std::runtime_error with OIIO's reason on failure; the target is then untouched.
+// The format must be one of image_format()'s, and extra channels need one that holds them
+// (throws std::invalid_argument otherwise): check_image_output() refuses both before work.
+void write_image(const std::string& path, const Film& film, const Metadata& metadata,
+                 const std::vector<ExtraChannel>& extra = {});
+
+// True if the image file at `path` opens and all its pixels read; otherwise sets `reason`.
+// Some writers (PNG in OpenImageIO 2.4) do not report a failed write, so a disk that
+// fills up would leave a truncated image: every file is read back before it replaces
+// the target.
+bool reads_back(const std::string& path, std::string& reason);
+
+// The book's gamma 2 and 8-bit quantisation, applied to one linear value.
+std::uint8_t encode_gamma2_8bit(float linear);
+
+}  // namespace rtiow

@@ -1,0 +1,128 @@
+#include "core/io/output_path.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+#include "core/io/error.h"
+#include "core/io/input_file.h"
+
+namespace rtiow {
+namespace {
+
+namespace fs = std::filesystem;
+
+// OpenImageIO also knows pseudo-formats that print to a terminal ("term") or discard the
+// image ("null"), and formats that cannot hold RGB as rtiow writes it: only these are real.
+// (PFM is not here: Debian's OpenImageIO 2.4 reads it but has no writer.)
+constexpr std::array<ImageFormat, 10> kFormats{{
+    {".png", false, false},
+    {".jpg", false, false},
+    {".jpeg", false, false},
+    {".ppm", false, false},
+    {".bmp", false, false},
+    {".tga", false, false},
+    {".tif", false, false},
+    {".tiff", false, false},
+    {".exr", true, true},
+    {".hdr", true, false},
+}};
+
+// The temporary written beside the target adds ".", ".tmp-<pid>": keep room for it.
+constexpr std::size_t kMaxFileNameBytes = 200;
+constexpr std::size_t kMaxPathBytes = 3000;
+
+std::string lowercase_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+const ImageFormat* image_format(const std::string& path) {
+  const std::string ext = lowercase_extension(path);
+  for (const ImageFormat& f : kFormats) {
+    if (ext == f.extension) return &f;
+  }
+  return nullptr;
+}
+
+std::string image_extensions() {
+  std::string list;
+  for (const ImageFormat& f : kFormats) list.append(list.empty() ? "" : " ").append(f.extension);
+  return list;
+}
+
+void check_output_path(const std::string& path, const std::vector<std::string>& inputs,
+                       const char* what) {
+  if (path.empty()) throw InvalidInput(std::string(what) + ": the path is empty");
+  const std::string name = std::string(what) + " " + quote_value(path);
+  if (path.find('\0') != std::string::npos) throw InvalidInput(name + ": holds a NUL byte");
+  const fs::path p(path);
+  const std::string file_name = p.filename().string();
+  if (file_name.empty() || file_name == "." || file_name == "..") {
+    throw InvalidInput(name + ": names a directory, not a file");
+  }
+  if (file_name.size() > kMaxFileNameBytes || path.size() > kMaxPathBytes) {
+    throw InvalidInput(name + ": the file name is longer than " +
+                       std::to_string(kMaxFileNameBytes) + " bytes");
+  }
+  const fs::path parent = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  struct stat info {};
+  if (::stat(parent.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) {
+    throw InvalidInput(name + ": directory " + quote_value(parent.string()) + " does not exist");
+  }
+  if (::access(parent.c_str(), W_OK | X_OK) != 0) {
+    throw InvalidInput(name + ": directory " + quote_value(parent.string()) +
+                       " is not writable: " + std::strerror(errno));
+  }
+  if (::stat(path.c_str(), &info) == 0) {
+    if (S_ISDIR(info.st_mode)) throw InvalidInput(name + ": is a directory");
+    if (!S_ISREG(info.st_mode)) {
+      throw InvalidInput(name + ": is not a regular file (a device, FIFO or socket)");
+    }
+  }
+  for (const std::string& input : inputs) {
+    if (same_file(path, input)) {
+      throw InvalidInput(name + ": is the input file " + quote_value(input) +
+                         "; writing it would destroy it");
+    }
+  }
+}
+
+void check_image_output(const std::string& path, const std::vector<std::string>& inputs,
+                        bool extra_channels) {
+  check_output_path(path, inputs);
+  const ImageFormat* format = image_format(path);
+  if (!format) {
+    throw InvalidInput("output " + quote_value(path) + ": not an image format rtiow writes (" +
+                       image_extensions() + ")");
+  }
+  if (extra_channels && !format->extra_channels) {
+    throw InvalidInput("output " + quote_value(path) +
+                       ": extra channels need a format that holds them (.exr)");
+  }
+}
+
+std::string safe_file_stem(const std::string& scene_name) {
+  constexpr std::size_t kMaxStem = 64;
+  std::string stem;
+  for (const char c : scene_name) {
+    if (stem.size() == kMaxStem) break;
+    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                       c == '.' || c == '_' || c == '-';
+    stem += plain ? c : '-';
+  }
+  // No leading dot (a hidden file) or dash (read as an option by other tools).
+  while (!stem.empty() && (stem.front() == '.' || stem.front() == '-')) stem.erase(stem.begin());
+  return stem.empty() ? "render" : stem;
+}
+
+}  // namespace rtiow

@@ -1,0 +1,38 @@
+#pragma once
+// The book's path tracer as an iterative loop: follow one path for at most `max_depth`
+// rays, multiplying the throughput by each material's attenuation, until it escapes to
+// the background or is absorbed. No recursion, no allocation.
+
+#include <cstdint>
+#include <limits>
+
+#include "core/geometry/ray_offset.h"
+#include "core/scene/scene.h"
+
+namespace rtiow {
+
+template <typename Accel>
+Color trace_path(const Scene& scene, const Accel& accel, Ray ray, int max_depth, SampleStream& rng,
+                 std::uint64_t& rays_traced) {
+  Color throughput{1.0f, 1.0f, 1.0f};
+  for (int depth = 0; depth < max_depth; ++depth) {
+    if (!is_traceable(ray)) return Color{};
+    Hit hit;
+    ++rays_traced;
+    if (!accel.intersect(ray, std::numeric_limits<float>::infinity(), hit)) {
+      return throughput * scene.background(ray.direction);
+    }
+    const SurfaceHit surface = make_surface_hit(scene.spheres, ray, hit);
+    Color attenuation;
+    Vec3 direction;
+    if (!scatter(scene.materials[surface.material], ray.direction, surface, rng, attenuation,
+                 direction)) {
+      return Color{};
+    }
+    throughput *= attenuation;
+    ray = spawn_ray(surface, direction);
+  }
+  return Color{};  // the depth limit: the book counts the path as black
+}
+
+}  // namespace rtiow

@@ -1,0 +1,89 @@
+#pragma once
+// One render: a scene, settings and a seed in, a film out. The result is a pure function
+// of (scene, settings without `threads`, seed): identical for any thread count and for
+// either accelerator.
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/film/film.h"
+#include "core/film/pixel_variance.h"
+#include "core/film/sample_sum.h"
+#include "core/scene/scene.h"
+
+namespace rtiow {
+
+enum class AccelKind { Embree, Naive };
+
+std::string to_string(AccelKind kind);
+AccelKind parse_accel(const std::string& name);  // throws InvalidInput
+
+// How a pixel sample's first dimensions (pixel position, lens, the first bounce) are
+// drawn: the book's independent uniform numbers, or Owen-scrambled Sobol points (see
+// core/sampling/sobol.h). Later bounces always use independent numbers.
+enum class SamplerKind { Independent, Sobol };
+
+std::string to_string(SamplerKind kind);
+SamplerKind parse_sampler(const std::string& name);  // throws InvalidInput
+
+// The dimensions the Sobol sampler covers: pixel position (2), lens (2) and the first
+// bounce (up to 3; with the 8th, whatever the next draw is). On the cover scene at 64..256
+// spp, camera dimensions alone cut relMSE 1.27x, with the first bounce 2.5-2.9x (README).
+inline constexpr int kSobolSampledDimensions = 8;
+
+struct RenderSettings {
+  int width = 0;
+  int height = 0;
+  int samples_per_pixel = 1;       // how many samples to render per pixel...
+  std::uint64_t first_sample = 0;  // ...starting at this sample index (a share of a render)
+  int max_depth = 50;
+  std::uint64_t seed = 0;
+  int threads = 0;                  // 0: all cores
+  double time_limit_seconds = 0.0;  // > 0: stop after the pass that reaches this much time
+  AccelKind accel = AccelKind::Embree;
+  SamplerKind sampler = SamplerKind::Independent;
+  // Adaptive sampling when > 0: a pixel stops once its relative standard error is below
+  // this, after at least `min_samples` and at most `samples_per_pixel` samples.
+  double target_error = 0.0;
+  int min_samples = 16;
+};
+
+// Throws InvalidInput naming the setting: non-positive size or spp, negative depth,
+// an image too large to hold in memory, negative threads, a bad target error.
+void validate(const RenderSettings& settings);
+
+// Shared with other threads while the render runs: counters it updates (for a progress
+// display) and a request to stop that it honours at the end of the current pass.
+struct RenderProgress {
+  std::atomic<std::uint64_t> samples_done{0};  // pixel samples, over all pixels
+  std::atomic<std::uint64_t> rays_traced{0};
+  std::atomic<bool> stop_requested{false};
+};
+
+struct RenderResult {
+  Film film;                                 // the mean of the samples completed
+  std::vector<PixelSum> sums;                // their exact sums, for merging shares of a render
+  std::vector<PixelSquares> squares;         // for each pixel's variance
+  std::vector<std::uint32_t> pixel_samples;  // each pixel's sample count
+  int samples_completed = 0;                 // per pixel (the most any pixel took when adaptive)
+  bool stopped = false;                      // a stop request ended the render early
+  bool time_limited = false;                 // the time limit ended it (with the samples completed)
+  double build_seconds = 0.0;                // accelerator construction
+  double render_seconds = 0.0;               // the sample loop
+  std::uint64_t rays_traced = 0;
+};
+
+// Everything a render checks before any work: the settings, the scene, and that the camera
+// rays of this image size are traceable. Throws InvalidInput.
+void validate(const Scene& scene, const RenderSettings& settings);
+
+// Validates the scene's camera and the settings (throwing InvalidInput before any work),
+// builds the accelerator and renders in passes: each pass adds a few samples to every
+// pixel, and the pixel sums continue across passes in sample order, so the image does not
+// depend on how samples were grouped into passes.
+RenderResult render(const Scene& scene, const RenderSettings& settings,
+                    RenderProgress* progress = nullptr);
+
+}  // namespace rtiow

@@ -1,0 +1,268 @@
+#include "core/render/render_part.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "core/io/atomic_file.h"
+#include "core/io/error.h"
+#include "core/io/input_file.h"
+#include "core/io/input_limits.h"
+#include "core/sampling/rng.h"
+#include "core/scene/scene_file.h"
+
+namespace rtiow {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kColorChannels = 3, kWordsPerSum = 4;
+constexpr int kChannels = kColorChannels + kColorChannels * kWordsPerSum;
+
+std::string hex(std::uint64_t v) {
+  char buffer[17];
+  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(v));
+  return buffer;
+}
+
+// A whole number from a header field, or InvalidInput naming the file and the field.
+std::uint64_t header_number(const OIIO::ImageSpec& spec, const std::string& path,
+                            const char* field) {
+  const std::string text = spec.get_string_attribute(field);
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+    throw InvalidInput("part file " + quote_value(path) + ": header field " + field +
+                       " is missing or not a whole number (" + quote_value(text, 40) + ")");
+  }
+  return value;
+}
+
+std::int64_t metadata_int(const Metadata& m, const std::string& key) {
+  for (const auto& [k, v] : m) {
+    if (k == key) return std::get<std::int64_t>(v);
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::string render_digest(const Scene& scene, const RenderSettings& settings) {
+  std::string text = scene_to_json(scene);
+  for (const std::uint64_t v : {std::uint64_t(settings.width), std::uint64_t(settings.height),
+                                std::uint64_t(settings.max_depth), settings.seed}) {
+    text.append("|").append(std::to_string(v));
+  }
+  text.append("|").append(to_string(settings.sampler));
+  std::uint64_t h = 0x6a09e667f3bcc908ull;
+  for (unsigned char c : text) h = hash_combine(h, c);
+  return hex(h);
+}
+
+void write_part(const std::string& path, const RenderPart& part) {
+  OIIO::ImageSpec spec(part.width, part.height, kChannels, OIIO::TypeDesc::UINT);
+  spec.channelnames.clear();
+  spec.channelformats.clear();
+  for (const char* c : {"R", "G", "B"}) {
+    spec.channelnames.emplace_back(c);
+    spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
+  }
+  for (const char* c : {"R", "G", "B"}) {
+    for (int w = 0; w < kWordsPerSum; ++w) {
+      spec.channelnames.push_back(std::string("sum.") + c + "." + std::to_string(w));
+      spec.channelformats.push_back(OIIO::TypeDesc::UINT);
+    }
+  }
+  spec.attribute("compression", "zip");
+  for (const auto& [key, value] : part.metadata) {
+    if (const auto* i = std::get_if<std::int64_t>(&value)) {
+      spec.attribute("rtiow:" + key, std::to_string(*i));
+    } else if (const auto* d = std::get_if<double>(&value)) {
+      spec.attribute("rtiow:" + key, float(*d));
+    } else {
+      spec.attribute("rtiow:" + key, std::get<std::string>(value));
+    }
+  }
+  spec.attribute("rtiow:part_first_sample", std::to_string(part.first_sample));
+  spec.attribute("rtiow:part_samples", std::to_string(part.samples));
+  spec.attribute("rtiow:part_job_samples", std::to_string(part.job_samples));
+  spec.attribute("rtiow:digest", part.digest);
+
+  // Native layout: per pixel 3 floats then 12 words, all 4 bytes wide.
+  std::vector<std::uint32_t> data(std::size_t(part.width) * std::size_t(part.height) * kChannels);
+  for (std::size_t p = 0; p < part.sums.size(); ++p) {
+    std::uint32_t* pixel = &data[p * kChannels];
+    const Color mean = part.sums[p].mean(part.samples);
+    std::memcpy(pixel, &mean, sizeof mean);
+    for (int c = 0; c < kColorChannels; ++c) {
+      const auto bits = static_cast<uint128>(part.sums[p].channel(c));
+      for (int w = 0; w < kWordsPerSum; ++w) {
+        pixel[kColorChannels + c * kWordsPerSum + w] = std::uint32_t(bits >> (32 * w));
+      }
+    }
+  }
+
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw std::runtime_error("cannot write '" + path + "': no EXR writer");
+  write_atomically(path, [&](const std::string& temporary, std::string& reason) {
+    const bool written = out->open(temporary, spec) &&
+                         out->write_image(OIIO::TypeDesc::UNKNOWN, data.data()) && out->close();
+    if (!written) reason = out->geterror();
+    out.reset();
+    return written && reads_back(temporary, reason);
+  });
+}
+
+RenderPart read_part(const std::string& path) {
+  check_input_file(path, limits::kMaxPartFileBytes, "part file");
+  const std::string name = "part file " + quote_value(path);
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw InvalidInput(name + ": cannot read: " + one_line(OIIO::geterror(), 200));
+  const OIIO::ImageSpec& spec = in->spec();
+  // EXR stores channels sorted by name, so find each word of each sum by its name.
+  int word_channel[kColorChannels][kWordsPerSum];
+  bool complete = spec.nchannels == kChannels && !spec.get_string_attribute("rtiow:digest").empty();
+  for (int c = 0; c < kColorChannels && complete; ++c) {
+    for (int w = 0; w < kWordsPerSum && complete; ++w) {
+      const std::string channel = std::string("sum.") + "RGB"[c] + "." + std::to_string(w);
+      const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), channel);
+      complete = it != spec.channelnames.end();
+      if (complete) word_channel[c][w] = int(it - spec.channelnames.begin());
+    }
+  }
+  if (!complete) {
+    throw InvalidInput(name + ": not a part file (render one with --sample-range or --part)");
+  }
+  // The header decides what is allocated: check it all first.
+  if (spec.width < 1 || spec.height < 1 || spec.width > limits::kMaxImageSide ||
+      spec.height > limits::kMaxImageSide || spec.depth != 1 || spec.x != 0 || spec.y != 0 ||
+      spec.full_width != spec.width || spec.full_height != spec.height) {
+    throw InvalidInput(name + ": header field size " + std::to_string(spec.width) + "x" +
+                       std::to_string(spec.height) + " is not an image rtiow renders");
+  }
+  RenderSettings size;
+  size.width = spec.width, size.height = spec.height;
+  try {
+    validate(size);  // pixel count and memory
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(name + ": " + e.what());
+  }
+  RenderPart part;
+  part.path = path;
+  part.width = spec.width;
+  part.height = spec.height;
+  part.first_sample = header_number(spec, path, "rtiow:part_first_sample");
+  part.samples = header_number(spec, path, "rtiow:part_samples");
+  part.job_samples = header_number(spec, path, "rtiow:part_job_samples");
+  if (part.samples == 0 || part.job_samples == 0 || part.job_samples > limits::kMaxSampleIndex ||
+      part.first_sample >= part.job_samples ||
+      part.samples > part.job_samples - part.first_sample) {
+    throw InvalidInput(name + ": header fields say samples [" + std::to_string(part.first_sample) +
+                       ", +" + std::to_string(part.samples) + ") of a job of " +
+                       std::to_string(part.job_samples) + ": not a share of it");
+  }
+  part.digest = spec.get_string_attribute("rtiow:digest");
+  for (const auto& attribute : spec.extra_attribs) {
+    const std::string attribute_name = attribute.name().string();
+    if (attribute_name.rfind("rtiow:", 0) != 0 || attribute_name.rfind("rtiow:part_", 0) == 0 ||
+        attribute_name == "rtiow:digest") {
+      continue;
+    }
+    const std::string key = attribute_name.substr(6);
+    if (attribute.type() == OIIO::TypeDesc::FLOAT) {
+      part.metadata.emplace_back(key, double(attribute.get_float()));
+    } else {
+      const std::string text = attribute.get_string();
+      std::int64_t number = 0;
+      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
+      const bool integer = !text.empty() && text.front() != '-' && error == std::errc() &&
+                           end == text.data() + text.size();
+      part.metadata.emplace_back(key, integer ? MetadataValue(number) : MetadataValue(text));
+    }
+  }
+  // Every channel read as 32-bit words, whatever the file stores: the layout is fixed.
+  std::vector<std::uint32_t> data(std::size_t(spec.width) * std::size_t(spec.height) * kChannels);
+  if (!in->read_image(0, 0, 0, kChannels, OIIO::TypeDesc::UINT, data.data())) {
+    throw InvalidInput(name + ": cannot read its pixels: " + one_line(in->geterror(), 200));
+  }
+  part.sums.resize(std::size_t(spec.width) * std::size_t(spec.height));
+  for (std::size_t p = 0; p < part.sums.size(); ++p) {
+    const std::uint32_t* pixel = &data[p * kChannels];
+    for (int c = 0; c < kColorChannels; ++c) {
+      uint128 bits = 0;
+      for (int w = kWordsPerSum - 1; w >= 0; --w) bits = (bits << 32) | pixel[word_channel[c][w]];
+      part.sums[p].set_channel(c, static_cast<int128>(bits));
+    }
+  }
+  return part;
+}
+
+MergedRender merge_parts(const std::vector<RenderPart>& input) {
+  if (input.empty()) throw InvalidInput("merge: no parts given");
+  std::vector<const RenderPart*> parts;
+  for (const RenderPart& p : input) parts.push_back(&p);
+  const RenderPart& reference = *parts.front();
+  for (const RenderPart* p : parts) {
+    if (p->digest != reference.digest || p->width != reference.width ||
+        p->height != reference.height || p->job_samples != reference.job_samples) {
+      throw InvalidInput("merge: " + p->path + " is a share of a different render than " +
+                         reference.path + " (scene, size, depth, seed or spp differ)");
+    }
+  }
+  std::sort(parts.begin(), parts.end(), [](const RenderPart* a, const RenderPart* b) {
+    return a->first_sample < b->first_sample;
+  });
+  std::uint64_t next = 0;
+  const RenderPart* previous = nullptr;
+  for (const RenderPart* p : parts) {
+    const auto range = [](std::uint64_t a, std::uint64_t b) {
+      return "[" + std::to_string(a) + ", " + std::to_string(b) + ")";
+    };
+    if (p->first_sample < next) {
+      throw InvalidInput("merge: " + previous->path + " and " + p->path +
+                         " overlap: both hold samples " +
+                         range(p->first_sample, std::min(next, p->first_sample + p->samples)));
+    }
+    if (p->first_sample > next) {
+      throw InvalidInput("merge: samples " + range(next, p->first_sample) + " are missing" +
+                         (previous ? " (between " + previous->path + " and " + p->path + ")"
+                                   : " (before " + p->path + ")"));
+    }
+    next = p->first_sample + p->samples;
+    previous = p;
+  }
+  if (next != reference.job_samples) {
+    throw InvalidInput("merge: samples [" + std::to_string(next) + ", " +
+                       std::to_string(reference.job_samples) + ") of the job are missing (after " +
+                       previous->path + ")");
+  }
+
+  MergedRender merged;
+  merged.samples = next;
+  std::vector<PixelSum> sums = reference.sums;
+  for (const RenderPart* p : parts) {
+    if (p == &reference) continue;
+    for (std::size_t i = 0; i < sums.size(); ++i) sums[i] += p->sums[i];
+  }
+  merged.film = Film(reference.width, reference.height);
+  resolve(sums, next, merged.film);
+  // Common metadata, with the per-part counts totalled.
+  std::int64_t rays = 0;
+  for (const RenderPart* p : parts) rays += metadata_int(p->metadata, "rays_traced");
+  for (const auto& [key, value] : reference.metadata) {
+    if (key == "spp") {
+      merged.metadata.emplace_back(key, std::int64_t(next));
+    } else if (key == "rays_traced") {
+      merged.metadata.emplace_back(key, rays);
+    } else if (key != "render_seconds" && key != "spp_requested" && key != "stopped") {
+      merged.metadata.emplace_back(key, value);
+    }
+  }
+  return merged;
+}
+
+}  // namespace rtiow

@@ -1,0 +1,52 @@
+#pragma once
+// A share of a render, in a file: the samples [first, first + count) of every pixel, kept as
+// their exact sums so that shares rendered anywhere merge into the bits of one render.
+//
+// The file is an OpenEXR image: R, G, B hold the share's own mean (so it can be looked at),
+// and twelve 32-bit unsigned channels sum.{R,G,B}.{0..3} hold the 128-bit sums. Metadata
+// names the samples held and a digest of the scene and settings, which merging checks.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/film/sample_sum.h"
+#include "core/io/image_output.h"
+#include "core/render/render.h"
+#include "core/scene/scene.h"
+
+namespace rtiow {
+
+struct RenderPart {
+  std::string path;
+  int width = 0, height = 0;
+  std::uint64_t first_sample = 0, samples = 0;
+  std::uint64_t job_samples = 0;  // the whole job's samples per pixel, so a missing share shows
+  std::string digest;             // scene + settings that change pixels
+  Metadata metadata;              // everything else the part recorded (scene, seed, rays...)
+  std::vector<PixelSum> sums;
+};
+
+// What must match for two shares to belong to one render: the scene, the image size, the
+// depth and the seed (not the thread count or the accelerator: they do not change pixels).
+std::string render_digest(const Scene& scene, const RenderSettings& settings);
+
+// Writes a share atomically. `path` must end in .exr.
+void write_part(const std::string& path, const RenderPart& part);
+
+// Reads a share; throws InvalidInput naming the file (and the field) when it is not one:
+// every header field is checked before the pixels are allocated.
+RenderPart read_part(const std::string& path);
+
+struct MergedRender {
+  Film film;
+  std::uint64_t samples = 0;
+  Metadata metadata;  // the parts' common metadata, with spp and rays_traced totalled
+};
+
+// Checks that the parts belong to one render (same digest, size and job), that they neither
+// overlap nor leave a gap from sample 0 to the job's last, and adds them. Throws InvalidInput
+// naming the files at fault.
+MergedRender merge_parts(const std::vector<RenderPart>& parts);
+
+}  // namespace rtiow

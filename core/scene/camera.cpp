@@ -1,0 +1,121 @@
+#include "core/scene/camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "core/io/error.h"
+#include "core/io/input_limits.h"
+#include "core/sampling/sampling.h"
+
+namespace rtiow {
+namespace {
+
+std::string number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
+
+void require(bool ok, const std::string& message) {
+  if (!ok) throw InvalidInput("camera: " + message);
+}
+
+// Each component finite and within the range rtiow traces.
+void require_bounded(const Vec3d& v, const char* name) {
+  for (int i = 0; i < 3; ++i) {
+    const double c = v[std::size_t(i)];
+    require(std::isfinite(c) && std::abs(c) <= limits::kMaxCoordinate,
+            std::string(name) + "[" + std::to_string(i) + "] must be finite and within +-" +
+                number(limits::kMaxCoordinate) + " (the range rtiow traces), got " + number(c));
+  }
+}
+
+}  // namespace
+
+void validate(const CameraSettings& s) {
+  require_bounded(s.lookfrom, "lookfrom");
+  require_bounded(s.lookat, "lookat");
+  require_bounded(s.vup, "vup");
+  const Vec3d view = s.lookat - s.lookfrom;
+  require(length_squared(view) > 0.0, "lookfrom equals lookat, so there is no view direction");
+  // Relative test: vup must not be (nearly) parallel to the view direction.
+  const double vup_len = length(s.vup);
+  require(vup_len > 0.0, "vup is the zero vector");
+  require(length(cross(normalize(view), s.vup / vup_len)) > 1e-9,
+          "vup is parallel to the view direction (lookat - lookfrom)");
+  require(std::isfinite(s.vfov_degrees) && s.vfov_degrees > 0.0 && s.vfov_degrees < 180.0,
+          "vfov must lie strictly between 0 and 180 degrees, got " + number(s.vfov_degrees));
+  require(std::isfinite(s.aperture) && s.aperture >= 0.0 && s.aperture <= limits::kMaxCoordinate,
+          "aperture must be from 0 to " + number(limits::kMaxCoordinate) + ", got " +
+              number(s.aperture));
+  require(std::isfinite(s.focus_distance) && s.focus_distance >= kMinFocusDistance &&
+              s.focus_distance <= limits::kMaxCoordinate,
+          "focus distance must be from " + number(kMinFocusDistance) + " to " +
+              number(limits::kMaxCoordinate) + ", got " + number(s.focus_distance));
+}
+
+void validate(const CameraSettings& s, int image_width, int image_height) {
+  validate(s);
+  // The film spans focus_distance * tan(vfov / 2) * aspect: a wide view of a wide image
+  // far away can still produce rays Embree refuses, so bound the rays themselves.
+  const Camera camera(s, image_width, image_height);
+  require(camera.max_ray_component() <= limits::kMaxRayComponent,
+          "its rays reach " + number(camera.max_ray_component()) + ", beyond the limit of " +
+              number(limits::kMaxRayComponent) + " (narrow vfov, focus distance or aspect ratio)");
+}
+
+Camera::Camera(const CameraSettings& s, int image_width, int image_height) {
+  validate(s);
+  if (image_width <= 0 || image_height <= 0) throw InvalidInput("camera: the image has no pixels");
+  const double aspect = double(image_width) / double(image_height);
+  const double h = std::tan(s.vfov_degrees * std::numbers::pi / 360.0);
+  const double viewport_height = 2.0 * h;
+  const double viewport_width = aspect * viewport_height;
+
+  const Vec3d w = normalize(s.lookfrom - s.lookat);
+  const Vec3d u = normalize(cross(s.vup, w));
+  const Vec3d v = cross(w, u);
+
+  const Vec3d horizontal = s.focus_distance * viewport_width * u;
+  const Vec3d vertical = -s.focus_distance * viewport_height * v;  // film t grows downwards
+  const Vec3d upper_left = s.lookfrom - 0.5 * horizontal - 0.5 * vertical - s.focus_distance * w;
+
+  origin_ = Vec3(s.lookfrom);
+  // Store the corner relative to the origin: rays are built as direction vectors, so a
+  // camera far from the world origin does not lose the film's precision.
+  upper_left_ = Vec3(upper_left - s.lookfrom);
+  horizontal_ = Vec3(horizontal);
+  vertical_ = Vec3(vertical);
+  u_ = Vec3(u);
+  v_ = Vec3(v);
+  lens_radius_ = float(0.5 * s.aperture);
+}
+
+double Camera::max_ray_component() const {
+  double most = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const auto axis = std::size_t(i);
+    // Film corners and lens offsets bound every ray's direction and origin, per axis.
+    const double lens =
+        double(lens_radius_) * (std::abs(double(u_[axis])) + std::abs(double(v_[axis])));
+    const double direction = std::abs(double(upper_left_[axis])) +
+                             std::abs(double(horizontal_[axis])) +
+                             std::abs(double(vertical_[axis])) + lens;
+    most = std::max({most, direction, std::abs(double(origin_[axis])) + lens});
+  }
+  return std::isfinite(most) ? most : std::numeric_limits<double>::infinity();
+}
+
+Ray Camera::generate_ray(float s, float t, float lens_u, float lens_v) const {
+  const Vec3 film = upper_left_ + s * horizontal_ + t * vertical_;
+  if (lens_radius_ == 0.0f) return Ray{origin_, film};
+  const Vec3 disk = lens_radius_ * sample_in_unit_disk(lens_u, lens_v);
+  const Vec3 offset = disk.x * u_ + disk.y * v_;
+  return Ray{origin_ + offset, film - offset};
+}
+
+}  // namespace rtiow

@@ -1,0 +1,52 @@
+#pragma once
+// The book's positionable thin-lens camera. Settings are validated once; the basis is
+// derived in double so large or tiny scenes keep their precision, and rays are float.
+
+#include "core/geometry/ray.h"
+#include "core/geometry/vec3.h"
+
+namespace rtiow {
+
+struct CameraSettings {
+  Vec3d lookfrom{0, 0, 0};
+  Vec3d lookat{0, 0, -1};
+  Vec3d vup{0, 1, 0};
+  double vfov_degrees = 90.0;   // vertical field of view
+  double aperture = 0.0;        // lens diameter; 0 is a pinhole
+  double focus_distance = 1.0;  // distance to the plane in focus
+};
+
+// The smallest focus distance: below it float film vectors lose their direction.
+inline constexpr double kMinFocusDistance = 1e-12;
+
+// Throws InvalidInput naming the offending setting: lookfrom == lookat, vup parallel to
+// the view direction, vfov outside (0, 180), aperture < 0, a focus distance outside
+// [kMinFocusDistance, limits::kMaxCoordinate], a position beyond limits::kMaxCoordinate.
+void validate(const CameraSettings& settings);
+
+// The same, and the camera rays of an image of this size must be traceable (every component
+// within limits::kMaxRayComponent).
+void validate(const CameraSettings& settings, int image_width, int image_height);
+
+class Camera {
+ public:
+  Camera(const CameraSettings& settings, int image_width, int image_height);
+
+  // The ray through film position (s, t) in [0,1]^2, s to the right, t downwards from the
+  // top-left corner; (lens_u, lens_v) in [0,1)^2 pick the point on the lens.
+  Ray generate_ray(float s, float t, float lens_u, float lens_v) const;
+
+  bool has_lens() const { return lens_radius_ > 0.0f; }
+
+  // A bound on the magnitude of any component of any ray's origin or direction.
+  double max_ray_component() const;
+
+ private:
+  Vec3 origin_;
+  Vec3 upper_left_;  // film corner at the focus distance
+  Vec3 horizontal_, vertical_;
+  Vec3 u_, v_;  // lens basis
+  float lens_radius_ = 0.0f;
+};
+
+}  // namespace rtiow

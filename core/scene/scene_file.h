@@ -1,0 +1,38 @@
+#pragma once
+// Scene files: JSON that models exactly what the renderer models. The format, version 1:
+//
+//   {
+//     "version": 1,
+//     "name": "my scene",                       optional, default: the file's stem
+//     "scene_seed": 7,                          optional provenance of a generated layout
+//     "camera": {"lookfrom": [13, 2, 3], "lookat": [0, 0, 0], "vup": [0, 1, 0],
+//                "vfov": 20, "aperture": 0.1, "focus_distance": 10},
+//     "image": {"width": 1200, "aspect_ratio": 1.5, "spp": 500, "depth": 50},
+//     "background": {"horizon": [1, 1, 1], "zenith": [0.5, 0.7, 1]},
+//     "materials": {"ground": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]},
+//                   "chrome": {"type": "metal", "albedo": [0.7, 0.6, 0.5], "fuzz": 0},
+//                   "glass": {"type": "dielectric", "ior": 1.5}},
+//     "spheres": [{"center": [0, -1000, 0], "radius": 1000, "material": "ground"}]
+//   }
+//
+// Unknown fields are errors (a typo must not silently change a render). Every error names
+// the file and the place: "line L, column C" for syntax, a JSON pointer for content.
+
+#include <string>
+
+#include "core/io/error.h"
+#include "core/scene/scene.h"
+
+namespace rtiow {
+
+// Parses scene JSON; `source` names it in errors. Throws InvalidInput.
+Scene parse_scene(const std::string& text, const std::string& source);
+
+// Reads and parses a scene file. Throws InvalidInput (including for unreadable files).
+Scene load_scene_file(const std::string& path);
+
+// The scene as version-1 JSON. Floats are written in their shortest form that reads back
+// to the same bits, so a written scene renders the identical image.
+std::string scene_to_json(const Scene& scene);
+
+}  // namespace rtiow
