@@ -20,9 +20,9 @@ class RecordingAccel {
   RecordingAccel(const EmbreeAccel& inner, tbb::enumerable_thread_specific<std::vector<Ray>>& log)
       : inner_(inner), log_(log) {}
 
-  bool intersect(const Ray& ray, float t_max, Hit& hit) const {
+  std::optional<Hit> intersect(const Ray& ray, float t_max) const {
     log_.local().push_back(ray);
-    return inner_.intersect(ray, t_max, hit);
+    return inner_.intersect(ray, t_max);
   }
 
  private:
@@ -39,7 +39,7 @@ std::vector<Ray> record_traced_rays(const Scene& scene, const RenderSettings& se
   tbb::enumerable_thread_specific<std::vector<Ray>> log;
   const RecordingAccel recorder(embree, log);
   Film film(settings.width, settings.height);
-  render_tiles(scene, camera, recorder, settings, film, nullptr);
+  render_tiles(RenderContext<RecordingAccel>{scene, camera, recorder, settings}, film, nullptr);
   std::vector<Ray> rays;
   for (const auto& part : log) rays.insert(rays.end(), part.begin(), part.end());
   return rays;
@@ -51,16 +51,15 @@ TraceRate measure_trace_rate(const Scene& scene, const std::vector<Ray>& rays, i
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   const auto start = std::chrono::steady_clock::now();
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 4096),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        std::uint64_t local = 0;
-                        Hit hit;
-                        for (std::size_t i = range.begin(); i < range.end(); ++i) {
-                          local += embree.intersect(rays[i], std::numeric_limits<float>::infinity(),
-                                                    hit);
-                        }
-                        hits += local;
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, rays.size(), 4096),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          std::uint64_t local = 0;
+          for (std::size_t i = range.begin(); i < range.end(); ++i) {
+            local += embree.intersect(rays[i], std::numeric_limits<float>::infinity()).has_value();
+          }
+          hits += local;
+        });
   });
   TraceRate rate;
   rate.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "core/geometry/surface_hit.h"
-#include "core/sampling/rng.h"
+#include "core/sampling/sampler.h"
 #include "materials/fresnel.h"
 
 namespace rtiow {

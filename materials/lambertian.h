@@ -3,7 +3,7 @@
 // normal plus a uniform unit vector, which is cosine-distributed about the normal.
 
 #include "core/geometry/surface_hit.h"
-#include "core/sampling/rng.h"
+#include "core/sampling/sampler.h"
 #include "core/sampling/sampling.h"
 
 namespace rtiow {

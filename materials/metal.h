@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "core/geometry/surface_hit.h"
-#include "core/sampling/rng.h"
+#include "core/sampling/sampler.h"
 #include "core/sampling/sampling.h"
 
 namespace rtiow {

@@ -1,4 +1,4 @@
-#include "core/sampling/rng.h"
+#include "core/sampling/sampler.h"
 #include "tests/stream_draws.h"
 
 #include <gtest/gtest.h>

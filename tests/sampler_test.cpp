@@ -9,7 +9,7 @@
 #include <set>
 #include <vector>
 
-#include "core/sampling/rng.h"
+#include "core/sampling/sampler.h"
 #include "core/sampling/sobol.h"
 #include "tests/stream_draws.h"
 

@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "core/sampling/rng.h"
+#include "core/sampling/sampler.h"
 
 namespace rtiow::test {
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <optional>
 
 #include "core/render/render_loop.h"
 #include "core/scene/builtin_scenes.h"
@@ -16,12 +17,12 @@ namespace {
 // microseconds, so that both threads get tiles even on a loaded machine.
 struct RacyAccel {
   mutable int queries = 0;
-  bool intersect(const Ray&, float, Hit&) const {
+  std::optional<Hit> intersect(const Ray&, float) const {
     queries = queries + 1;
     const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(5);
     while (std::chrono::steady_clock::now() < until) {
     }
-    return false;
+    return std::nullopt;
   }
 };
 
@@ -36,7 +37,7 @@ TEST(TsanCanary, RaceInTheLoopBodyIsReported) {
   const Camera camera(scene.camera, s.width, s.height);
   PixelAccumulators pixels(std::size_t(s.width * s.height));
   const RacyAccel accel;
-  render_pass(scene, camera, accel, s, 1, pixels, nullptr);
+  render_pass(RenderContext<RacyAccel>{scene, camera, accel, s}, 1, pixels, nullptr);
   EXPECT_GT(accel.queries, 0);
 }
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/geometry/sphere_bounds.h"
 #include "core/geometry/sphere_intersect.h"
 #include "core/render/thread_sanitizer.h"
 
@@ -19,23 +20,15 @@ void throw_on_device_error(RTCDevice device, const char* what) {
   }
 }
 
-// Bounds of one sphere, padded by a few ulps: the box must contain every point the float
-// sphere test can report, or Embree could skip a hit the naive loop finds.
+// Bounds of one sphere for Embree's build (the padding is explained in sphere_bounds.h).
 void sphere_bounds(const RTCBoundsFunctionArguments* args) {
   const auto& s = *static_cast<const SphereSet*>(args->geometryUserPtr);
   tsan_acquire(&s);  // Embree's build threads start after the spheres were written
   const unsigned i = args->primID;
-  const float r = std::abs(s.radius[i]);
-  auto pad = [](float lo, float hi, float& out_lo, float& out_hi) {
-    const float slack =
-        4.0f * std::numeric_limits<float>::epsilon() * std::max(std::abs(lo), std::abs(hi));
-    out_lo = lo - slack;
-    out_hi = hi + slack;
-  };
+  const Box box = padded_sphere_bounds(s.center(i), s.radius[i]);
   RTCBounds* b = args->bounds_o;
-  pad(s.center_x[i] - r, s.center_x[i] + r, b->lower_x, b->upper_x);
-  pad(s.center_y[i] - r, s.center_y[i] + r, b->lower_y, b->upper_y);
-  pad(s.center_z[i] - r, s.center_z[i] + r, b->lower_z, b->upper_z);
+  b->lower_x = box.lower.x, b->lower_y = box.lower.y, b->lower_z = box.lower.z;
+  b->upper_x = box.upper.x, b->upper_y = box.upper.y, b->upper_z = box.upper.z;
   tsan_release(&s);  // ...and finish before the commit returns
 }
 
@@ -60,18 +53,6 @@ void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
   rh->hit.instID[0] = args->context->instID[0];
 }
 
-void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
-  if (!args->valid[0]) return;
-  const auto& s = *static_cast<const SphereSet*>(args->geometryUserPtr);
-  const unsigned i = args->primID;
-  RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
-  const Ray ray{{r->org_x, r->org_y, r->org_z}, {r->dir_x, r->dir_y, r->dir_z}};
-  float t;
-  if (intersect_sphere(s.center(i), s.radius[i], ray, r->tnear, r->tfar, t)) {
-    r->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" marker
-  }
-}
-
 }  // namespace
 
 EmbreeAccel::EmbreeAccel(const SphereSet& spheres) {
@@ -89,7 +70,6 @@ EmbreeAccel::EmbreeAccel(const SphereSet& spheres) {
     rtcSetGeometryUserData(geometry, const_cast<SphereSet*>(&spheres));
     rtcSetGeometryBoundsFunction(geometry, sphere_bounds, nullptr);
     rtcSetGeometryIntersectFunction(geometry, sphere_intersect);
-    rtcSetGeometryOccludedFunction(geometry, sphere_occluded);
     rtcCommitGeometry(geometry);
     tsan_release(&spheres);
     rtcAttachGeometry(scene_, geometry);
@@ -107,26 +87,6 @@ EmbreeAccel::EmbreeAccel(const SphereSet& spheres) {
 EmbreeAccel::~EmbreeAccel() {
   rtcReleaseScene(scene_);
   rtcReleaseDevice(device_);
-}
-
-bool EmbreeAccel::occluded(const Ray& ray, float t_max) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRay r;
-  r.org_x = ray.origin.x;
-  r.org_y = ray.origin.y;
-  r.org_z = ray.origin.z;
-  r.dir_x = ray.direction.x;
-  r.dir_y = ray.direction.y;
-  r.dir_z = ray.direction.z;
-  r.tnear = 0.0f;
-  r.tfar = t_max;
-  r.time = 0.0f;
-  r.mask = ~0u;
-  r.id = 0;
-  r.flags = 0;
-  rtcOccluded1(scene_, &context, &r);
-  return r.tfar < 0.0f;
 }
 
 }  // namespace rtiow

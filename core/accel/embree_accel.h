@@ -1,8 +1,10 @@
 #pragma once
 // Embree BVH over the scene's spheres: ONE geometry of type RTC_GEOMETRY_TYPE_USER whose
-// bounds, intersect and occluded callbacks call the shared sphere test.
+// bounds and intersect callbacks call the shared sphere test.
 
 #include <embree3/rtcore.h>
+
+#include <optional>
 
 #include "core/geometry/hit.h"
 #include "core/geometry/ray.h"
@@ -21,7 +23,7 @@ class EmbreeAccel {
   static constexpr const char* name() { return "embree"; }
 
   // Closest hit with 0 < t < t_max, through rtcIntersect1.
-  bool intersect(const Ray& ray, float t_max, Hit& hit) const {
+  std::optional<Hit> intersect(const Ray& ray, float t_max) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh;
@@ -40,13 +42,9 @@ class EmbreeAccel {
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    hit = Hit{rh.ray.tfar, rh.hit.primID};
-    return true;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    return Hit{rh.ray.tfar, rh.hit.primID};
   }
-
-  // Any hit with 0 < t < t_max, through rtcOccluded1.
-  bool occluded(const Ray& ray, float t_max) const;
 
  private:
   RTCDevice device_ = nullptr;

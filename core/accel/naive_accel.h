@@ -23,7 +23,7 @@ class NaiveAccel {
   // compiler vectorises marks the few spheres whose line the ray comes near
   // (sphere_may_hit), then the full sphere test runs on those alone. The answer is the one
   // a sphere-by-sphere loop gives, bit for bit.
-  bool intersect(const Ray& ray, float t_max, Hit& hit) const {
+  std::optional<Hit> intersect(const Ray& ray, float t_max) const {
     const SphereSet& s = *spheres_;
     const std::size_t n = s.size();
     float closest = t_max;
@@ -48,19 +48,8 @@ class NaiveAccel {
         }
       }
     }
-    if (found == kNone) return false;
-    hit = Hit{closest, found};
-    return true;
-  }
-
-  // Any hit with 0 < t < t_max.
-  bool occluded(const Ray& ray, float t_max) const {
-    const SphereSet& s = *spheres_;
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      float t;
-      if (intersect_sphere(s.center(i), s.radius[i], ray, 0.0f, t_max, t)) return true;
-    }
-    return false;
+    if (found == kNone) return std::nullopt;
+    return Hit{closest, found};
   }
 
  private:

@@ -5,24 +5,25 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
+
+#include "core/accel/accelerator.h"
 
 #include "core/geometry/ray_offset.h"
 #include "core/scene/scene.h"
 
 namespace rtiow {
 
-template <typename Accel>
+template <Accelerator Accel>
 Color trace_path(const Scene& scene, const Accel& accel, Ray ray, int max_depth, SampleStream& rng,
                  std::uint64_t& rays_traced) {
   Color throughput{1.0f, 1.0f, 1.0f};
   for (int depth = 0; depth < max_depth; ++depth) {
     if (!is_traceable(ray)) return Color{};
-    Hit hit;
     ++rays_traced;
-    if (!accel.intersect(ray, std::numeric_limits<float>::infinity(), hit)) {
-      return throughput * scene.background(ray.direction);
-    }
-    const SurfaceHit surface = make_surface_hit(scene.spheres, ray, hit);
+    const std::optional<Hit> hit = accel.intersect(ray, std::numeric_limits<float>::infinity());
+    if (!hit) return throughput * scene.background(ray.direction);
+    const SurfaceHit surface = make_surface_hit(scene.spheres, ray, *hit);
     Color attenuation;
     Vec3 direction;
     if (!scatter(scene.materials[surface.material], ray.direction, surface, rng, attenuation,

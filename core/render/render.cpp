@@ -11,7 +11,10 @@
 #include "core/accel/naive_accel.h"
 #include "core/io/error.h"
 #include "core/io/input_limits.h"
+#include "core/render/adaptive_sampling.h"
 #include "core/render/render_loop.h"
+#include "core/render/stopwatch.h"
+#include "core/render/uniform_passes.h"
 #include "core/scene/camera.h"
 
 namespace rtiow {
@@ -23,137 +26,6 @@ constexpr std::uint64_t kMaxPixels = 1ull << 31;
 constexpr std::uint64_t kBytesPerPixel =
     sizeof(Color) + sizeof(PixelSum) + sizeof(PixelSquares) + sizeof(std::uint32_t);
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// How many samples the next pass takes: about a second's worth, judged from the last pass,
-// so a stop request is honoured soon. (Grouping never changes the image.)
-std::uint64_t next_pass_samples(std::uint64_t last_pass, double last_seconds,
-                                std::uint64_t remaining) {
-  constexpr double kTargetSeconds = 1.0;
-  double n = double(last_pass) * (last_seconds > 0 ? kTargetSeconds / last_seconds : 4.0);
-  n = std::clamp(n, 1.0, 4.0 * double(last_pass));
-  return std::min(remaining, std::uint64_t(n));
-}
-
-// Every pixel gets the same samples, in passes of about a second.
-template <typename Accel>
-void render_uniform(const Scene& scene, const Camera& camera, const Accel& accel,
-                    const RenderSettings& settings, RenderProgress* progress,
-                    PixelAccumulators& pixels, RenderResult& result) {
-  const auto render_start = Clock::now();
-  const auto total = std::uint64_t(settings.samples_per_pixel);
-  std::uint64_t done = 0, pass = 1;
-  while (done < total) {
-    if (done > 0 && progress->stop_requested.load()) {
-      result.stopped = true;
-      break;
-    }
-    const auto pass_start = Clock::now();
-    result.rays_traced +=
-        render_pass(scene, camera, accel, settings, std::uint32_t(done + pass), pixels, progress);
-    done += pass;
-    const double pass_seconds = seconds_since(pass_start);
-    const double seconds_per_sample = pass_seconds / double(pass);
-    pass = next_pass_samples(pass, pass_seconds, total - done);
-    if (settings.time_limit_seconds > 0.0 && done < total) {
-      // End within one pass of the limit: stop once it is reached, and size the next pass to
-      // what the remaining time holds at the rate just measured.
-      const double left = settings.time_limit_seconds - seconds_since(render_start);
-      if (left <= 0.0) {
-        result.time_limited = true;
-        break;
-      }
-      const double fits = left / std::max(seconds_per_sample, 1e-9);
-      pass = std::clamp<std::uint64_t>(std::uint64_t(fits), 1, pass);
-    }
-  }
-  result.samples_completed = int(done);
-}
-
-// The relative variance per sample a pixel is judged by: the mean of its neighbours' in
-// the 3x3 window around it, itself left out. A rule that looked at the pixel's own samples
-// would stop more often after lucky ones (a bright sample lowers the relative error, a
-// missed rare path the variance) and bias the pixel; its neighbours' samples are
-// independent of its own, so its mean stays unbiased. A 1x1 image has no neighbours and
-// uses its own.
-std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
-                                                    const PixelAccumulators& pixels) {
-  const int w = settings.width, h = settings.height;
-  std::vector<double> own(pixels.samples.size());
-  for (std::size_t p = 0; p < own.size(); ++p) {
-    own[p] = relative_sample_variance(pixels.sums[p], pixels.squares[p], pixels.samples[p]);
-  }
-  std::vector<double> judged(own.size());
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      double total = 0;
-      int count = 0;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int nx = x + dx, ny = y + dy;
-          if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-          total += own[std::size_t(ny) * std::size_t(w) + std::size_t(nx)];
-          ++count;
-        }
-      }
-      const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
-      judged[p] = count > 0 ? total / count : own[p];
-    }
-  }
-  return judged;
-}
-
-// Adaptive sampling: every pixel takes the minimum, then each round doubles the samples of
-// the pixels whose estimated relative standard error is still above the target (up to the
-// maximum). Decisions are made for all pixels before a round renders, from counts and sums
-// that do not depend on timing, so the image is the same for any thread count. Few looks
-// (one per doubling) and the neighbour-based estimate keep the stopping rule's bias small.
-// A stop request or the time limit ends the render mid-round; untouched pixels keep their
-// samples.
-template <typename Accel>
-void render_adaptive(const Scene& scene, const Camera& camera, const Accel& accel,
-                     const RenderSettings& settings, RenderProgress* progress,
-                     PixelAccumulators& pixels, RenderResult& result) {
-  const auto render_start = Clock::now();
-  const auto most = std::uint32_t(settings.samples_per_pixel);
-  const auto least = std::min(most, std::uint32_t(settings.min_samples));
-  const double target_variance = settings.target_error * settings.target_error;
-  std::atomic<bool> stop_requested{false}, time_out{false};
-  const std::function<bool()> may_skip = [&] {
-    if (progress->stop_requested.load()) stop_requested = true;
-    if (settings.time_limit_seconds > 0.0 &&
-        seconds_since(render_start) >= settings.time_limit_seconds) {
-      time_out = true;
-    }
-    return stop_requested.load() || time_out.load();
-  };
-  std::vector<std::uint32_t> targets(pixels.samples.size(), least);
-  std::vector<std::size_t> list(pixels.samples.size());
-  for (std::size_t p = 0; p < list.size(); ++p) list[p] = p;
-  // The first round is never cut short: every pixel gets its minimum, so none is empty.
-  const std::function<bool()> never = [] { return false; };
-  for (bool first_round = true; !list.empty(); first_round = false) {
-    result.rays_traced += render_pixel_list(scene, camera, accel, settings, list, targets, pixels,
-                                            progress, first_round ? never : may_skip);
-    if (stop_requested || time_out) break;
-    const std::vector<double> judged = neighbourhood_relative_variance(settings, pixels);
-    list.clear();
-    for (std::size_t p = 0; p < targets.size(); ++p) {
-      const std::uint32_t n = pixels.samples[p];
-      if (n >= most || judged[p] / double(n) <= target_variance) continue;
-      targets[p] = std::min(most, 2 * n);
-      list.push_back(p);
-    }
-  }
-  result.stopped = stop_requested.load();
-  result.time_limited = time_out.load() && !result.stopped;
-  result.samples_completed = int(*std::max_element(pixels.samples.begin(), pixels.samples.end()));
-}
-
 template <typename Accel>
 RenderResult render_with(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                          RenderProgress* progress) {
@@ -163,13 +35,14 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   const auto build_start = Clock::now();
   const Accel accel(scene.spheres);
   result.build_seconds = seconds_since(build_start);
+  const RenderContext<Accel> ctx{scene, camera, accel, settings};
 
   PixelAccumulators pixels(std::size_t(settings.width) * std::size_t(settings.height));
   const auto render_start = Clock::now();
   if (settings.target_error > 0.0) {
-    render_adaptive(scene, camera, accel, settings, progress, pixels, result);
+    render_adaptive(ctx, progress, pixels, result);
   } else {
-    render_uniform(scene, camera, accel, settings, progress, pixels, result);
+    render_uniform(ctx, progress, pixels, result);
   }
   result.render_seconds = seconds_since(render_start);
   result.film = Film(settings.width, settings.height);
@@ -184,16 +57,6 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
 
 std::string to_string(AccelKind kind) {
   return kind == AccelKind::Embree ? EmbreeAccel::name() : NaiveAccel::name();
-}
-
-std::string to_string(SamplerKind kind) {
-  return kind == SamplerKind::Independent ? "independent" : "sobol";
-}
-
-SamplerKind parse_sampler(const std::string& name) {
-  if (name == "independent") return SamplerKind::Independent;
-  if (name == "sobol") return SamplerKind::Sobol;
-  throw InvalidInput("unknown sampler '" + name + "' (known: independent, sobol)");
 }
 
 AccelKind parse_accel(const std::string& name) {

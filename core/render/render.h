@@ -11,6 +11,7 @@
 #include "core/film/film.h"
 #include "core/film/pixel_variance.h"
 #include "core/film/sample_sum.h"
+#include "core/sampling/sampler.h"
 #include "core/scene/scene.h"
 
 namespace rtiow {
@@ -19,19 +20,6 @@ enum class AccelKind { Embree, Naive };
 
 std::string to_string(AccelKind kind);
 AccelKind parse_accel(const std::string& name);  // throws InvalidInput
-
-// How a pixel sample's first dimensions (pixel position, lens, the first bounce) are
-// drawn: the book's independent uniform numbers, or Owen-scrambled Sobol points (see
-// core/sampling/sobol.h). Later bounces always use independent numbers.
-enum class SamplerKind { Independent, Sobol };
-
-std::string to_string(SamplerKind kind);
-SamplerKind parse_sampler(const std::string& name);  // throws InvalidInput
-
-// The dimensions the Sobol sampler covers: pixel position (2), lens (2) and the first
-// bounce (up to 3; with the 8th, whatever the next draw is). On the cover scene at 64..256
-// spp, camera dimensions alone cut relMSE 1.27x, with the first bounce 2.5-2.9x (README).
-inline constexpr int kSobolSampledDimensions = 8;
 
 struct RenderSettings {
   int width = 0;

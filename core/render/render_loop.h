@@ -26,17 +26,27 @@ namespace rtiow {
 
 inline constexpr int kTileSize = 16;
 
+// What every per-pixel function needs, passed as one: the scene, its camera, the
+// accelerator built over it and the render's settings.
+template <typename Accel>
+struct RenderContext {
+  const Scene& scene;
+  const Camera& camera;
+  const Accel& accel;
+  const RenderSettings& settings;
+};
+
 // Adds samples [first, last) of pixel (x, y) to `sum` and `squares`. The sum is exact
 // (PixelSum), so it is the same whatever thread runs it and however the samples are split.
 template <typename Accel>
-void accumulate_pixel(const Scene& scene, const Camera& camera, const Accel& accel,
-                      const RenderSettings& settings, int x, int y, std::uint64_t first,
+void accumulate_pixel(const RenderContext<Accel>& ctx, int x, int y, std::uint64_t first,
                       std::uint64_t last, PixelSum& sum, PixelSquares& squares,
                       std::uint64_t& rays) {
+  const RenderSettings& settings = ctx.settings;
+  const Camera& camera = ctx.camera;
   const float inv_w = 1.0f / float(settings.width), inv_h = 1.0f / float(settings.height);
-  const int sobol_dimensions = settings.sampler == SamplerKind::Sobol ? kSobolSampledDimensions : 0;
   for (std::uint64_t i = first; i < last; ++i) {
-    SampleStream rng(settings.seed, std::uint32_t(x), std::uint32_t(y), i, sobol_dimensions);
+    SampleStream rng(settings.sampler, settings.seed, std::uint32_t(x), std::uint32_t(y), i);
     const float s = (float(x) + rng.next_1d()) * inv_w;
     const float t = (float(y) + rng.next_1d()) * inv_h;
     float lens_u = 0.0f, lens_v = 0.0f;
@@ -46,7 +56,7 @@ void accumulate_pixel(const Scene& scene, const Camera& camera, const Accel& acc
       rng.skip(2);
     }
     const Ray ray = camera.generate_ray(s, t, lens_u, lens_v);
-    const Color value = trace_path(scene, accel, ray, settings.max_depth, rng, rays);
+    const Color value = trace_path(ctx.scene, ctx.accel, ray, settings.max_depth, rng, rays);
     sum.add(value);
     squares.add(value);
   }
@@ -85,14 +95,14 @@ void parallel_over(const RenderSettings& settings, const Range& range, const Bod
 
 // Brings pixel p from its current count to `wanted` samples; returns the samples added.
 template <typename Accel>
-std::uint64_t advance_pixel(const Scene& scene, const Camera& camera, const Accel& accel,
-                            const RenderSettings& settings, std::size_t p, std::uint32_t wanted,
+std::uint64_t advance_pixel(const RenderContext<Accel>& ctx, std::size_t p, std::uint32_t wanted,
                             PixelAccumulators& pixels, std::uint64_t& rays) {
   std::uint32_t& count = pixels.samples[p];
   if (wanted <= count) return 0;
+  const RenderSettings& settings = ctx.settings;
   const int x = int(p % std::size_t(settings.width)), y = int(p / std::size_t(settings.width));
-  accumulate_pixel(scene, camera, accel, settings, x, y, settings.first_sample + count,
-                   settings.first_sample + wanted, pixels.sums[p], pixels.squares[p], rays);
+  accumulate_pixel(ctx, x, y, settings.first_sample + count, settings.first_sample + wanted,
+                   pixels.sums[p], pixels.squares[p], rays);
   const std::uint64_t added = wanted - count;
   count = wanted;
   return added;
@@ -111,9 +121,9 @@ inline void count_work(std::uint64_t task_rays, std::uint64_t task_samples,
 // One pass over the image in 16x16 tiles: every pixel is brought to `samples` samples.
 // Returns the number of rays traced.
 template <typename Accel>
-std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel& accel,
-                          const RenderSettings& settings, std::uint32_t samples,
+std::uint64_t render_pass(const RenderContext<Accel>& ctx, std::uint32_t samples,
                           PixelAccumulators& pixels, RenderProgress* progress) {
+  const RenderSettings& settings = ctx.settings;
   std::atomic<std::uint64_t> rays{0};
   parallel_over(
       settings,
@@ -123,8 +133,7 @@ std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel&
         for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
           for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
             const std::size_t p = std::size_t(y) * std::size_t(settings.width) + std::size_t(x);
-            tile_samples +=
-                advance_pixel(scene, camera, accel, settings, p, samples, pixels, tile_rays);
+            tile_samples += advance_pixel(ctx, p, samples, pixels, tile_rays);
           }
         }
         count_work(tile_rays, tile_samples, rays, progress);
@@ -137,22 +146,20 @@ std::uint64_t render_pass(const Scene& scene, const Camera& camera, const Accel&
 // leave threads idle. `may_skip` is asked before each group of pixels; once it returns
 // true (a stop request, a deadline) the rest keep their counts. Returns the rays traced.
 template <typename Accel>
-std::uint64_t render_pixel_list(const Scene& scene, const Camera& camera, const Accel& accel,
-                                const RenderSettings& settings,
+std::uint64_t render_pixel_list(const RenderContext<Accel>& ctx,
                                 const std::vector<std::size_t>& list,
                                 const std::vector<std::uint32_t>& targets,
                                 PixelAccumulators& pixels, RenderProgress* progress,
                                 const std::function<bool()>& may_skip) {
   constexpr std::size_t kPixelsPerTask = 8;
   std::atomic<std::uint64_t> rays{0};
-  parallel_over(settings, tbb::blocked_range<std::size_t>(0, list.size(), kPixelsPerTask),
+  parallel_over(ctx.settings, tbb::blocked_range<std::size_t>(0, list.size(), kPixelsPerTask),
                 [&](const tbb::blocked_range<std::size_t>& part) {
                   if (may_skip()) return;
                   std::uint64_t part_rays = 0, part_samples = 0;
                   for (std::size_t i = part.begin(); i < part.end(); ++i) {
                     const std::size_t p = list[i];
-                    part_samples += advance_pixel(scene, camera, accel, settings, p, targets[p],
-                                                  pixels, part_rays);
+                    part_samples += advance_pixel(ctx, p, targets[p], pixels, part_rays);
                   }
                   count_work(part_rays, part_samples, rays, progress);
                 });
@@ -162,11 +169,11 @@ std::uint64_t render_pixel_list(const Scene& scene, const Camera& camera, const 
 // Renders every pixel of `film` (already sized) at all samples in one pass and returns the
 // number of rays traced.
 template <typename Accel>
-std::uint64_t render_tiles(const Scene& scene, const Camera& camera, const Accel& accel,
-                           const RenderSettings& settings, Film& film, RenderProgress* progress) {
+std::uint64_t render_tiles(const RenderContext<Accel>& ctx, Film& film, RenderProgress* progress) {
+  const RenderSettings& settings = ctx.settings;
   PixelAccumulators pixels(std::size_t(settings.width) * std::size_t(settings.height));
   const auto n = std::uint32_t(settings.samples_per_pixel);
-  const std::uint64_t rays = render_pass(scene, camera, accel, settings, n, pixels, progress);
+  const std::uint64_t rays = render_pass(ctx, n, pixels, progress);
   resolve(pixels.sums, n, film);
   return rays;
 }

@@ -9,8 +9,6 @@
 
 #include <cstdint>
 
-#include "core/sampling/sobol.h"
-
 namespace rtiow {
 
 // A 64-bit finaliser (splitmix64): decorrelates nearby integers such as pixel indices.
@@ -62,45 +60,6 @@ class Pcg32 {
   static constexpr std::uint64_t kMultiplier = 0x5851f42d4c957f2dull;
   std::uint64_t state_{};
   std::uint64_t inc_{};
-};
-
-// The random numbers of one pixel sample, drawn dimension by dimension. With
-// `sobol_dimensions` = 0 (the book's independent sampler) all come from the sample's PCG32
-// stream; otherwise the first `sobol_dimensions` are Owen-scrambled Sobol points indexed by
-// the sample number, scrambled per (seed, pixel, dimension), and the rest from the stream.
-class SampleStream {
- public:
-  constexpr SampleStream(std::uint64_t seed, std::uint32_t px, std::uint32_t py,
-                         std::uint64_t sample_index, int sobol_dimensions = 0)
-      : SampleStream(hash_combine(hash_combine(mix64(seed), px), py), sample_index,
-                     sobol_dimensions) {}
-
-  constexpr float next_1d() {
-    if (dimension_ < sobol_dimensions_) {
-      const int d = dimension_++;
-      const auto scramble = std::uint32_t(hash_combine(pixel_hash_, std::uint64_t(d)) >> 32);
-      return scrambled_sobol(std::uint32_t(sample_index_), d, scramble);
-    }
-    return rng_.next_float();
-  }
-
-  // Leaves `n` dimensions unused (a pinhole camera has no lens to sample), so the
-  // dimensions after them keep their meaning.
-  constexpr void skip(int n) { dimension_ += n; }
-
- private:
-  constexpr SampleStream(std::uint64_t pixel_hash, std::uint64_t sample_index, int sobol_dimensions)
-      : rng_(pixel_hash, hash_combine(pixel_hash, sample_index)),
-        pixel_hash_(pixel_hash),
-        sample_index_(sample_index),
-        sobol_dimensions_(sobol_dimensions < kSobolDimensions ? sobol_dimensions
-                                                              : kSobolDimensions) {}
-
-  Pcg32 rng_;
-  std::uint64_t pixel_hash_;
-  std::uint64_t sample_index_;
-  int sobol_dimensions_;
-  int dimension_ = 0;
 };
 
 }  // namespace rtiow

@@ -58,9 +58,8 @@ void BM_IntersectCover(benchmark::State& state) {
   const Accel accel(scene.spheres);
   const auto rays = cover_like_rays(4096);
   std::size_t i = 0;
-  Hit hit;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(accel.intersect(rays[i++ & 4095], kInf, hit));
+    benchmark::DoNotOptimize(accel.intersect(rays[i++ & 4095], kInf));
   }
   state.SetItemsProcessed(state.iterations());
 }
