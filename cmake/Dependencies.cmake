@@ -14,12 +14,9 @@ rtiow_require(OpenImageIO libopenimageio-dev)
 rtiow_require(CLI11 libcli11-dev)
 rtiow_require(nlohmann_json nlohmann-json3-dev)
 # RapidJSON reads scene files (its SAX reader is 2.7x faster than nlohmann's on a big scene);
-# nlohmann-json writes JSON. Debian's RapidJSON config gives directories, not a target.
+# nlohmann-json writes JSON. Debian's RapidJSON config gives directories (RAPIDJSON_INCLUDE_DIRS),
+# not a target: the core uses them privately, so the installed package does not need it.
 rtiow_require(RapidJSON rapidjson-dev)
-if(NOT TARGET rtiow_rapidjson)
-  add_library(rtiow_rapidjson INTERFACE)
-  target_include_directories(rtiow_rapidjson SYSTEM INTERFACE ${RAPIDJSON_INCLUDE_DIRS})
-endif()
 find_package(Threads REQUIRED)
 
 # MPI is optional: ON when Debian's OpenMPI (libopenmpi-dev) is installed, unless turned off.

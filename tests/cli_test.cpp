@@ -81,6 +81,25 @@ TEST(Cli, HelpIsAvailableAndTrue) {
   }
 }
 
+// docs/usage.md shows `rtiow --help` and `rtiow render --help`: they must be what the binary
+// prints, or the docs have gone stale.
+TEST(Cli, TheDocsShowTheHelpAsTheBinaryPrintsIt) {
+  const std::string docs = slurp(fs::path(RTIOW_SOURCE_DIR) / "docs" / "usage.md");
+  auto trimmed = [](std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    return s;
+  };
+  for (const std::string args : {"--help", "render --help"}) {
+    const std::string prompt = "$ build/bin/rtiow " + args + "\n";
+    const std::size_t begin = docs.find(prompt);
+    ASSERT_NE(begin, std::string::npos) << "docs/usage.md does not show " << args;
+    const std::size_t from = begin + prompt.size();
+    const std::string shown = docs.substr(from, docs.find("\n```", from) - from);
+    EXPECT_EQ(trimmed(shown), trimmed(run_rtiow(args).stdout_text))
+        << "docs/usage.md shows stale help for `rtiow " << args << "`";
+  }
+}
+
 TEST(Cli, ListsTheBuiltinScenes) {
   const CommandResult r = run_rtiow("render --list-scenes");
   EXPECT_EQ(r.exit_code, 0);

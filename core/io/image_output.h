@@ -28,7 +28,7 @@ struct ExtraChannel {
 // Throws std::runtime_error with OIIO's reason on failure; the target is then untouched.
 // The format must be one of image_format()'s, and extra channels need one that holds them
 // (throws std::invalid_argument otherwise): check_image_output() refuses both before work.
-void write_image(const std::string& path, const Film& film, const Metadata& metadata,
+void write_image(const std::string& path, const Film& film, const Metadata& metadata = {},
                  const std::vector<ExtraChannel>& extra = {});
 
 // True if the image file at `path` opens and all its pixels read; otherwise sets `reason`.
