@@ -19,10 +19,8 @@ bool launched_by_mpi() {
   return false;
 }
 
-void add_sums(void* in, void* inout, int* count, MPI_Datatype*) {
-  const auto* a = static_cast<const PixelSum*>(in);
-  auto* b = static_cast<PixelSum*>(inout);
-  for (int i = 0; i < *count; ++i) b[i] += a[i];
+void add_pixel_sums(void* in, void* inout, int* count, MPI_Datatype*) {
+  add_sums(static_cast<PixelSum*>(inout), static_cast<const PixelSum*>(in), std::size_t(*count));
 }
 
 }  // namespace
@@ -45,7 +43,7 @@ void MpiSession::reduce_sums(std::vector<PixelSum>& sums) const {
   MPI_Type_contiguous(int(sizeof(PixelSum)), MPI_BYTE, &pixel);
   MPI_Type_commit(&pixel);
   MPI_Op add;
-  MPI_Op_create(add_sums, 1, &add);
+  MPI_Op_create(add_pixel_sums, 1, &add);
   std::vector<PixelSum> total(rank_ == 0 ? sums.size() : 0);
   // In slices: MPI counts are int, and a 4K film is 8M pixels of 48 bytes.
   constexpr std::size_t kSlice = 1 << 20;

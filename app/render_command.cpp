@@ -1,7 +1,6 @@
 #include "app/render_command.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -23,7 +22,9 @@
 #include "core/io/output_path.h"
 #include "core/render/render.h"
 #include "core/render/render_loop.h"
+#include "core/render/render_metadata.h"
 #include "core/render/render_part.h"
+#include "core/render/sample_share.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/scene/scene_file.h"
 
@@ -138,43 +139,6 @@ std::string describe_samples(const RenderSettings& s, const RenderResult& r) {
   return text;
 }
 
-Metadata make_metadata(const RenderOptions& o, const Scene& scene, const RenderSettings& s,
-                       const RenderResult& r) {
-  Metadata metadata{{"scene", scene.name}};
-  if (scene.layout_seed) metadata.emplace_back("scene_seed", std::int64_t(*scene.layout_seed));
-  metadata.insert(metadata.end(), {
-                                      {"depth", std::int64_t(s.max_depth)},
-                                      {"seed", std::int64_t(s.seed)},
-                                      {"sampler", to_string(s.sampler)},
-                                      {"accelerator", to_string(s.accel)},
-                                      {"rays_traced", std::int64_t(r.rays_traced)},
-                                  });
-  if (s.target_error > 0) {
-    // Each pixel has its own count: the range and the mean, not one "spp".
-    const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
-    metadata.insert(metadata.end(), {
-                                        {"target_error", s.target_error},
-                                        {"spp_min", std::int64_t(*least)},
-                                        {"spp_max", std::int64_t(*most)},
-                                        {"spp_mean", mean_samples(r)},
-                                        {"spp_limit", std::int64_t(s.samples_per_pixel)},
-                                    });
-  } else {
-    metadata.emplace_back("spp", std::int64_t(r.samples_completed));
-  }
-  if (r.stopped) {
-    if (s.target_error <= 0)
-      metadata.emplace_back("spp_requested", std::int64_t(s.samples_per_pixel));
-    metadata.emplace_back("stopped", std::string("interrupted by a signal"));
-  } else if (r.time_limited) {
-    char limit[64];
-    std::snprintf(limit, sizeof limit, "time limit of %g s", s.time_limit_seconds);
-    metadata.emplace_back("stopped", std::string(limit));
-  }
-  if (!o.reproducible) metadata.emplace_back("render_seconds", r.render_seconds);
-  return metadata;
-}
-
 Scene load_scene(const RenderOptions& o, bool scene_option_given) {
   if (o.scene_file.empty()) return make_builtin_scene(o.scene, o.scene_seed);
   if (scene_option_given) {
@@ -189,22 +153,6 @@ std::string output_path(const RenderOptions& o, bool output_given, const Scene& 
   return output_given ? o.output : default_output(scene.name);
 }
 
-// "A<sep>B" as two whole numbers, or nothing (no sign, no spaces, no overflow).
-std::optional<std::pair<std::uint64_t, std::uint64_t>> parse_pair(const std::string& text,
-                                                                  char separator) {
-  const auto at = text.find(separator);
-  if (at == std::string::npos) return std::nullopt;
-  std::uint64_t a = 0, b = 0;
-  const char* end = text.data() + text.size();
-  const auto first = std::from_chars(text.data(), text.data() + at, a);
-  const auto second = std::from_chars(text.data() + at + 1, end, b);
-  if (at == 0 || first.ec != std::errc() || first.ptr != text.data() + at ||
-      second.ec != std::errc() || second.ptr != end || at + 1 == text.size()) {
-    return std::nullopt;
-  }
-  return std::pair{a, b};
-}
-
 // "A:B" or "i/n" into the share of samples this process renders; nothing when neither.
 // The job is settings.samples_per_pixel samples; a share must lie within it.
 void apply_share(const RenderOptions& o, const std::string& output, RenderSettings& settings) {
@@ -217,32 +165,9 @@ void apply_share(const RenderOptions& o, const std::string& output, RenderSettin
                        ": a share of a render is written as a part file, which must be .exr");
   }
   const auto total = std::uint64_t(settings.samples_per_pixel);
-  if (!o.part.empty()) {
-    const auto share = parse_pair(o.part, '/');
-    if (!share) throw InvalidInput("--part " + quote_value(o.part) + ": expected i/n, e.g. 0/4");
-    const auto [i, n] = *share;
-    if (n == 0 || i >= n) throw InvalidInput("--part " + quote_value(o.part) + ": need 0 <= i < n");
-    if (n > total) {
-      throw InvalidInput("--part " + quote_value(o.part) + ": " + std::to_string(total) +
-                         " samples per pixel do not make " + std::to_string(n) + " shares");
-    }
-    settings.first_sample = total * i / n;  // n <= total < 2^31: no overflow
-    settings.samples_per_pixel = int(total * (i + 1) / n - settings.first_sample);
-    return;
-  }
-  const auto range = parse_pair(o.sample_range, ':');
-  if (!range) {
-    throw InvalidInput("--sample-range " + quote_value(o.sample_range) +
-                       ": expected A:B, e.g. 0:100");
-  }
-  const auto [a, b] = *range;
-  if (a >= b || b > total) {
-    throw InvalidInput("--sample-range " + quote_value(o.sample_range) +
-                       ": need A < B <= the job's " + std::to_string(total) +
-                       " samples per pixel (--spp)");
-  }
-  settings.first_sample = a;
-  settings.samples_per_pixel = int(b - a);
+  restrict_to(
+      o.part.empty() ? parse_sample_range(o.sample_range, total) : parse_part(o.part, total),
+      settings);
 }
 
 // Under mpirun: this rank's equal share of the samples of every pixel.
@@ -254,13 +179,12 @@ void apply_rank_share(const RenderOptions& o, const MpiSession& mpi, RenderSetti
         "share the samples themselves");
   }
   const auto total = std::uint64_t(settings.samples_per_pixel);
-  const auto ranks = std::uint64_t(mpi.size()), rank = std::uint64_t(mpi.rank());
+  const auto ranks = std::uint64_t(mpi.size());
   if (total < ranks) {
     throw InvalidInput(std::to_string(total) + " samples per pixel cannot be shared by " +
                        std::to_string(ranks) + " ranks");
   }
-  settings.first_sample = total * rank / ranks;
-  settings.samples_per_pixel = int(total * (rank + 1) / ranks - settings.first_sample);
+  restrict_to(equal_share(total, std::uint64_t(mpi.rank()), ranks), settings);
 }
 
 // Adaptive sampling decides each pixel's stop on all its samples, so it cannot be split
@@ -282,110 +206,132 @@ void check_adaptive_options(const RenderOptions& o, const std::string& output,
   }
 }
 
+// A render as the options ask for it: the scene, the settings of this process's share, and
+// where it goes. Everything is checked here, before any work.
+struct Job {
+  Scene scene;
+  RenderSettings settings;
+  std::string output;
+  int samples_asked = 0;  // the whole job's, before it is cut into shares
+  bool share = false;     // written as a part file
+};
+
+std::vector<std::string> input_files(const RenderOptions& o) {
+  return o.scene_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{o.scene_file};
+}
+
+Job prepare_job(const RenderOptions& o, bool scene_option_given, bool output_given,
+                const MpiSession& mpi) {
+  // Cheap checks of the output first, so a bad -o is refused before a large scene loads.
+  if (output_given) check_output_path(output_path(o, output_given, Scene{}), input_files(o));
+  Job job;
+  job.scene = load_scene(o, scene_option_given);
+  job.settings.accel = parse_accel(o.accel);
+  apply_overrides(o, job.scene, job.settings);
+  job.samples_asked = job.settings.samples_per_pixel;
+  job.output = output_path(o, output_given, job.scene);
+  job.share = !o.sample_range.empty() || !o.part.empty();
+  validate(job.settings);  // the whole job, before it is cut into a share
+  apply_share(o, job.output, job.settings);
+  apply_rank_share(o, mpi, job.settings);
+  check_adaptive_options(o, job.output, mpi);
+  check_image_output(job.output, input_files(o), o.stats_channels);
+  validate(job.scene, job.settings);
+  return job;
+}
+
+// Renders with Ctrl-C handling and, unless quiet, a progress display (under MPI on rank 0,
+// which shows its own share: it moves with the others').
+RenderResult render_with_progress(const RenderOptions& o, const Job& job, const MpiSession& mpi) {
+  RenderProgress progress;
+  const InterruptGuard interrupt(progress.stop_requested);
+  std::unique_ptr<ProgressDisplay> display;
+  if (!o.quiet && mpi.rank() == 0) {
+    // Adaptive sampling and an open-ended time limit have no total to show progress against.
+    const RenderSettings& s = job.settings;
+    const bool open_ended =
+        s.target_error > 0 || s.samples_per_pixel == std::numeric_limits<int>::max();
+    display = std::make_unique<ProgressDisplay>(
+        progress, open_ended ? 0
+                             : std::uint64_t(s.width) * std::uint64_t(s.height) *
+                                   std::uint64_t(s.samples_per_pixel));
+  }
+  return render(job.scene, job.settings, &progress);
+}
+
+// Under MPI, rank 0 adds every rank's exact sums into the image of one process with all the
+// samples. Returns false on the other ranks, which have nothing left to do.
+bool gather_ranks(const MpiSession& mpi, Job& job, RenderResult& result) {
+  const std::uint64_t done = mpi.reduce_sum(std::uint64_t(result.samples_completed));
+  result.rays_traced = mpi.reduce_sum(result.rays_traced);
+  result.render_seconds = mpi.reduce_max(result.render_seconds);
+  mpi.reduce_sums(result.sums);
+  if (mpi.rank() != 0) return false;
+  result.stopped = done < std::uint64_t(job.samples_asked);
+  result.samples_completed = int(done);
+  resolve(result.sums, done, result.film);
+  job.settings.samples_per_pixel = job.samples_asked;
+  job.settings.first_sample = 0;
+  return true;
+}
+
+void write_result(const RenderOptions& o, const Job& job, RenderResult& result) {
+  const Metadata metadata = render_metadata(job.scene, job.settings, result, o.reproducible);
+  if (!job.share) {
+    write_image(job.output, result.film, metadata,
+                o.stats_channels ? statistics_channels(result) : std::vector<ExtraChannel>{});
+    return;
+  }
+  RenderPart part;
+  part.width = job.settings.width, part.height = job.settings.height;
+  part.first_sample = job.settings.first_sample;
+  part.samples = std::uint64_t(result.samples_completed);
+  part.job_samples = std::uint64_t(job.samples_asked);
+  part.digest = render_digest(job.scene, job.settings);
+  part.metadata = metadata;
+  part.sums = std::move(result.sums);
+  write_part(job.output, part);
+}
+
+// "rendered cover 1200x800, 500 spp, depth 50, embree, 2 threads: ... -> path"
+void print_summary(const Job& job, const RenderResult& result, const MpiSession& mpi) {
+  const RenderSettings& s = job.settings;
+  const double rays = double(result.rays_traced);
+  const int threads = s.threads > 0 ? s.threads : int(std::thread::hardware_concurrency());
+  const std::string ranks = mpi.distributed() ? std::to_string(mpi.size()) + " ranks x " : "";
+  std::fprintf(stderr,
+               "rendered %s %dx%d, %s, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
+               "%.2f Mrays/s -> %s\n",
+               job.scene.name.c_str(), s.width, s.height, describe_samples(s, result).c_str(),
+               s.max_depth, to_string(s.accel).c_str(), ranks.c_str(), threads,
+               threads == 1 ? "" : "s", result.render_seconds, rays,
+               rays / result.render_seconds * 1e-6, std::filesystem::absolute(job.output).c_str());
+}
+
 int run_render(const RenderOptions& o, bool scene_option_given, bool output_given,
                const MpiSession& mpi) {
   if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
-
-  // Cheap checks of the output first, so a bad -o is refused before a large scene loads.
-  if (output_given) {
-    check_output_path(
-        output_path(o, output_given, Scene{}),
-        o.scene_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{o.scene_file});
-  }
-  Scene scene = load_scene(o, scene_option_given);
-  RenderSettings settings;
-  settings.accel = parse_accel(o.accel);
-  apply_overrides(o, scene, settings);
-  const int samples_asked = settings.samples_per_pixel;
-  const std::string output = output_path(o, output_given, scene);
-  const bool share = !o.sample_range.empty() || !o.part.empty();
-  validate(settings);  // the whole job, before it is cut into a share
-  apply_share(o, output, settings);
-  apply_rank_share(o, mpi, settings);
-  check_adaptive_options(o, output, mpi);
-  check_image_output(
-      output,
-      o.scene_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{o.scene_file},
-      o.stats_channels);
-  validate(scene, settings);
-
-  RenderProgress progress;
-  RenderResult result;
-  {
-    const InterruptGuard interrupt(progress.stop_requested);
-    std::unique_ptr<ProgressDisplay> display;
-    // Under MPI rank 0 shows its own share, which moves with the others' (equal shares).
-    if (!o.quiet && mpi.rank() == 0) {
-      // Adaptive sampling and an open-ended time limit have no total to show progress against.
-      const bool open_ended = settings.target_error > 0 ||
-                              settings.samples_per_pixel == std::numeric_limits<int>::max();
-      display = std::make_unique<ProgressDisplay>(
-          progress, open_ended ? 0
-                               : std::uint64_t(settings.width) * std::uint64_t(settings.height) *
-                                     std::uint64_t(settings.samples_per_pixel));
-    }
-    result = render(scene, settings, &progress);
-  }
-  if (mpi.distributed()) {
-    // Rank 0 adds every rank's exact sums: the image of one process with all the samples.
-    const std::uint64_t done = mpi.reduce_sum(std::uint64_t(result.samples_completed));
-    result.rays_traced = mpi.reduce_sum(result.rays_traced);
-    result.render_seconds = mpi.reduce_max(result.render_seconds);
-    mpi.reduce_sums(result.sums);
-    if (mpi.rank() != 0) return 0;
-    result.stopped = done < std::uint64_t(samples_asked);
-    result.samples_completed = int(done);
-    resolve(result.sums, done, result.film);
-    settings.samples_per_pixel = samples_asked;
-    settings.first_sample = 0;
-  }
-  if (share) {
-    RenderPart part;
-    part.width = settings.width, part.height = settings.height;
-    part.first_sample = settings.first_sample;
-    part.samples = std::uint64_t(result.samples_completed);
-    part.job_samples = std::uint64_t(samples_asked);
-    part.digest = render_digest(scene, settings);
-    part.metadata = make_metadata(o, scene, settings, result);
-    part.sums = std::move(result.sums);
-    write_part(output, part);
-  } else {
-    write_image(output, result.film, make_metadata(o, scene, settings, result),
-                o.stats_channels ? statistics_channels(result) : std::vector<ExtraChannel>{});
-  }
+  Job job = prepare_job(o, scene_option_given, output_given, mpi);
+  RenderResult result = render_with_progress(o, job, mpi);
+  if (mpi.distributed() && !gather_ranks(mpi, job, result)) return 0;
+  write_result(o, job, result);
   if (result.stopped) {
     std::fprintf(stderr, "rtiow: interrupted: wrote %s (of %d asked) to %s\n",
-                 describe_samples(settings, result).c_str(), settings.samples_per_pixel,
-                 std::filesystem::absolute(output).c_str());
+                 describe_samples(job.settings, result).c_str(), job.settings.samples_per_pixel,
+                 std::filesystem::absolute(job.output).c_str());
     return 128 + InterruptGuard::signal_received();
   }
-
-  if (!o.quiet) {
-    const double rays = double(result.rays_traced);
-    const int threads =
-        settings.threads > 0 ? settings.threads : int(std::thread::hardware_concurrency());
-    const std::string ranks = mpi.distributed() ? std::to_string(mpi.size()) + " ranks x " : "";
-    std::fprintf(stderr,
-                 "rendered %s %dx%d, %s, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
-                 "%.2f Mrays/s -> %s\n",
-                 scene.name.c_str(), settings.width, settings.height,
-                 describe_samples(settings, result).c_str(), settings.max_depth,
-                 to_string(settings.accel).c_str(), ranks.c_str(), threads, threads == 1 ? "" : "s",
-                 result.render_seconds, rays, rays / result.render_seconds * 1e-6,
-                 std::filesystem::absolute(output).c_str());
-  }
+  if (!o.quiet) print_summary(job, result, mpi);
   return 0;
 }
 
 }  // namespace
 
-std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
-  auto options = std::make_shared<RenderOptions>();
-  RenderOptions& o = *options;
-  CLI::App* cmd = app.add_subcommand(
-      "render",
-      "Render a scene file or a built-in scene to an image (with no options: the book's cover "
-      "at its final settings, to cover.png)");
+namespace {
+
+// The options, in the order --help lists them: what to render, where, how many samples and
+// how, how the process runs, and the camera.
+CLI::Option* add_scene_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("scene_file", o.scene_file,
                   "Scene file (JSON, see the README); its settings are overridden by the options");
   CLI::Option* scene_option =
@@ -395,6 +341,10 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
   cmd->add_option("--scene-seed", o.scene_seed, "Seed of the random layout of cover and spheres:N")
       ->check(kNotNegative)
       ->capture_default_str();
+  return scene_option;
+}
+
+CLI::Option* add_image_options(CLI::App* cmd, RenderOptions& o) {
   CLI::Option* output_option =
       cmd->add_option("-o,--output", o.output,
                       "Output image; the format follows the extension (" + image_extensions() +
@@ -403,6 +353,10 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
   cmd->add_option("--height", o.height,
                   "Image height in pixels, 1 to 2^20 (default: from the width and the scene's "
                   "aspect ratio)");
+  return output_option;
+}
+
+void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--spp", o.spp, "Samples per pixel (default: the scene's)");
   cmd->add_option("--depth", o.depth, "Maximum rays per path, 0 to 65536 (default: the scene's)");
   cmd->add_option("--seed", o.seed, "Seed of the sample streams, 0 to 2^64-1")
@@ -437,6 +391,9 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
                   "Glass reflectance: schlick (the book's approximation) or exact (default: as "
                   "the scene says, schlick for the built-in scenes)")
       ->check(CLI::IsMember({"schlick", "exact"}));
+}
+
+void add_run_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
   cmd->add_option("--sample-range", o.sample_range,
                   "Render only samples A..B-1 (B at most --spp, the job's total) of every pixel "
@@ -447,6 +404,9 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
   cmd->add_flag("--reproducible", o.reproducible,
                 "Leave wall-clock metadata (render time) out of the file, so the same scene, "
                 "settings and seed give a byte-identical file");
+}
+
+void add_camera_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--lookfrom", o.lookfrom, "Camera position x,y,z (overrides the scene)")
       ->expected(3)
       ->delimiter(',');
@@ -457,6 +417,21 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
   cmd->add_option("--vfov", o.vfov, "Vertical field of view in degrees, in (0, 180)");
   cmd->add_option("--aperture", o.aperture, "Lens diameter (0: pinhole)");
   cmd->add_option("--focus-dist", o.focus_distance, "Distance to the plane in focus");
+}
+
+}  // namespace
+
+std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
+  auto options = std::make_shared<RenderOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "render",
+      "Render a scene file or a built-in scene to an image (with no options: the book's cover "
+      "at its final settings, to cover.png)");
+  CLI::Option* scene_option = add_scene_options(cmd, *options);
+  CLI::Option* output_option = add_image_options(cmd, *options);
+  add_sampling_options(cmd, *options);
+  add_run_options(cmd, *options);
+  add_camera_options(cmd, *options);
   return [options, cmd, scene_option, output_option, &mpi] {
     return cmd->parsed()
                ? run_render(*options, scene_option->count() > 0, output_option->count() > 0, mpi)

@@ -38,7 +38,7 @@ void add_metadata(OIIO::ImageSpec& spec, const Metadata& unordered, bool typed) 
   std::sort(metadata.begin(), metadata.end(),
             [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [key, value] : metadata) {
-    const std::string name = "rtiow:" + key;
+    const std::string name = kMetadataPrefix + key;
     if (typed && std::holds_alternative<std::int64_t>(value)) {
       // EXR has no 64-bit integer attribute: larger counts are stored as strings.
       const auto i = std::get<std::int64_t>(value);

@@ -19,6 +19,10 @@ namespace rtiow {
 using MetadataValue = std::variant<std::int64_t, double, std::string>;
 using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
 
+// Every metadata key is stored in a file with this prefix (the keys:
+// core/render/render_metadata.h).
+inline constexpr const char* kMetadataPrefix = "rtiow:";
+
 // A named per-pixel value written after R, G, B (float formats only), e.g. "spp".
 struct ExtraChannel {
   std::string name;

@@ -12,6 +12,7 @@
 #include "core/io/error.h"
 #include "core/io/input_file.h"
 #include "core/io/input_limits.h"
+#include "core/render/render_metadata.h"
 #include "core/sampling/rng.h"
 #include "core/scene/scene_file.h"
 
@@ -21,6 +22,13 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kColorChannels = 3, kWordsPerSum = 4;
+
+// The part file's own header fields, beside the render's metadata (render_metadata.h).
+const std::string kPartFieldPrefix = std::string(kMetadataPrefix) + "part_";
+const std::string kPartFirstSample = kPartFieldPrefix + "first_sample";
+const std::string kPartSamples = kPartFieldPrefix + "samples";
+const std::string kPartJobSamples = kPartFieldPrefix + "job_samples";
+const std::string kDigest = std::string(kMetadataPrefix) + "digest";
 constexpr int kChannels = kColorChannels + kColorChannels * kWordsPerSum;
 
 std::string hex(std::uint64_t v) {
@@ -31,7 +39,7 @@ std::string hex(std::uint64_t v) {
 
 // A whole number from a header field, or InvalidInput naming the file and the field.
 std::uint64_t header_number(const OIIO::ImageSpec& spec, const std::string& path,
-                            const char* field) {
+                            const std::string& field) {
   const std::string text = spec.get_string_attribute(field);
   std::uint64_t value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -80,17 +88,17 @@ void write_part(const std::string& path, const RenderPart& part) {
   spec.attribute("compression", "zip");
   for (const auto& [key, value] : part.metadata) {
     if (const auto* i = std::get_if<std::int64_t>(&value)) {
-      spec.attribute("rtiow:" + key, std::to_string(*i));
+      spec.attribute(kMetadataPrefix + key, std::to_string(*i));
     } else if (const auto* d = std::get_if<double>(&value)) {
-      spec.attribute("rtiow:" + key, float(*d));
+      spec.attribute(kMetadataPrefix + key, float(*d));
     } else {
-      spec.attribute("rtiow:" + key, std::get<std::string>(value));
+      spec.attribute(kMetadataPrefix + key, std::get<std::string>(value));
     }
   }
-  spec.attribute("rtiow:part_first_sample", std::to_string(part.first_sample));
-  spec.attribute("rtiow:part_samples", std::to_string(part.samples));
-  spec.attribute("rtiow:part_job_samples", std::to_string(part.job_samples));
-  spec.attribute("rtiow:digest", part.digest);
+  spec.attribute(kPartFirstSample, std::to_string(part.first_sample));
+  spec.attribute(kPartSamples, std::to_string(part.samples));
+  spec.attribute(kPartJobSamples, std::to_string(part.job_samples));
+  spec.attribute(kDigest, part.digest);
 
   // Native layout: per pixel 3 floats then 12 words, all 4 bytes wide.
   std::vector<std::uint32_t> data(std::size_t(part.width) * std::size_t(part.height) * kChannels);
@@ -125,7 +133,7 @@ RenderPart read_part(const std::string& path) {
   const OIIO::ImageSpec& spec = in->spec();
   // EXR stores channels sorted by name, so find each word of each sum by its name.
   int word_channel[kColorChannels][kWordsPerSum];
-  bool complete = spec.nchannels == kChannels && !spec.get_string_attribute("rtiow:digest").empty();
+  bool complete = spec.nchannels == kChannels && !spec.get_string_attribute(kDigest).empty();
   for (int c = 0; c < kColorChannels && complete; ++c) {
     for (int w = 0; w < kWordsPerSum && complete; ++w) {
       const std::string channel = std::string("sum.") + "RGB"[c] + "." + std::to_string(w);
@@ -155,9 +163,9 @@ RenderPart read_part(const std::string& path) {
   part.path = path;
   part.width = spec.width;
   part.height = spec.height;
-  part.first_sample = header_number(spec, path, "rtiow:part_first_sample");
-  part.samples = header_number(spec, path, "rtiow:part_samples");
-  part.job_samples = header_number(spec, path, "rtiow:part_job_samples");
+  part.first_sample = header_number(spec, path, kPartFirstSample);
+  part.samples = header_number(spec, path, kPartSamples);
+  part.job_samples = header_number(spec, path, kPartJobSamples);
   if (part.samples == 0 || part.job_samples == 0 || part.job_samples > limits::kMaxSampleIndex ||
       part.first_sample >= part.job_samples ||
       part.samples > part.job_samples - part.first_sample) {
@@ -165,14 +173,14 @@ RenderPart read_part(const std::string& path) {
                        ", +" + std::to_string(part.samples) + ") of a job of " +
                        std::to_string(part.job_samples) + ": not a share of it");
   }
-  part.digest = spec.get_string_attribute("rtiow:digest");
+  part.digest = spec.get_string_attribute(kDigest);
   for (const auto& attribute : spec.extra_attribs) {
     const std::string attribute_name = attribute.name().string();
-    if (attribute_name.rfind("rtiow:", 0) != 0 || attribute_name.rfind("rtiow:part_", 0) == 0 ||
-        attribute_name == "rtiow:digest") {
+    if (attribute_name.rfind(kMetadataPrefix, 0) != 0 ||
+        attribute_name.rfind(kPartFieldPrefix, 0) == 0 || attribute_name == kDigest) {
       continue;
     }
-    const std::string key = attribute_name.substr(6);
+    const std::string key = attribute_name.substr(std::string_view(kMetadataPrefix).size());
     if (attribute.type() == OIIO::TypeDesc::FLOAT) {
       part.metadata.emplace_back(key, double(attribute.get_float()));
     } else {
@@ -246,19 +254,21 @@ MergedRender merge_parts(const std::vector<RenderPart>& input) {
   std::vector<PixelSum> sums = reference.sums;
   for (const RenderPart* p : parts) {
     if (p == &reference) continue;
-    for (std::size_t i = 0; i < sums.size(); ++i) sums[i] += p->sums[i];
+    add_sums(sums.data(), p->sums.data(), sums.size());
   }
   merged.film = Film(reference.width, reference.height);
   resolve(sums, next, merged.film);
   // Common metadata, with the per-part counts totalled.
   std::int64_t rays = 0;
-  for (const RenderPart* p : parts) rays += metadata_int(p->metadata, "rays_traced");
+  namespace field = metadata_key;
+  for (const RenderPart* p : parts) rays += metadata_int(p->metadata, field::kRaysTraced);
   for (const auto& [key, value] : reference.metadata) {
-    if (key == "spp") {
+    if (key == field::kSpp) {
       merged.metadata.emplace_back(key, std::int64_t(next));
-    } else if (key == "rays_traced") {
+    } else if (key == field::kRaysTraced) {
       merged.metadata.emplace_back(key, rays);
-    } else if (key != "render_seconds" && key != "spp_requested" && key != "stopped") {
+    } else if (key != field::kRenderSeconds && key != field::kSppRequested &&
+               key != field::kStopped) {
       merged.metadata.emplace_back(key, value);
     }
   }

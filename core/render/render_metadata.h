@@ -1,0 +1,38 @@
+#pragma once
+// The provenance an image or part file carries: what was rendered, how, and how far it got,
+// stored as "rtiow:<key>" attributes. The keys are named here once, because merging parts
+// reads back what rendering wrote.
+
+#include "core/io/image_output.h"
+#include "core/render/render.h"
+#include "core/scene/scene.h"
+
+namespace rtiow::metadata_key {
+
+inline constexpr const char* kScene = "scene";
+inline constexpr const char* kSceneSeed = "scene_seed";
+inline constexpr const char* kDepth = "depth";
+inline constexpr const char* kSeed = "seed";
+inline constexpr const char* kSampler = "sampler";
+inline constexpr const char* kAccelerator = "accelerator";
+inline constexpr const char* kRaysTraced = "rays_traced";
+inline constexpr const char* kSpp = "spp";                     // uniform sampling
+inline constexpr const char* kSppRequested = "spp_requested";  // when stopped early
+inline constexpr const char* kTargetError = "target_error";    // adaptive sampling...
+inline constexpr const char* kSppMin = "spp_min";
+inline constexpr const char* kSppMax = "spp_max";
+inline constexpr const char* kSppMean = "spp_mean";
+inline constexpr const char* kSppLimit = "spp_limit";
+inline constexpr const char* kStopped = "stopped";               // why it ended early
+inline constexpr const char* kRenderSeconds = "render_seconds";  // left out if reproducible
+
+}  // namespace rtiow::metadata_key
+
+namespace rtiow {
+
+// The metadata of a finished render. `reproducible` leaves out wall-clock time, so the same
+// scene, settings and seed give a byte-identical file.
+Metadata render_metadata(const Scene& scene, const RenderSettings& settings,
+                         const RenderResult& result, bool reproducible);
+
+}  // namespace rtiow

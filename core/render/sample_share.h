@@ -1,0 +1,31 @@
+#pragma once
+// A share of a render: samples [first, first + count) of every pixel. Shares rendered
+// anywhere (separate jobs with --part or --sample-range, MPI ranks) add into the exact sums of
+// one render; the arithmetic of splitting a job lives here, once.
+
+#include <cstdint>
+#include <string>
+
+#include "core/render/render.h"
+
+namespace rtiow {
+
+struct SampleShare {
+  std::uint64_t first = 0, count = 0;
+};
+
+// The index-th of `shares` equal shares of `total` samples (sizes differ by at most one).
+// Needs index < shares <= total.
+SampleShare equal_share(std::uint64_t total, std::uint64_t index, std::uint64_t shares);
+
+// "i/n": the i-th of n equal shares of a job of `total` samples. Throws InvalidInput naming
+// the option (--part) and what is wrong.
+SampleShare parse_part(const std::string& text, std::uint64_t total);
+
+// "A:B": samples A..B-1 of a job of `total` samples. Throws InvalidInput (--sample-range).
+SampleShare parse_sample_range(const std::string& text, std::uint64_t total);
+
+// Settings that render only `share` of the job.
+void restrict_to(const SampleShare& share, RenderSettings& settings);
+
+}  // namespace rtiow
