@@ -3,10 +3,13 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
+#include <string_view>
 
 #include "core/io/atomic_file.h"
 #include "core/io/error.h"
@@ -125,27 +128,28 @@ void write_part(const std::string& path, const RenderPart& part) {
   });
 }
 
-RenderPart read_part(const std::string& path) {
-  check_input_file(path, limits::kMaxPartFileBytes, "part file");
-  const std::string name = "part file " + quote_value(path);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InvalidInput(name + ": cannot read: " + one_line(OIIO::geterror(), 200));
-  const OIIO::ImageSpec& spec = in->spec();
-  // EXR stores channels sorted by name, so find each word of each sum by its name.
-  int word_channel[kColorChannels][kWordsPerSum];
-  bool complete = spec.nchannels == kChannels && !spec.get_string_attribute(kDigest).empty();
-  for (int c = 0; c < kColorChannels && complete; ++c) {
-    for (int w = 0; w < kWordsPerSum && complete; ++w) {
+namespace {
+
+// Where each 32-bit word of each colour's sum is among the file's channels (EXR stores
+// channels sorted by name), or nothing if the file is not a part file.
+using WordChannels = std::array<std::array<int, kWordsPerSum>, kColorChannels>;
+
+std::optional<WordChannels> find_sum_channels(const OIIO::ImageSpec& spec) {
+  if (spec.nchannels != kChannels || spec.get_string_attribute(kDigest).empty()) return {};
+  WordChannels channels;
+  for (int c = 0; c < kColorChannels; ++c) {
+    for (int w = 0; w < kWordsPerSum; ++w) {
       const std::string channel = std::string("sum.") + "RGB"[c] + "." + std::to_string(w);
       const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), channel);
-      complete = it != spec.channelnames.end();
-      if (complete) word_channel[c][w] = int(it - spec.channelnames.begin());
+      if (it == spec.channelnames.end()) return {};
+      channels[std::size_t(c)][std::size_t(w)] = int(it - spec.channelnames.begin());
     }
   }
-  if (!complete) {
-    throw InvalidInput(name + ": not a part file (render one with --sample-range or --part)");
-  }
-  // The header decides what is allocated: check it all first.
+  return channels;
+}
+
+// The header decides what is allocated: its size and sample fields are checked first.
+void read_part_header(const OIIO::ImageSpec& spec, const std::string& name, RenderPart& part) {
   if (spec.width < 1 || spec.height < 1 || spec.width > limits::kMaxImageSide ||
       spec.height > limits::kMaxImageSide || spec.depth != 1 || spec.x != 0 || spec.y != 0 ||
       spec.full_width != spec.width || spec.full_height != spec.height) {
@@ -159,13 +163,11 @@ RenderPart read_part(const std::string& path) {
   } catch (const InvalidInput& e) {
     throw InvalidInput(name + ": " + e.what());
   }
-  RenderPart part;
-  part.path = path;
   part.width = spec.width;
   part.height = spec.height;
-  part.first_sample = header_number(spec, path, kPartFirstSample);
-  part.samples = header_number(spec, path, kPartSamples);
-  part.job_samples = header_number(spec, path, kPartJobSamples);
+  part.first_sample = header_number(spec, part.path, kPartFirstSample);
+  part.samples = header_number(spec, part.path, kPartSamples);
+  part.job_samples = header_number(spec, part.path, kPartJobSamples);
   if (part.samples == 0 || part.job_samples == 0 || part.job_samples > limits::kMaxSampleIndex ||
       part.first_sample >= part.job_samples ||
       part.samples > part.job_samples - part.first_sample) {
@@ -174,6 +176,11 @@ RenderPart read_part(const std::string& path) {
                        std::to_string(part.job_samples) + ": not a share of it");
   }
   part.digest = spec.get_string_attribute(kDigest);
+}
+
+// The render's metadata: every "rtiow:" attribute but the part file's own fields.
+Metadata read_part_metadata(const OIIO::ImageSpec& spec) {
+  Metadata metadata;
   for (const auto& attribute : spec.extra_attribs) {
     const std::string attribute_name = attribute.name().string();
     if (attribute_name.rfind(kMetadataPrefix, 0) != 0 ||
@@ -182,37 +189,63 @@ RenderPart read_part(const std::string& path) {
     }
     const std::string key = attribute_name.substr(std::string_view(kMetadataPrefix).size());
     if (attribute.type() == OIIO::TypeDesc::FLOAT) {
-      part.metadata.emplace_back(key, double(attribute.get_float()));
+      metadata.emplace_back(key, double(attribute.get_float()));
     } else {
       const std::string text = attribute.get_string();
       std::int64_t number = 0;
       const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
       const bool integer = !text.empty() && text.front() != '-' && error == std::errc() &&
                            end == text.data() + text.size();
-      part.metadata.emplace_back(key, integer ? MetadataValue(number) : MetadataValue(text));
+      metadata.emplace_back(key, integer ? MetadataValue(number) : MetadataValue(text));
     }
   }
-  // Every channel read as 32-bit words, whatever the file stores: the layout is fixed.
+  return metadata;
+}
+
+// The exact sums, every channel read as 32-bit words whatever the file stores.
+std::vector<PixelSum> read_part_sums(OIIO::ImageInput& in, const std::string& name,
+                                     const WordChannels& channels) {
+  const OIIO::ImageSpec& spec = in.spec();
   std::vector<std::uint32_t> data(std::size_t(spec.width) * std::size_t(spec.height) * kChannels);
-  if (!in->read_image(0, 0, 0, kChannels, OIIO::TypeDesc::UINT, data.data())) {
-    throw InvalidInput(name + ": cannot read its pixels: " + one_line(in->geterror(), 200));
+  if (!in.read_image(0, 0, 0, kChannels, OIIO::TypeDesc::UINT, data.data())) {
+    throw InvalidInput(name + ": cannot read its pixels: " + one_line(in.geterror(), 200));
   }
-  part.sums.resize(std::size_t(spec.width) * std::size_t(spec.height));
-  for (std::size_t p = 0; p < part.sums.size(); ++p) {
+  std::vector<PixelSum> sums(std::size_t(spec.width) * std::size_t(spec.height));
+  for (std::size_t p = 0; p < sums.size(); ++p) {
     const std::uint32_t* pixel = &data[p * kChannels];
-    for (int c = 0; c < kColorChannels; ++c) {
+    for (std::size_t c = 0; c < kColorChannels; ++c) {
       uint128 bits = 0;
-      for (int w = kWordsPerSum - 1; w >= 0; --w) bits = (bits << 32) | pixel[word_channel[c][w]];
-      part.sums[p].set_channel(c, static_cast<int128>(bits));
+      for (int w = kWordsPerSum - 1; w >= 0; --w)
+        bits = (bits << 32) | pixel[channels[c][std::size_t(w)]];
+      sums[p].set_channel(int(c), static_cast<int128>(bits));
     }
   }
+  return sums;
+}
+
+}  // namespace
+
+RenderPart read_part(const std::string& path) {
+  check_input_file(path, limits::kMaxPartFileBytes, "part file");
+  const std::string name = "part file " + quote_value(path);
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw InvalidInput(name + ": cannot read: " + one_line(OIIO::geterror(), 200));
+  const std::optional<WordChannels> channels = find_sum_channels(in->spec());
+  if (!channels) {
+    throw InvalidInput(name + ": not a part file (render one with --sample-range or --part)");
+  }
+  RenderPart part;
+  part.path = path;
+  read_part_header(in->spec(), name, part);
+  part.metadata = read_part_metadata(in->spec());
+  part.sums = read_part_sums(*in, name, *channels);
   return part;
 }
 
-MergedRender merge_parts(const std::vector<RenderPart>& input) {
-  if (input.empty()) throw InvalidInput("merge: no parts given");
-  std::vector<const RenderPart*> parts;
-  for (const RenderPart& p : input) parts.push_back(&p);
+namespace {
+
+// Parts of one render: same scene and settings (digest), size and job.
+void check_same_render(const std::vector<const RenderPart*>& parts) {
   const RenderPart& reference = *parts.front();
   for (const RenderPart* p : parts) {
     if (p->digest != reference.digest || p->width != reference.width ||
@@ -221,15 +254,16 @@ MergedRender merge_parts(const std::vector<RenderPart>& input) {
                          reference.path + " (scene, size, depth, seed or spp differ)");
     }
   }
-  std::sort(parts.begin(), parts.end(), [](const RenderPart* a, const RenderPart* b) {
-    return a->first_sample < b->first_sample;
-  });
+}
+
+// Parts sorted by first sample must tile [0, job) exactly: no overlap, no gap, no missing end.
+void check_tiling(const std::vector<const RenderPart*>& sorted) {
+  const auto range = [](std::uint64_t a, std::uint64_t b) {
+    return "[" + std::to_string(a) + ", " + std::to_string(b) + ")";
+  };
   std::uint64_t next = 0;
   const RenderPart* previous = nullptr;
-  for (const RenderPart* p : parts) {
-    const auto range = [](std::uint64_t a, std::uint64_t b) {
-      return "[" + std::to_string(a) + ", " + std::to_string(b) + ")";
-    };
+  for (const RenderPart* p : sorted) {
     if (p->first_sample < next) {
       throw InvalidInput("merge: " + previous->path + " and " + p->path +
                          " overlap: both hold samples " +
@@ -243,35 +277,54 @@ MergedRender merge_parts(const std::vector<RenderPart>& input) {
     next = p->first_sample + p->samples;
     previous = p;
   }
-  if (next != reference.job_samples) {
-    throw InvalidInput("merge: samples [" + std::to_string(next) + ", " +
-                       std::to_string(reference.job_samples) + ") of the job are missing (after " +
-                       previous->path + ")");
+  if (next != sorted.front()->job_samples) {
+    throw InvalidInput("merge: samples " + range(next, sorted.front()->job_samples) +
+                       " of the job are missing (after " + previous->path + ")");
   }
+}
 
-  MergedRender merged;
-  merged.samples = next;
-  std::vector<PixelSum> sums = reference.sums;
-  for (const RenderPart* p : parts) {
-    if (p == &reference) continue;
-    add_sums(sums.data(), p->sums.data(), sums.size());
-  }
-  merged.film = Film(reference.width, reference.height);
-  resolve(sums, next, merged.film);
-  // Common metadata, with the per-part counts totalled.
-  std::int64_t rays = 0;
+// The metadata of `reference` (the first part given), with the per-part counts totalled.
+Metadata merged_metadata(const RenderPart& reference, const std::vector<const RenderPart*>& parts,
+                         std::uint64_t samples) {
   namespace field = metadata_key;
+  std::int64_t rays = 0;
   for (const RenderPart* p : parts) rays += metadata_int(p->metadata, field::kRaysTraced);
+  Metadata merged;
   for (const auto& [key, value] : reference.metadata) {
     if (key == field::kSpp) {
-      merged.metadata.emplace_back(key, std::int64_t(next));
+      merged.emplace_back(key, std::int64_t(samples));
     } else if (key == field::kRaysTraced) {
-      merged.metadata.emplace_back(key, rays);
+      merged.emplace_back(key, rays);
     } else if (key != field::kRenderSeconds && key != field::kSppRequested &&
                key != field::kStopped) {
-      merged.metadata.emplace_back(key, value);
+      merged.emplace_back(key, value);
     }
   }
+  return merged;
+}
+
+}  // namespace
+
+MergedRender merge_parts(const std::vector<RenderPart>& input) {
+  if (input.empty()) throw InvalidInput("merge: no parts given");
+  std::vector<const RenderPart*> parts;
+  for (const RenderPart& p : input) parts.push_back(&p);
+  check_same_render(parts);
+  std::sort(parts.begin(), parts.end(), [](const RenderPart* a, const RenderPart* b) {
+    return a->first_sample < b->first_sample;
+  });
+  check_tiling(parts);
+
+  const RenderPart& reference = input.front();
+  MergedRender merged;
+  merged.samples = reference.job_samples;
+  std::vector<PixelSum> sums = reference.sums;
+  for (const RenderPart* p : parts) {
+    if (p != &reference) add_sums(sums.data(), p->sums.data(), sums.size());
+  }
+  merged.film = Film(reference.width, reference.height);
+  resolve(sums, merged.samples, merged.film);
+  merged.metadata = merged_metadata(reference, parts, merged.samples);
   return merged;
 }
 
