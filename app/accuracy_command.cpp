@@ -231,11 +231,7 @@ double median_factor(const json& factors, double min_parameter) {
   return f[f.size() / 2];
 }
 
-void print_table(const json& r) {
-  std::printf("%s %dx%d, reference %d spp (seed %llu)%s\n", r["scene"].get<std::string>().c_str(),
-              r["width"].get<int>(), r["height"].get<int>(), r["reference_spp"].get<int>(),
-              r["reference_seed"].get<unsigned long long>(),
-              r["reference_reused"].get<bool>() ? ", reused from the cache" : "");
+void print_spp_table(const json& r) {
   std::printf("\nsamples per pixel (relMSE = mean (v-ref)^2/(ref+0.01)^2)\n");
   std::printf("  %-11s %5s %9s %9s %10s %11s\n", "sampler", "spp", "seconds", "RMSE", "relMSE",
               "efficiency");
@@ -254,7 +250,9 @@ void print_table(const json& r) {
               s["sobol_equal_spp_factor"].get<double>());
   std::printf("  sobol vs independent, relMSE ratio at equal time (median, spp >= 16): %.2fx\n",
               s["sobol_equal_time_factor"].get<double>());
+}
 
+void print_depth_table(const json& r) {
   std::printf(
       "\ndepth limit at %d spp (bias: image-sum difference from depth %d, +- its "
       "standard error)\n",
@@ -276,7 +274,9 @@ void print_table(const json& r) {
                 row["rms_bias"].get<double>(), row["rms_noise"].get<double>(),
                 row["rel_mse"].get<double>());
   }
+}
 
+void print_choice_tables(const json& r) {
   std::printf("\nintersector at %d spp\n", r["fixed_spp"].get<int>());
   for (const json& row : r["intersector"]) {
     std::printf("  %-7s %9.4f s  relMSE %.4e%s\n", row["choice"].get<std::string>().c_str(),
@@ -295,7 +295,10 @@ void print_table(const json& r) {
                 row["mean_difference"].get<double>(), row["mean_difference_error"].get<double>(),
                 row["rms_bias"].get<double>(), row["rel_mse"].get<double>());
   }
+}
 
+void print_adaptive_table(const json& r) {
+  const json& s = r["summary"];
   std::printf("\nadaptive sampling (--target-error, min 16 spp, at most %d)\n",
               4 * r["max_spp"].get<int>());
   std::printf("  %6s %9s %9s %10s %9s %20s %12s\n", "target", "mean spp", "seconds", "relMSE",
@@ -312,6 +315,17 @@ void print_table(const json& r) {
   std::printf(
       "  (achieved = sqrt(relMSE); equal-time = independent's relMSE at the same time / "
       "adaptive's)\n");
+}
+
+void print_table(const json& r) {
+  std::printf("%s %dx%d, reference %d spp (seed %llu)%s\n", r["scene"].get<std::string>().c_str(),
+              r["width"].get<int>(), r["height"].get<int>(), r["reference_spp"].get<int>(),
+              r["reference_seed"].get<unsigned long long>(),
+              r["reference_reused"].get<bool>() ? ", reused from the cache" : "");
+  print_spp_table(r);
+  print_depth_table(r);
+  print_choice_tables(r);
+  print_adaptive_table(r);
 }
 
 void write_csv(const json& r, const std::string& path) {
@@ -340,7 +354,8 @@ void write_csv(const json& r, const std::string& path) {
   write_text_atomically(path, text);
 }
 
-int run_accuracy(const AccuracyOptions& o) {
+// Every option checked before the reference (minutes of rendering) is made.
+void check_options(const AccuracyOptions& o) {
   if (o.width < 1) throw InvalidInput("--width must be >= 1");
   if (o.reference_spp < 2 || o.max_spp < 1 || o.fixed_spp < 2) {
     throw InvalidInput("--reference-spp and --fixed-spp must be >= 2, --max-spp >= 1");
@@ -366,7 +381,10 @@ int run_accuracy(const AccuracyOptions& o) {
   for (const double e : o.target_errors) {
     if (!(e > 0) || !std::isfinite(e)) throw InvalidInput("--target-errors must be > 0");
   }
-  const Scene scene = make_builtin_scene(o.scene, o.scene_seed);
+}
+
+// The measured renders' settings: the scene's depth and aspect ratio at the given width.
+RenderSettings base_settings(const AccuracyOptions& o, const Scene& scene) {
   RenderSettings base;
   base.width = o.width;
   base.height = int(std::min(std::round(o.width / scene.image.aspect_ratio), 1e9));
@@ -375,6 +393,47 @@ int run_accuracy(const AccuracyOptions& o) {
   base.seed = o.seed;
   base.samples_per_pixel = o.reference_spp;
   validate(base);
+  return base;
+}
+
+// The ratios a reader looks for: convergence slopes and Sobol's and adaptive sampling's
+// gains over independent sampling at equal spp and at equal time.
+json summarise(const json& r) {
+  json s;
+  const json& independent = r["spp"]["independent"];
+  const json& sobol = r["spp"]["sobol"];
+  s["rmse_slope_independent"] =
+      log_log_fit(column(independent, "parameter"), column(independent, "rmse")).first;
+  s["rmse_slope_sobol"] = log_log_fit(column(sobol, "parameter"), column(sobol, "rmse")).first;
+  json equal_spp = json::array();
+  for (std::size_t i = 0; i < sobol.size(); ++i) {
+    equal_spp.push_back(
+        {{"parameter", sobol[i]["parameter"]},
+         {"factor", independent[i]["rel_mse"].get<double>() / sobol[i]["rel_mse"].get<double>()}});
+  }
+  s["sobol_equal_spp_factors"] = equal_spp;
+  s["sobol_equal_spp_factor"] = median_factor(equal_spp, 16);
+  s["sobol_equal_time_factors"] = equal_time_factors(independent, sobol);
+  s["sobol_equal_time_factor"] = median_factor(s["sobol_equal_time_factors"], 16);
+  s["adaptive_equal_time_factors"] = equal_time_factors(independent, r["adaptive"]);
+  return s;
+}
+
+void write_figures(const AccuracyOptions& o, const json& r) {
+  const std::string json_path = (fs::path(o.out_dir) / "accuracy.json").string();
+  const std::string csv_path = (fs::path(o.out_dir) / "accuracy.csv").string();
+  const std::string png_path = (fs::path(o.out_dir) / "accuracy.png").string();
+  write_text_atomically(json_path, r.dump(2) + "\n");
+  write_csv(r, csv_path);
+  std::printf("\nfigures: %s\n         %s\n", fs::absolute(json_path).c_str(),
+              fs::absolute(csv_path).c_str());
+  run_plot_script("accuracy_plot.py", json_path, png_path);
+}
+
+int run_accuracy(const AccuracyOptions& o) {
+  check_options(o);
+  const Scene scene = make_builtin_scene(o.scene, o.scene_seed);
+  const RenderSettings base = base_settings(o, scene);
   fs::create_directories(o.out_dir);
   const std::string cache_dir = o.cache_dir.empty() ? default_cache_dir() : o.cache_dir;
 
@@ -407,33 +466,9 @@ int run_accuracy(const AccuracyOptions& o) {
   r["fresnel"] = compare_fresnel(x, o, scene);
   r["adaptive"] = sweep_adaptive(x, o);
 
-  json& s = r["summary"];
-  const json& independent = r["spp"]["independent"];
-  const json& sobol = r["spp"]["sobol"];
-  s["rmse_slope_independent"] =
-      log_log_fit(column(independent, "parameter"), column(independent, "rmse")).first;
-  s["rmse_slope_sobol"] = log_log_fit(column(sobol, "parameter"), column(sobol, "rmse")).first;
-  json equal_spp = json::array();
-  for (std::size_t i = 0; i < sobol.size(); ++i) {
-    equal_spp.push_back(
-        {{"parameter", sobol[i]["parameter"]},
-         {"factor", independent[i]["rel_mse"].get<double>() / sobol[i]["rel_mse"].get<double>()}});
-  }
-  s["sobol_equal_spp_factors"] = equal_spp;
-  s["sobol_equal_spp_factor"] = median_factor(equal_spp, 16);
-  s["sobol_equal_time_factors"] = equal_time_factors(independent, sobol);
-  s["sobol_equal_time_factor"] = median_factor(s["sobol_equal_time_factors"], 16);
-  s["adaptive_equal_time_factors"] = equal_time_factors(independent, r["adaptive"]);
-
+  r["summary"] = summarise(r);
   print_table(r);
-  const std::string json_path = (fs::path(o.out_dir) / "accuracy.json").string();
-  const std::string csv_path = (fs::path(o.out_dir) / "accuracy.csv").string();
-  const std::string png_path = (fs::path(o.out_dir) / "accuracy.png").string();
-  write_text_atomically(json_path, r.dump(2) + "\n");
-  write_csv(r, csv_path);
-  std::printf("\nfigures: %s\n         %s\n", fs::absolute(json_path).c_str(),
-              fs::absolute(csv_path).c_str());
-  run_plot_script("accuracy_plot.py", json_path, png_path);
+  write_figures(o, r);
   return 0;
 }
 

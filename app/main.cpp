@@ -46,51 +46,23 @@ int print_and_exit(const CLI::App& app, const CLI::Error& e) {
   return code;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::set_terminate(on_terminate);
-  // A closed pipe is an error to report (exit 1), not a signal that kills silently.
-  std::signal(SIGPIPE, SIG_IGN);
-  // Likewise a file-size limit: the write fails (EFBIG), the target is left as it was.
-  std::signal(SIGXFSZ, SIG_IGN);
-  const rtiow::MpiSession mpi(argc, argv);
-  CLI::App app{
-      "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend, "
-      "built on Embree, oneTBB and OpenImageIO",
-      "rtiow"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "rtiow 0.1.0");
-  std::vector<std::function<int()>> commands{
-      rtiow::add_render_command(app, mpi), rtiow::add_scene_command(app),
-      rtiow::add_merge_command(app), rtiow::add_bench_command(app),
-      rtiow::add_accuracy_command(app)};
-
-  // A first word that is no option and no command: name it (CLI11 would only say that a
-  // command is required).
+// A first word that is no option and no command: name it (CLI11 would only say that a
+// command is required). Returns true if it did.
+bool refused_unknown_command(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
   std::string known;
-  bool is_known = false;
   for (const CLI::App* sub : app.get_subcommands({})) {
+    if (sub->get_name() == argv[1]) return false;
     known += (known.empty() ? "" : ", ") + sub->get_name();
-    is_known = is_known || (argc > 1 && sub->get_name() == argv[1]);
   }
-  if (argc > 1 && argv[1][0] != '-' && !is_known) {
-    report(("unknown command " + rtiow::quote_value(argv[1]) + " (known: " + known + ")").c_str());
-    return 2;
-  }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return print_and_exit(app, e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return print_and_exit(app, e);
-  } catch (const CLI::CallForVersion& e) {
-    return print_and_exit(app, e);
-  } catch (const CLI::ParseError& e) {
-    report((std::string(e.what()) + " (see rtiow --help)").c_str());
-    return 2;
-  }
+  report(("unknown command " + rtiow::quote_value(argv[1]) + " (known: " + known + ")").c_str());
+  return true;
+}
 
+// Runs the command that was parsed; every failure leaves as one line: exit 2 for bad input,
+// 1 for a failure while working.
+int run_parsed_command(const std::vector<std::function<int()>>& commands,
+                       const rtiow::MpiSession& mpi) {
   try {
     for (const auto& command : commands) {
       const int code = command();
@@ -115,4 +87,41 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::set_terminate(on_terminate);
+  // A closed pipe is an error to report (exit 1), not a signal that kills silently.
+  std::signal(SIGPIPE, SIG_IGN);
+  // Likewise a file-size limit: the write fails (EFBIG), the target is left as it was.
+  std::signal(SIGXFSZ, SIG_IGN);
+  const rtiow::MpiSession mpi(argc, argv);
+  CLI::App app{
+      "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend, "
+      "built on Embree, oneTBB and OpenImageIO",
+      "rtiow"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "rtiow 0.1.0");
+  std::vector<std::function<int()>> commands{
+      rtiow::add_render_command(app, mpi), rtiow::add_scene_command(app),
+      rtiow::add_merge_command(app), rtiow::add_bench_command(app),
+      rtiow::add_accuracy_command(app)};
+
+  if (refused_unknown_command(app, argc, argv)) return 2;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return print_and_exit(app, e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return print_and_exit(app, e);
+  } catch (const CLI::CallForVersion& e) {
+    return print_and_exit(app, e);
+  } catch (const CLI::ParseError& e) {
+    report((std::string(e.what()) + " (see rtiow --help)").c_str());
+    return 2;
+  }
+
+  return run_parsed_command(commands, mpi);
 }
