@@ -180,7 +180,7 @@ json compare_fresnel(const Experiment& x, const AccuracyOptions& o, const Scene&
     for (Material& m : variant.materials) {
       if (auto* d = std::get_if<Dielectric>(&m)) d->fresnel = model;
     }
-    const char* name = model == FresnelModel::Schlick ? "schlick" : "exact";
+    const std::string name(to_string(model));
     rows.push_back(x.run("fresnel", name, s.samples_per_pixel, s, &variant).row);
   }
   return rows;

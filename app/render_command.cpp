@@ -85,7 +85,7 @@ void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& setti
   if (o.aperture) cam.aperture = *o.aperture;
   if (o.focus_distance) cam.focus_distance = *o.focus_distance;
   if (!o.fresnel.empty()) {
-    const FresnelModel model = o.fresnel == "exact" ? FresnelModel::Exact : FresnelModel::Schlick;
+    const FresnelModel model = parse_fresnel(o.fresnel).value();  // CLI11 checked the name
     for (Material& m : scene.materials) {
       if (auto* d = std::get_if<Dielectric>(&m)) d->fresnel = model;
     }
@@ -390,7 +390,8 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--fresnel", o.fresnel,
                   "Glass reflectance: schlick (the book's approximation) or exact (default: as "
                   "the scene says, schlick for the built-in scenes)")
-      ->check(CLI::IsMember({"schlick", "exact"}));
+      ->check(CLI::IsMember({std::string(to_string(FresnelModel::Schlick)),
+                             std::string(to_string(FresnelModel::Exact))}));
 }
 
 void add_run_options(CLI::App* cmd, RenderOptions& o) {

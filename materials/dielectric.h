@@ -6,8 +6,10 @@
 #include <cmath>
 
 #include "core/geometry/surface_hit.h"
+#include "core/io/input_limits.h"
 #include "core/sampling/sampler.h"
 #include "materials/fresnel.h"
+#include "materials/parameter_check.h"
 
 namespace rtiow {
 
@@ -15,6 +17,14 @@ struct Dielectric {
   float ior = 1.5f;  // index of refraction inside, relative to outside
   FresnelModel fresnel = FresnelModel::Schlick;
 };
+
+// The index within the range the extremes tests render without NaN (core/io/input_limits.h).
+inline std::optional<ParameterProblem> check_parameters(const Dielectric& m) {
+  if (!(m.ior >= limits::kMinIor && m.ior <= limits::kMaxIor)) {
+    return ParameterProblem{"ior", -1, m.ior, "must be from 0.001 to 1e+06"};
+  }
+  return std::nullopt;
+}
 
 inline bool scatter(const Dielectric& m, const Vec3& in_direction, const SurfaceHit& hit,
                     SampleStream& rng, Color& attenuation, Vec3& out_direction) {

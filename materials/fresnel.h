@@ -3,11 +3,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string_view>
 
 namespace rtiow {
 
 // Which reflectance a dielectric uses: the book's Schlick approximation, or exact Fresnel.
 enum class FresnelModel { Schlick, Exact };
+
+// The models' names in scene files and on the command line, in one place.
+inline constexpr std::string_view kFresnelNames = "schlick or exact";
+
+inline std::string_view to_string(FresnelModel model) {
+  return model == FresnelModel::Schlick ? "schlick" : "exact";
+}
+
+inline std::optional<FresnelModel> parse_fresnel(std::string_view name) {
+  for (const FresnelModel model : {FresnelModel::Schlick, FresnelModel::Exact}) {
+    if (name == to_string(model)) return model;
+  }
+  return std::nullopt;
+}
 
 // Schlick's approximation, as the book uses it. `eta` is the ratio of the two indices;
 // R0 is the same for eta and 1/eta.

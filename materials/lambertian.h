@@ -5,12 +5,17 @@
 #include "core/geometry/surface_hit.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/sampling.h"
+#include "materials/parameter_check.h"
 
 namespace rtiow {
 
 struct Lambertian {
   Color albedo;
 };
+
+inline std::optional<ParameterProblem> check_parameters(const Lambertian& m) {
+  return check_albedo(m.albedo);
+}
 
 inline bool scatter(const Lambertian& m, const Vec3& /*in_direction*/, const SurfaceHit& hit,
                     SampleStream& rng, Color& attenuation, Vec3& out_direction) {

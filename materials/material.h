@@ -12,6 +12,10 @@ namespace rtiow {
 
 using Material = std::variant<Lambertian, Metal, Dielectric>;
 
+inline std::optional<ParameterProblem> check_parameters(const Material& material) {
+  return std::visit([](const auto& m) { return check_parameters(m); }, material);
+}
+
 // Samples the scattered direction; false when the ray is absorbed.
 inline bool scatter(const Material& material, const Vec3& in_direction, const SurfaceHit& hit,
                     SampleStream& rng, Color& attenuation, Vec3& out_direction) {

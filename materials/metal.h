@@ -1,5 +1,7 @@
 #pragma once
-// Metal: mirror reflection perturbed by a point in a ball of radius `fuzz` (clamped to 1).
+// Metal: mirror reflection perturbed by a point in a ball of radius `fuzz`, in [0, 1].
+// make_metal clamps a larger fuzz to 1, as the book does (scene files go through it, so a
+// fuzz above 1 in a file acts as 1); a Metal built directly with fuzz > 1 is refused.
 // Rays perturbed below the surface are absorbed, so fuzzy metal loses energy by design.
 
 #include <algorithm>
@@ -7,6 +9,7 @@
 #include "core/geometry/surface_hit.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/sampling.h"
+#include "materials/parameter_check.h"
 
 namespace rtiow {
 
@@ -17,6 +20,15 @@ struct Metal {
 
 inline Metal make_metal(Color albedo, float fuzz) {
   return Metal{albedo, std::min(fuzz, 1.0f)};
+}
+
+inline std::optional<ParameterProblem> check_parameters(const Metal& m) {
+  if (auto problem = check_albedo(m.albedo)) return problem;
+  if (!(m.fuzz >= 0.0f))
+    return ParameterProblem{"fuzz", -1, m.fuzz, "must be >= 0 (values above 1 act as 1)"};
+  if (m.fuzz > 1.0f)
+    return ParameterProblem{"fuzz", -1, m.fuzz, "must be at most 1 (make_metal clamps)"};
+  return std::nullopt;
 }
 
 inline bool scatter(const Metal& m, const Vec3& in_direction, const SurfaceHit& hit,

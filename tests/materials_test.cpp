@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/io/error.h"
+#include "core/scene/scene.h"
+#include "core/scene/scene_file.h"
 #include "materials/material.h"
 
 namespace rtiow {
@@ -146,6 +149,53 @@ TEST(Lambertian, ScattersIntoTheUpperHemisphere) {
   }
   // Cosine-distributed directions have E[cos theta] = 2/3.
   EXPECT_NEAR(mean_cos / n, 2.0 / 3.0, 0.01);
+}
+
+// Each material owns its parameter ranges: a scene built in C++ and a scene file are refused
+// for the same values, in the same words.
+TEST(MaterialParameters, OneRuleForScenesInCppAndInFiles) {
+  struct Case {
+    Material material;
+    std::string file_material, cpp_message, file_message;
+  };
+  const Case cases[] = {
+      {Lambertian{{1.8f, 0.1f, 0.1f}}, R"({"type": "lambertian", "albedo": [1.8, 0.1, 0.1]})",
+       "material 0: albedo[0] must be in [0, 1], got 1.8",
+       "/materials/m/albedo/0: must be in [0, 1], got 1.8"},
+      {Metal{{0.5f, 0.5f, 0.5f}, -0.25f},
+       R"({"type": "metal", "albedo": [0.5, 0.5, 0.5], "fuzz": -0.25})",
+       "material 0: fuzz must be >= 0 (values above 1 act as 1), got -0.25",
+       "/materials/m/fuzz: must be >= 0 (values above 1 act as 1), got -0.25"},
+      {Dielectric{0.0f}, R"({"type": "dielectric", "ior": 0})",
+       "material 0: ior must be from 0.001 to 1e+06, got 0",
+       "/materials/m/ior: must be from 0.001 to 1e+06, got 0"},
+  };
+  for (const Case& c : cases) {
+    Scene scene;
+    scene.materials = {c.material};
+    scene.spheres.add({0, 0, -2}, 1.0f, 0);
+    try {
+      validate(scene);
+      ADD_FAILURE() << c.cpp_message << ": accepted";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(c.cpp_message), std::string::npos) << e.what();
+    }
+    const std::string file =
+        R"({"version": 1, "camera": {"lookfrom": [0, 0, 0], "lookat": [0, 0, -1], "vfov": 90},
+            "image": {"width": 8, "height": 8}, "materials": {"m": )" +
+        c.file_material +
+        R"(}, "spheres": [{"center": [0, 0, -2], "radius": 1, "material": "m"}]})";
+    try {
+      parse_scene(file, "m.json");
+      ADD_FAILURE() << c.file_message << ": accepted";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(c.file_message), std::string::npos) << e.what();
+    }
+  }
+  // A fuzz above 1 acts as 1 in a file (make_metal clamps) but is refused in a Metal built
+  // directly, which would otherwise render a fuzz the comment says cannot happen.
+  EXPECT_FALSE(check_parameters(make_metal({0.5f, 0.5f, 0.5f}, 3.0f)));
+  EXPECT_TRUE(check_parameters(Metal{{0.5f, 0.5f, 0.5f}, 3.0f}));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/io/error.h"
@@ -9,10 +10,6 @@
 
 namespace rtiow {
 namespace {
-
-bool in_unit_range(const Color& c) {
-  return is_finite(c) && c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x <= 1 && c.y <= 1 && c.z <= 1;
-}
 
 std::string sphere_name(std::size_t i) {
   return "scene: sphere " + std::to_string(i) + ": ";
@@ -37,20 +34,13 @@ void validate(const Scene& scene) {
     }
   }
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-    const std::string where = "scene: material " + std::to_string(i) + ": ";
-    const Material& m = scene.materials[i];
-    if (const auto* l = std::get_if<Lambertian>(&m); l && !in_unit_range(l->albedo)) {
-      throw InvalidInput(where + "albedo must be in [0, 1]");
-    }
-    if (const auto* metal = std::get_if<Metal>(&m)) {
-      if (!in_unit_range(metal->albedo)) throw InvalidInput(where + "albedo must be in [0, 1]");
-      if (!(metal->fuzz >= 0.0f && metal->fuzz <= 1.0f)) {
-        throw InvalidInput(where + "fuzz must be in [0, 1]");
-      }
-    }
-    if (const auto* d = std::get_if<Dielectric>(&m);
-        d && !(d->ior >= limits::kMinIor && d->ior <= limits::kMaxIor)) {
-      throw InvalidInput(where + "index of refraction must be from 0.001 to 1e6");
+    if (const auto p = check_parameters(scene.materials[i])) {
+      const std::string field =
+          p->component < 0 ? p->field : p->field + "[" + std::to_string(p->component) + "]";
+      char value[32];
+      std::snprintf(value, sizeof value, "%g", p->value);
+      throw InvalidInput("scene: material " + std::to_string(i) + ": " + field + " " + p->rule +
+                         ", got " + value);
     }
   }
   if (!is_finite(scene.background.horizon) || !is_finite(scene.background.zenith) ||

@@ -151,14 +151,21 @@ class Reader {
     return {bounded(v[0], Place(at, 0)), bounded(v[1], Place(at, 1)), bounded(v[2], Place(at, 2))};
   }
 
-  Color color(const JsonValue& v, const Place& at) const {
+  // Three numbers, as a colour; whether they are in range is the caller's rule.
+  Color numbers3(const JsonValue& v, const Place& at) const {
     if (!v.IsArray() || v.Size() != 3) fail(at, "must be an array of 3 numbers");
-    double c[3];
+    return Color(
+        Vec3d{number(v[0], Place(at, 0)), number(v[1], Place(at, 1)), number(v[2], Place(at, 2))});
+  }
+
+  // A sky colour: components in [0, 1].
+  Color color(const JsonValue& v, const Place& at) const {
+    const Color c = numbers3(v, at);
     for (rapidjson::SizeType i = 0; i < 3; ++i) {
-      c[i] = number(v[i], Place(at, i));
-      if (c[i] < 0.0 || c[i] > 1.0) fail(Place(at, i), "must be in [0, 1], got " + format(c[i]));
+      const double x = v[i].GetDouble();
+      if (x < 0.0 || x > 1.0) fail(Place(at, i), "must be in [0, 1], got " + format(x));
     }
-    return Color(Vec3d{c[0], c[1], c[2]});
+    return c;
   }
 
   std::string_view string(const JsonValue& v, const Place& at, const char* expected) const {
@@ -261,45 +268,48 @@ void read_image(const Reader& r, const JsonValue& v, ImageSettings& image) {
     image.max_depth = r.integer(*depth, Place(p, "depth"), 0, limits::kMaxDepth);
 }
 
-FresnelModel parse_fresnel(std::string_view name, const Reader& r, const Place& at) {
-  if (name == "schlick") return FresnelModel::Schlick;
-  if (name == "exact") return FresnelModel::Exact;
+FresnelModel read_fresnel(std::string_view name, const Reader& r, const Place& at) {
+  if (const auto model = parse_fresnel(name)) return *model;
   r.fail(at, "must be \"schlick\" or \"exact\", got " + quote_value(name, 40));
 }
 
-Material read_material(const Reader& r, const JsonValue& v, const Place& p) {
+// The material's parameters as the file gives them; their ranges are the material's own rule
+// (check_parameters), the same for a scene built in C++.
+Material read_material_fields(const Reader& r, const JsonValue& v, const Place& p) {
   r.object(v, p);
   const std::string_view kind = r.string(r.require(v, p, "type"), Place(p, "type"), "a string");
   if (kind == "lambertian") {
     r.only(v, p, {"type", "albedo"});
-    return Lambertian{r.color(r.require(v, p, "albedo"), Place(p, "albedo"))};
+    return Lambertian{r.numbers3(r.require(v, p, "albedo"), Place(p, "albedo"))};
   }
   if (kind == "metal") {
     r.only(v, p, {"type", "albedo", "fuzz"});
     float fuzz = 0.0f;
-    if (const JsonValue* f = r.find(v, "fuzz")) {
-      fuzz = r.single(*f, Place(p, "fuzz"));
-      if (fuzz < 0.0f) r.fail(Place(p, "fuzz"), "must be >= 0 (values above 1 act as 1)");
-    }
-    return make_metal(r.color(r.require(v, p, "albedo"), Place(p, "albedo")), fuzz);
+    if (const JsonValue* f = r.find(v, "fuzz")) fuzz = r.single(*f, Place(p, "fuzz"));
+    return make_metal(r.numbers3(r.require(v, p, "albedo"), Place(p, "albedo")), fuzz);
   }
   if (kind == "dielectric") {
     r.only(v, p, {"type", "ior", "fresnel"});
-    const Place at(p, "ior");
-    const double ior = r.number(r.require(v, p, "ior"), at);
-    if (!(ior >= limits::kMinIor && ior <= limits::kMaxIor)) {
-      r.fail(at, "must be from " + Reader::format(limits::kMinIor) + " to " +
-                     Reader::format(limits::kMaxIor) + ", got " + Reader::format(ior));
-    }
-    Dielectric d{float(ior)};
+    Dielectric d{r.single(r.require(v, p, "ior"), Place(p, "ior"))};
     if (const JsonValue* f = r.find(v, "fresnel")) {
       const Place fp(p, "fresnel");
-      d.fresnel = parse_fresnel(r.string(*f, fp, "\"schlick\" or \"exact\""), r, fp);
+      d.fresnel = read_fresnel(r.string(*f, fp, "\"schlick\" or \"exact\""), r, fp);
     }
     return d;
   }
   r.fail(Place(p, "type"), "unknown material type " + quote_value(kind, 40) +
                                " (expected lambertian, metal or dielectric)");
+}
+
+Material read_material(const Reader& r, const JsonValue& v, const Place& p) {
+  const Material material = read_material_fields(r, v, p);
+  if (const auto problem = check_parameters(material)) {
+    const Place field(p, problem->field);
+    const std::string what = problem->rule + ", got " + Reader::format(problem->value);
+    if (problem->component >= 0) r.fail(Place(field, std::size_t(problem->component)), what);
+    r.fail(field, what);
+  }
+  return material;
 }
 
 // Material names to indices. Spheres may name a material before /materials defines it
@@ -502,7 +512,7 @@ ordered_json material_json(const Material& m) {
   }
   const Dielectric& d = std::get<Dielectric>(m);
   ordered_json j = {{"type", "dielectric"}, {"ior", shortest(d.ior)}};
-  if (d.fresnel == FresnelModel::Exact) j["fresnel"] = "exact";  // Schlick is the default
+  if (d.fresnel != FresnelModel::Schlick) j["fresnel"] = to_string(d.fresnel);  // the default
   return j;
 }
 
