@@ -11,9 +11,6 @@ namespace rtiow {
 // Which reflectance a dielectric uses: the book's Schlick approximation, or exact Fresnel.
 enum class FresnelModel { Schlick, Exact };
 
-// The models' names in scene files and on the command line, in one place.
-inline constexpr std::string_view kFresnelNames = "schlick or exact";
-
 inline std::string_view to_string(FresnelModel model) {
   return model == FresnelModel::Schlick ? "schlick" : "exact";
 }

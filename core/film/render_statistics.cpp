@@ -1,5 +1,9 @@
 #include "core/film/render_statistics.h"
 
+#include <OpenImageIO/imageio.h>
+
+#include <filesystem>
+
 namespace rtiow {
 
 std::vector<Vec3d> pixel_mean_variances(const RenderResult& result) {
@@ -25,6 +29,35 @@ std::vector<ExtraChannel> statistics_channels(const RenderResult& result) {
     for (std::size_t c = 0; c < 3; ++c) channels[1 + c].values.push_back(float(variances[p][c]));
   }
   return channels;
+}
+
+std::optional<ImageEstimate> read_statistics_image(
+    const std::string& path, int width, int height,
+    const std::vector<std::pair<std::string, std::string>>& required) {
+  constexpr int kChannels = 7;  // R, G, B, spp, variance.R, variance.G, variance.B
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return std::nullopt;
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width != width || spec.height != height || spec.nchannels != kChannels) {
+    return std::nullopt;
+  }
+  for (const auto& [key, value] : required) {
+    if (spec.get_string_attribute(kMetadataPrefix + key) != value) return std::nullopt;
+  }
+  std::vector<float> values(std::size_t(spec.width) * std::size_t(spec.height) * kChannels);
+  if (!in->read_image(0, 0, 0, kChannels, OIIO::TypeDesc::FLOAT, values.data())) {
+    return std::nullopt;
+  }
+  ImageEstimate image{Film(spec.width, spec.height), {}};
+  for (std::size_t p = 0; p < image.film.pixels().size(); ++p) {
+    const float* v = &values[p * kChannels];
+    image.film.at(int(p % std::size_t(spec.width)), int(p / std::size_t(spec.width))) = {v[0], v[1],
+                                                                                         v[2]};
+    image.variance.push_back({v[4], v[5], v[6]});
+  }
+  return image;
 }
 
 double mean_samples(const RenderResult& result) {

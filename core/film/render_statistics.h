@@ -2,7 +2,9 @@
 // What a render knows about its own noise, in the forms its users want: per-pixel
 // variances of the mean, the statistics channels of an EXR, the mean sample count.
 
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/film/image_error.h"
@@ -21,5 +23,12 @@ ImageEstimate to_estimate(const RenderResult& result);
 std::vector<ExtraChannel> statistics_channels(const RenderResult& result);
 
 double mean_samples(const RenderResult& result);
+
+// Reads back an image written with statistics_channels(): the film and each pixel's variance
+// of the mean. Nothing when the file is missing or unreadable, not `width` x `height`, lacks
+// the channels, or does not carry every (key, value) of `required` as string metadata.
+std::optional<ImageEstimate> read_statistics_image(
+    const std::string& path, int width, int height,
+    const std::vector<std::pair<std::string, std::string>>& required);
 
 }  // namespace rtiow
