@@ -10,6 +10,7 @@
 #include "core/sampling/sampler.h"
 #include "materials/fresnel.h"
 #include "materials/parameter_check.h"
+#include "materials/scattered.h"
 
 namespace rtiow {
 
@@ -26,9 +27,9 @@ inline std::optional<ParameterProblem> check_parameters(const Dielectric& m) {
   return std::nullopt;
 }
 
-inline bool scatter(const Dielectric& m, const Vec3& in_direction, const SurfaceHit& hit,
-                    SampleStream& rng, Color& attenuation, Vec3& out_direction) {
-  attenuation = Color{1.0f, 1.0f, 1.0f};
+inline std::optional<Scattered> scatter(const Dielectric& m, const Vec3& in_direction,
+                                        const SurfaceHit& hit, SampleStream& rng) {
+  const Color white{1.0f, 1.0f, 1.0f};  // glass absorbs nothing
   const float eta = hit.front_face ? 1.0f / m.ior : m.ior;
   const Vec3 unit = normalize(in_direction);
   const float cos_theta = std::min(dot(-unit, hit.normal), 1.0f);
@@ -42,12 +43,9 @@ inline bool scatter(const Dielectric& m, const Vec3& in_direction, const Surface
     reflectance = m.fresnel == FresnelModel::Exact ? exact_reflectance(cos_theta, eta)
                                                    : schlick_reflectance(cos_theta, eta);
   }
-  if (total_internal_reflection || reflectance > u) {
-    out_direction = reflect(unit, hit.normal);
-  } else {
-    out_direction = refract(unit, hit.normal, eta);
-  }
-  return true;
+  if (total_internal_reflection || reflectance > u)
+    return Scattered{reflect(unit, hit.normal), white};
+  return Scattered{refract(unit, hit.normal, eta), white};
 }
 
 }  // namespace rtiow

@@ -6,6 +6,7 @@
 #include "core/sampling/sampler.h"
 #include "core/sampling/sampling.h"
 #include "materials/parameter_check.h"
+#include "materials/scattered.h"
 
 namespace rtiow {
 
@@ -17,14 +18,13 @@ inline std::optional<ParameterProblem> check_parameters(const Lambertian& m) {
   return check_albedo(m.albedo);
 }
 
-inline bool scatter(const Lambertian& m, const Vec3& /*in_direction*/, const SurfaceHit& hit,
-                    SampleStream& rng, Color& attenuation, Vec3& out_direction) {
+inline std::optional<Scattered> scatter(const Lambertian& m, const Vec3& /*in_direction*/,
+                                        const SurfaceHit& hit, SampleStream& rng) {
   const float u1 = rng.next_1d(), u2 = rng.next_1d();
-  out_direction = hit.normal + sample_unit_vector(u1, u2);
+  Vec3 direction = hit.normal + sample_unit_vector(u1, u2);
   // The unit vector can cancel the normal; a zero direction would give NaNs downstream.
-  if (near_zero(out_direction)) out_direction = hit.normal;
-  attenuation = m.albedo;
-  return true;
+  if (near_zero(direction)) direction = hit.normal;
+  return Scattered{direction, m.albedo};
 }
 
 }  // namespace rtiow

@@ -16,20 +16,17 @@ inline std::optional<ParameterProblem> check_parameters(const Material& material
   return std::visit([](const auto& m) { return check_parameters(m); }, material);
 }
 
-// Samples the scattered direction; false when the ray is absorbed.
-inline bool scatter(const Material& material, const Vec3& in_direction, const SurfaceHit& hit,
-                    SampleStream& rng, Color& attenuation, Vec3& out_direction) {
+// Samples the scattered ray; none when the ray is absorbed.
+inline std::optional<Scattered> scatter(const Material& material, const Vec3& in_direction,
+                                        const SurfaceHit& hit, SampleStream& rng) {
   // A plain switch on the index: GCC 12 leaves std::visit as an out-of-line call here.
   switch (material.index()) {
     case 0:
-      return scatter(*std::get_if<0>(&material), in_direction, hit, rng, attenuation,
-                     out_direction);
+      return scatter(*std::get_if<0>(&material), in_direction, hit, rng);
     case 1:
-      return scatter(*std::get_if<1>(&material), in_direction, hit, rng, attenuation,
-                     out_direction);
+      return scatter(*std::get_if<1>(&material), in_direction, hit, rng);
     default:
-      return scatter(*std::get_if<2>(&material), in_direction, hit, rng, attenuation,
-                     out_direction);
+      return scatter(*std::get_if<2>(&material), in_direction, hit, rng);
   }
 }
 

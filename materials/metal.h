@@ -10,6 +10,7 @@
 #include "core/sampling/sampler.h"
 #include "core/sampling/sampling.h"
 #include "materials/parameter_check.h"
+#include "materials/scattered.h"
 
 namespace rtiow {
 
@@ -31,17 +32,15 @@ inline std::optional<ParameterProblem> check_parameters(const Metal& m) {
   return std::nullopt;
 }
 
-inline bool scatter(const Metal& m, const Vec3& in_direction, const SurfaceHit& hit,
-                    SampleStream& rng, Color& attenuation, Vec3& out_direction) {
-  const Vec3 reflected = reflect(normalize(in_direction), hit.normal);
+inline std::optional<Scattered> scatter(const Metal& m, const Vec3& in_direction,
+                                        const SurfaceHit& hit, SampleStream& rng) {
+  Vec3 direction = reflect(normalize(in_direction), hit.normal);
   if (m.fuzz > 0.0f) {
     const float u1 = rng.next_1d(), u2 = rng.next_1d(), u3 = rng.next_1d();
-    out_direction = reflected + m.fuzz * sample_in_unit_sphere(u1, u2, u3);
-  } else {
-    out_direction = reflected;
+    direction = direction + m.fuzz * sample_in_unit_sphere(u1, u2, u3);
   }
-  attenuation = m.albedo;
-  return dot(out_direction, hit.normal) > 0.0f;
+  if (!(dot(direction, hit.normal) > 0.0f)) return std::nullopt;  // below the surface
+  return Scattered{direction, m.albedo};
 }
 
 }  // namespace rtiow

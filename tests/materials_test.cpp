@@ -73,11 +73,10 @@ TEST(Dielectric, TotalInternalReflectionBeyondTheCriticalAngle) {
   const Vec3 in{std::sin(theta), -std::cos(theta), 0};
   for (std::uint64_t i = 0; i < 200; ++i) {
     SampleStream rng(1, 0, 0, i);
-    Color attenuation;
-    Vec3 out;
-    ASSERT_TRUE(scatter(glass, in, hit_facing_up(false), rng, attenuation, out));
-    EXPECT_NEAR(out.y, -in.y, 1e-6f) << "always reflected";
-    EXPECT_EQ(attenuation, (Color{1, 1, 1}));
+    const std::optional<Scattered> s = scatter(glass, in, hit_facing_up(false), rng);
+    ASSERT_TRUE(s);
+    EXPECT_NEAR(s->direction.y, -in.y, 1e-6f) << "always reflected";
+    EXPECT_EQ(s->attenuation, (Color{1, 1, 1}));
   }
 }
 
@@ -88,10 +87,7 @@ TEST(Dielectric, ReflectsWithSchlicksProbability) {
   const int n = 100000;
   for (int i = 0; i < n; ++i) {
     SampleStream rng(2, 0, 0, std::uint64_t(i));
-    Color attenuation;
-    Vec3 out;
-    scatter(glass, in, hit_facing_up(true), rng, attenuation, out);
-    if (out.y > 0) ++reflected;
+    if (scatter(glass, in, hit_facing_up(true), rng)->direction.y > 0) ++reflected;
   }
   // Binomial(n, 0.04): sd = 62; 5 sd.
   EXPECT_NEAR(reflected, 0.04 * n, 310);
@@ -101,20 +97,16 @@ TEST(Dielectric, IndexOneIsInvisible) {
   const Material air = Dielectric{1.0f};
   const Vec3 in = normalize(Vec3{0.3f, -1, 0.2f});
   SampleStream rng(3, 0, 0, 0);
-  Color attenuation;
-  Vec3 out;
-  scatter(air, in, hit_facing_up(true), rng, attenuation, out);
-  EXPECT_NEAR(length(out - in), 0.0f, 1e-6f);
+  EXPECT_NEAR(length(scatter(air, in, hit_facing_up(true), rng)->direction - in), 0.0f, 1e-6f);
 }
 
 TEST(Metal, PolishedMetalReflectsExactly) {
   const Material mirror = make_metal({0.9f, 0.8f, 0.7f}, 0.0f);
   SampleStream rng(4, 0, 0, 0);
-  Color attenuation;
-  Vec3 out;
-  ASSERT_TRUE(scatter(mirror, Vec3{1, -1, 0}, hit_facing_up(true), rng, attenuation, out));
-  EXPECT_NEAR(length(out - normalize(Vec3{1, 1, 0})), 0.0f, 1e-6f);
-  EXPECT_EQ(attenuation, (Color{0.9f, 0.8f, 0.7f}));
+  const std::optional<Scattered> s = scatter(mirror, Vec3{1, -1, 0}, hit_facing_up(true), rng);
+  ASSERT_TRUE(s);
+  EXPECT_NEAR(length(s->direction - normalize(Vec3{1, 1, 0})), 0.0f, 1e-6f);
+  EXPECT_EQ(s->attenuation, (Color{0.9f, 0.8f, 0.7f}));
 }
 
 TEST(Metal, FuzzIsClampedToOneAndAbsorbsBelowTheSurface) {
@@ -124,11 +116,10 @@ TEST(Metal, FuzzIsClampedToOneAndAbsorbsBelowTheSurface) {
   int absorbed = 0;
   for (std::uint64_t i = 0; i < 1000; ++i) {
     SampleStream rng(5, 0, 0, i);
-    Color attenuation;
-    Vec3 out;
-    if (!scatter(rough, grazing, hit_facing_up(true), rng, attenuation, out)) {
+    if (const std::optional<Scattered> s = scatter(rough, grazing, hit_facing_up(true), rng)) {
+      EXPECT_GT(dot(s->direction, Vec3{0, 1, 0}), 0.0f) << "only rays above the surface leave";
+    } else {
       ++absorbed;
-      EXPECT_LE(dot(out, Vec3{0, 1, 0}), 0.0f);
     }
   }
   EXPECT_GT(absorbed, 100) << "fuzz 1 at grazing incidence sends many rays below";
@@ -140,9 +131,9 @@ TEST(Lambertian, ScattersIntoTheUpperHemisphere) {
   const int n = 20000;
   for (int i = 0; i < n; ++i) {
     SampleStream rng(6, 0, 0, std::uint64_t(i));
-    Color attenuation;
-    Vec3 out;
-    ASSERT_TRUE(scatter(diffuse, Vec3{0, -1, 0}, hit_facing_up(true), rng, attenuation, out));
+    const std::optional<Scattered> s = scatter(diffuse, Vec3{0, -1, 0}, hit_facing_up(true), rng);
+    ASSERT_TRUE(s);
+    const Vec3 out = s->direction;
     ASSERT_TRUE(is_finite(out));
     ASSERT_GE(out.y, 0.0f);
     mean_cos += normalize(out).y;

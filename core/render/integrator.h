@@ -24,14 +24,11 @@ Color trace_path(const Scene& scene, const Accel& accel, Ray ray, int max_depth,
     const std::optional<Hit> hit = accel.intersect(ray, std::numeric_limits<float>::infinity());
     if (!hit) return throughput * scene.background(ray.direction);
     const SurfaceHit surface = make_surface_hit(scene.spheres, ray, *hit);
-    Color attenuation;
-    Vec3 direction;
-    if (!scatter(scene.materials[surface.material], ray.direction, surface, rng, attenuation,
-                 direction)) {
-      return Color{};
-    }
-    throughput *= attenuation;
-    ray = spawn_ray(surface, direction);
+    const std::optional<Scattered> scattered =
+        scatter(scene.materials[surface.material], ray.direction, surface, rng);
+    if (!scattered) return Color{};  // absorbed
+    throughput *= scattered->attenuation;
+    ray = spawn_ray(surface, scattered->direction);
   }
   return Color{};  // the depth limit: the book counts the path as black
 }
