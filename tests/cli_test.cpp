@@ -19,6 +19,8 @@
 #include <thread>
 #include <vector>
 
+#include "tests/test_files.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -29,12 +31,7 @@ struct CommandResult {
   std::string stderr_text;
 };
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using rtiow::test::slurp;
 
 // CTest runs the tests of this file in parallel processes: each test gets its own files.
 std::string test_name() {

@@ -26,21 +26,15 @@
 #include <string>
 #include <vector>
 
+#include "tests/test_files.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using rtiow::test::slurp;
 
-void write_file(const fs::path& p, const std::string& text) {
-  std::ofstream out(p, std::ios::binary);
-  out << text;
-}
+using rtiow::test::write_file;
 
 // Runs rtiow with `args` in `dir` under the caps; stdout to `stdout_path`, stderr to
 // `stderr_path`. Returns the exit code, or 128 + signal.

@@ -14,16 +14,13 @@
 #include <string>
 #include <thread>
 
+#include "tests/test_files.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using rtiow::test::slurp;
 
 // CTest runs these tests in parallel processes: each test gets its own files.
 fs::path output(const std::string& name) {
