@@ -18,6 +18,7 @@
 #include "core/film/render_statistics.h"
 #include "core/io/atomic_file.h"
 #include "core/io/error.h"
+#include "core/io/output_path.h"
 #include "core/render/render.h"
 #include "core/scene/builtin_scenes.h"
 
@@ -366,14 +367,8 @@ void check_options(const AccuracyOptions& o) {
                        "), or its noise swamps the errors");
   }
   // The two directories: missing ones are made, but a path that is a file is refused.
-  for (const auto& [dir, option] : {std::pair{o.out_dir, "--out"}, {o.cache_dir, "--cache-dir"}}) {
-    if (std::string(option) == "--out" && dir.empty())
-      throw InvalidInput("--out: the path is empty");
-    std::error_code error;
-    if (!dir.empty() && fs::exists(dir, error) && !fs::is_directory(dir, error)) {
-      throw InvalidInput(std::string(option) + " " + quote_value(dir) + ": is not a directory");
-    }
-  }
+  check_output_directory(o.out_dir, "--out");
+  if (!o.cache_dir.empty()) check_output_directory(o.cache_dir, "--cache-dir");
   if (o.repeat < 1) throw InvalidInput("--repeat must be >= 1");
   if (o.depths.empty() || *std::min_element(o.depths.begin(), o.depths.end()) < 1) {
     throw InvalidInput("--depths must list depth limits >= 1");

@@ -125,4 +125,12 @@ std::string safe_file_stem(const std::string& scene_name) {
   return stem.empty() ? "render" : stem;
 }
 
+void check_output_directory(const std::string& path, const std::string& what) {
+  if (path.empty()) throw InvalidInput(what + ": the path is empty");
+  std::error_code error;
+  if (std::filesystem::exists(path, error) && !std::filesystem::is_directory(path, error)) {
+    throw InvalidInput(what + " " + quote_value(path) + ": is not a directory");
+  }
+}
+
 }  // namespace rtiow

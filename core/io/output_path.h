@@ -37,4 +37,8 @@ void check_image_output(const std::string& path, const std::vector<std::string>&
 // and '-' only, no leading dot or dash, at most 64 characters, "render" when nothing is left.
 std::string safe_file_stem(const std::string& scene_name);
 
+// A directory rtiow will write files into (made if missing): not empty, and not a path that
+// is something else. `what` names it in the error (an option such as "--out").
+void check_output_directory(const std::string& path, const std::string& what);
+
 }  // namespace rtiow
