@@ -332,8 +332,9 @@ namespace {
 // The options, in the order --help lists them: what to render, where, how many samples and
 // how, how the process runs, and the camera.
 CLI::Option* add_scene_options(CLI::App* cmd, RenderOptions& o) {
-  cmd->add_option("scene_file", o.scene_file,
-                  "Scene file (JSON, see the README); its settings are overridden by the options");
+  cmd->add_option(
+      "scene_file", o.scene_file,
+      "Scene file (JSON, see docs/scene-format.md); its settings are overridden by the options");
   CLI::Option* scene_option =
       cmd->add_option("--scene", o.scene, "Built-in scene to render (see --list-scenes)")
           ->capture_default_str();
