@@ -8,7 +8,6 @@
 #include <optional>
 
 #include "core/accel/accelerator.h"
-
 #include "core/geometry/ray_offset.h"
 #include "core/scene/scene.h"
 

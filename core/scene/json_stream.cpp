@@ -112,7 +112,8 @@ std::string_view JsonInput::text_at(std::uint64_t offset, std::size_t max_bytes)
 
 namespace {
 
-// What a RapidJSON parse error means, in words a user of a scene file understands.
+// What a RapidJSON parse error means, in words a user of a scene file understands. (A number
+// too big for a double is reported with its text, in parse_json_stream.)
 const char* describe_parse_error(rapidjson::ParseErrorCode code) {
   switch (code) {
     case rapidjson::kParseErrorDocumentEmpty:
@@ -139,8 +140,6 @@ const char* describe_parse_error(rapidjson::ParseErrorCode code) {
       return "syntax error: missing closing quote of a string";
     case rapidjson::kParseErrorStringInvalidEncoding:
       return "syntax error: invalid UTF-8 in a string";
-    case rapidjson::kParseErrorNumberTooBig:
-      return "number overflow: beyond the range of a double";
     case rapidjson::kParseErrorNumberMissFraction:
       return "syntax error: a number needs digits after '.'";
     case rapidjson::kParseErrorNumberMissExponent:
