@@ -17,6 +17,7 @@
 #include "app/progress_display.h"
 #include "core/film/render_statistics.h"
 #include "core/io/error.h"
+#include "core/io/image_backend.h"
 #include "core/io/image_output.h"
 #include "core/io/input_limits.h"
 #include "core/io/output_path.h"
@@ -312,6 +313,11 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
                const MpiSession& mpi) {
   if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
   Job job = prepare_job(o, scene_option_given, output_given, mpi);
+  // The image writer loads on a second thread while the render runs (rank 0 writes).
+  if (mpi.rank() == 0) {
+    start_parallel_runtime();
+    preload_image_backend();
+  }
   RenderResult result = render_with_progress(o, job, mpi);
   if (mpi.distributed() && !gather_ranks(mpi, job, result)) return 0;
   write_result(o, job, result);

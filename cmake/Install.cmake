@@ -1,5 +1,5 @@
 # `cmake --install build --prefix P`: the rtiow executable (with the plot scripts it runs),
-# the core as a static library with its headers, and a CMake package, so that a C++ project
+# the core as a static library with its headers and image backend, and a CMake package, so that a C++ project
 # can find_package(rtiow) and link rtiow::rtiow.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
@@ -8,6 +8,13 @@ set_target_properties(rtiow_core PROPERTIES EXPORT_NAME rtiow OUTPUT_NAME rtiow)
 install(TARGETS rtiow RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES app/bench_plot.py app/accuracy_plot.py DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS rtiow_core EXPORT rtiowTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# The image backend beside the library: the rtiow executable loads it from lib/ when it
+# reads or writes an image; a program that links rtiow::rtiow links it (the library finds
+# it loaded), which costs such a program OpenImageIO's start-up, as linking it directly would.
+set_target_properties(rtiow_image_io PROPERTIES EXPORT_NAME image_io)
+install(TARGETS rtiow_image_io EXPORT rtiowTargets LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+set_property(TARGET rtiow_core APPEND PROPERTY INTERFACE_LINK_LIBRARIES
+             "$<INSTALL_INTERFACE:rtiow::image_io>")
 install(DIRECTORY core materials DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rtiow
         FILES_MATCHING PATTERN "*.h")
 

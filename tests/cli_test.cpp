@@ -38,11 +38,12 @@ std::string test_name() {
   return ::testing::UnitTest::GetInstance()->current_test_info()->name();
 }
 
-CommandResult run_rtiow(const std::string& args) {
+// `environment`: "NAME=value " assignments put before the command.
+CommandResult run_rtiow(const std::string& args, const std::string& environment = "") {
   const fs::path dir = RTIOW_TEST_OUTPUT_DIR;
   const fs::path out = dir / (test_name() + ".stdout"), err = dir / (test_name() + ".stderr");
-  const std::string command =
-      std::string(RTIOW_BINARY) + " " + args + " > " + out.string() + " 2> " + err.string();
+  const std::string command = environment + std::string(RTIOW_BINARY) + " " + args + " > " +
+                              out.string() + " 2> " + err.string();
   const int status = std::system(command.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
@@ -95,6 +96,43 @@ TEST(Cli, TheDocsShowTheHelpAsTheBinaryPrintsIt) {
     EXPECT_EQ(trimmed(shown), trimmed(run_rtiow(args).stdout_text))
         << "docs/usage.md shows stale help for `rtiow " << args << "`";
   }
+}
+
+// Debian's OpenImageIO takes some 0.3 s of symbol binding to load: only commands that read or
+// write an image may load it. The dynamic loader's own log (LD_DEBUG=files) says what was.
+TEST(Cli, OnlyCommandsThatTouchImagesLoadOpenImageIO) {
+  const auto loads_oiio = [](const std::string& args) {
+    const CommandResult r = run_rtiow(args, "LD_DEBUG=files ");
+    return r.stderr_text.find("libOpenImageIO") != std::string::npos;
+  };
+  const fs::path scene = output_path("scene.json");
+  EXPECT_FALSE(loads_oiio("--version"));
+  EXPECT_FALSE(loads_oiio("render --help"));
+  EXPECT_FALSE(loads_oiio("scene cover -o " + scene.string()));
+  EXPECT_FALSE(loads_oiio("render --scene cover --width -3 -o " + output_path("x.png").string()));
+  EXPECT_FALSE(
+      loads_oiio("render " + scene.string() + ".missing -o " + output_path("y.png").string()));
+  // ...and a render does load it, so the check above can see it.
+  EXPECT_TRUE(loads_oiio("render -q --scene cover --width 8 --height 8 --spp 1 -o " +
+                         output_path("z.png").string()));
+}
+
+// A program without its image backend says so before rendering, and writes nothing.
+TEST(Cli, AMissingImageBackendIsReportedBeforeTheRender) {
+  const fs::path root = fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + "-install");
+  fs::remove_all(root);
+  fs::create_directories(root / "bin");
+  fs::copy_file(RTIOW_BINARY, root / "bin" / "rtiow");
+  const fs::path image = root / "x.png";
+  const std::string command = (root / "bin" / "rtiow").string() +
+                              " render -q --scene cover --width 8 --height 8 --spp 1 -o " +
+                              image.string() + " 2> " + (root / "err").string();
+  const int status = std::system(command.c_str());
+  EXPECT_NE(WEXITSTATUS(status), 0);
+  EXPECT_FALSE(fs::exists(image));
+  const std::string err = slurp(root / "err");
+  EXPECT_NE(err.find("librtiow_image_io.so"), std::string::npos) << err;
+  EXPECT_EQ(count_lines(err), 1) << err;
 }
 
 TEST(Cli, ListsTheBuiltinScenes) {

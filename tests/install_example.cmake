@@ -11,12 +11,18 @@ endfunction()
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
-foreach(installed bin/rtiow lib/librtiow.a include/rtiow/core/rtiow.h
+foreach(installed bin/rtiow lib/librtiow.a lib/librtiow_image_io.so include/rtiow/core/rtiow.h
                   include/rtiow/materials/material.h lib/cmake/rtiow/rtiowConfig.cmake)
   if(NOT EXISTS ${prefix}/${installed})
     message(FATAL_ERROR "not installed: ${installed}")
   endif()
 endforeach()
+# The installed program finds its image backend in lib/ beside its bin/.
+run(${prefix}/bin/rtiow render -q --scene cover --width 16 --height 9 --spp 1
+    -o ${WORK_DIR}/cover.png)
+if(NOT EXISTS ${WORK_DIR}/cover.png)
+  message(FATAL_ERROR "the installed rtiow wrote no image")
+endif()
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/spheres -B ${WORK_DIR}/build
     -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)

@@ -1,8 +1,9 @@
 #include "core/film/render_statistics.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <filesystem>
+
+#include "core/io/image_backend.h"
+#include "core/io/image_file.h"
 
 namespace rtiow {
 
@@ -37,24 +38,23 @@ std::optional<ImageEstimate> read_statistics_image(
   constexpr int kChannels = 7;  // R, G, B, spp, variance.R, variance.G, variance.B
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;
-  auto in = OIIO::ImageInput::open(path);
+  std::string reason;
+  auto in = image_backend().open(path, reason);
   if (!in) return std::nullopt;
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width != width || spec.height != height || spec.nchannels != kChannels) {
+  const ImageHeader& header = in->header();
+  if (header.width != width || header.height != height ||
+      header.channel_names.size() != kChannels) {
     return std::nullopt;
   }
   for (const auto& [key, value] : required) {
-    if (spec.get_string_attribute(kMetadataPrefix + key) != value) return std::nullopt;
+    if (header.string_attribute(kMetadataPrefix + key) != value) return std::nullopt;
   }
-  std::vector<float> values(std::size_t(spec.width) * std::size_t(spec.height) * kChannels);
-  if (!in->read_image(0, 0, 0, kChannels, OIIO::TypeDesc::FLOAT, values.data())) {
-    return std::nullopt;
-  }
-  ImageEstimate image{Film(spec.width, spec.height), {}};
+  std::vector<float> values(std::size_t(width) * std::size_t(height) * kChannels);
+  if (!in->read_pixels(PixelType::Float, values.data(), reason)) return std::nullopt;
+  ImageEstimate image{Film(width, height), {}};
   for (std::size_t p = 0; p < image.film.pixels().size(); ++p) {
     const float* v = &values[p * kChannels];
-    image.film.at(int(p % std::size_t(spec.width)), int(p / std::size_t(spec.width))) = {v[0], v[1],
-                                                                                         v[2]};
+    image.film.at(int(p % std::size_t(width)), int(p / std::size_t(width))) = {v[0], v[1], v[2]};
     image.variance.push_back({v[4], v[5], v[6]});
   }
   return image;

@@ -1,9 +1,9 @@
 #include "core/io/image_output.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/image_backend.h"
+#include "core/io/image_file.h"
 #include "core/io/output_path.h"
-
-#include <OpenImageIO/imageio.h>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -31,7 +31,7 @@ std::string metadata_string(const MetadataValue& v) {
   return std::get<std::string>(v);
 }
 
-void add_metadata(OIIO::ImageSpec& spec, const Metadata& unordered, bool typed) {
+void add_metadata(ImageHeader& header, const Metadata& unordered, bool typed) {
   // In key order, as EXR itself stores attributes: the same metadata gives the same bytes
   // however it was gathered (a render, or a merge of parts read back from EXR).
   Metadata metadata = unordered;
@@ -43,17 +43,17 @@ void add_metadata(OIIO::ImageSpec& spec, const Metadata& unordered, bool typed) 
       // EXR has no 64-bit integer attribute: larger counts are stored as strings.
       const auto i = std::get<std::int64_t>(value);
       if (i >= INT32_MIN && i <= INT32_MAX) {
-        spec.attribute(name, int(i));
+        header.attributes.push_back({name, int(i)});
       } else {
-        spec.attribute(name, std::to_string(i));
+        header.attributes.push_back({name, std::to_string(i)});
       }
     } else if (typed && std::holds_alternative<double>(value)) {
-      spec.attribute(name, float(std::get<double>(value)));
+      header.attributes.push_back({name, float(std::get<double>(value))});
     } else {
-      spec.attribute(name, metadata_string(value));
+      header.attributes.push_back({name, metadata_string(value)});
     }
   }
-  spec.attribute("Software", "rtiow");
+  header.attributes.push_back({"Software", std::string("rtiow")});
 }
 
 }  // namespace
@@ -89,16 +89,16 @@ class QuietStderr {
 };
 
 bool reads_back(const std::string& path, std::string& reason) {
+  const ImageBackend& backend = image_backend();
   const QuietStderr quiet;
-  auto in = OIIO::ImageInput::open(path);
-  std::vector<float> pixels;
-  if (in) {
-    const OIIO::ImageSpec& spec = in->spec();
-    pixels.resize(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
-    if (in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) return true;
+  std::string ignored;  // the reason below is the one that helps
+  if (auto in = backend.open(path, ignored)) {
+    const ImageHeader& header = in->header();
+    std::vector<float> pixels(std::size_t(header.width) * std::size_t(header.height) *
+                              header.channel_names.size());
+    if (in->read_pixels(PixelType::Float, pixels.data(), ignored)) return true;
   }
   reason = "the file written does not read back (is the disk full, or a file-size limit set?)";
-  OIIO::geterror();  // clear it: the reason above is the one that helps
   return false;
 }
 
@@ -108,15 +108,18 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
   if (!image || (!extra.empty() && !image->extra_channels)) {
     throw std::invalid_argument("cannot write '" + path + "': not a format for this image");
   }
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw std::runtime_error("cannot write '" + path + "': " + OIIO::geterror());
+  const ImageBackend& backend = image_backend();
   const bool linear_float = image->linear_float;
   const int channels = 3 + int(extra.size());
-  OIIO::ImageSpec spec(film.width(), film.height(), channels,
-                       linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  for (std::size_t i = 0; i < extra.size(); ++i) spec.channelnames[3 + i] = extra[i].name;
-  add_metadata(spec, metadata, linear_float);
-  if (!linear_float) spec.attribute("oiio:ColorSpace", "Gamma2.0");
+  ImageHeader header;
+  header.width = header.full_width = film.width();
+  header.height = header.full_height = film.height();
+  header.channel_names = {"R", "G", "B"};
+  for (const ExtraChannel& e : extra) header.channel_names.push_back(e.name);
+  header.channel_types.assign(std::size_t(channels),
+                              linear_float ? PixelType::Float : PixelType::UInt8);
+  add_metadata(header, metadata, linear_float);
+  if (!linear_float) header.attributes.push_back({"oiio:ColorSpace", std::string("Gamma2.0")});
 
   std::vector<float> floats;
   std::vector<std::uint8_t> bytes;
@@ -138,13 +141,8 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
     data = bytes.data();
   }
 
-  const OIIO::TypeDesc format = linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
   write_atomically(path, [&](const std::string& temporary, std::string& reason) {
-    const bool written =
-        out->open(temporary, spec) && out->write_image(format, data) && out->close();
-    if (!written) reason = out->geterror();
-    out.reset();  // closes the file before the rename
-    return written && reads_back(temporary, reason);
+    return backend.write(temporary, header, data, reason) && reads_back(temporary, reason);
   });
 }
 

@@ -1,5 +1,6 @@
 #include "core/render/render.h"
 
+#include <oneapi/tbb/task_arena.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -132,6 +133,11 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, RenderPr
       return render_with<NaiveAccel>(scene, camera, settings, progress);
   }
   throw InvalidInput("unknown accelerator");
+}
+
+void start_parallel_runtime() {
+  tbb::task_arena arena;
+  arena.initialize();
 }
 
 }  // namespace rtiow

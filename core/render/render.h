@@ -74,4 +74,10 @@ void validate(const Scene& scene, const RenderSettings& settings);
 RenderResult render(const Scene& scene, const RenderSettings& settings,
                     RenderProgress* progress = nullptr);
 
+// Starts oneTBB now rather than at the render's first pass. oneTBB dlopens its allocator on
+// first use, and a dlopen waits for any other under way: a program that loads a library on
+// another thread during the render (the image backend) calls this first, or the render
+// waits for that whole load.
+void start_parallel_runtime();
+
 }  // namespace rtiow

@@ -1,7 +1,5 @@
 #include "core/render/render_part.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -13,6 +11,8 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/error.h"
+#include "core/io/image_backend.h"
+#include "core/io/image_file.h"
 #include "core/io/input_file.h"
 #include "core/io/input_limits.h"
 #include "core/render/render_metadata.h"
@@ -41,9 +41,9 @@ std::string hex(std::uint64_t v) {
 }
 
 // A whole number from a header field, or InvalidInput naming the file and the field.
-std::uint64_t header_number(const OIIO::ImageSpec& spec, const std::string& path,
+std::uint64_t header_number(const ImageHeader& header, const std::string& path,
                             const std::string& field) {
-  const std::string text = spec.get_string_attribute(field);
+  const std::string text = header.string_attribute(field);
   std::uint64_t value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
@@ -75,33 +75,35 @@ std::string render_digest(const Scene& scene, const RenderSettings& settings) {
 }
 
 void write_part(const std::string& path, const RenderPart& part) {
-  OIIO::ImageSpec spec(part.width, part.height, kChannels, OIIO::TypeDesc::UINT);
-  spec.channelnames.clear();
-  spec.channelformats.clear();
+  const ImageBackend& backend = image_backend();
+  ImageHeader header;
+  header.width = header.full_width = part.width;
+  header.height = header.full_height = part.height;
   for (const char* c : {"R", "G", "B"}) {
-    spec.channelnames.emplace_back(c);
-    spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
+    header.channel_names.emplace_back(c);
+    header.channel_types.push_back(PixelType::Float);
   }
   for (const char* c : {"R", "G", "B"}) {
     for (int w = 0; w < kWordsPerSum; ++w) {
-      spec.channelnames.push_back(std::string("sum.") + c + "." + std::to_string(w));
-      spec.channelformats.push_back(OIIO::TypeDesc::UINT);
+      header.channel_names.push_back(std::string("sum.") + c + "." + std::to_string(w));
+      header.channel_types.push_back(PixelType::UInt32);
     }
   }
-  spec.attribute("compression", "zip");
+  auto& attributes = header.attributes;
+  attributes.push_back({"compression", std::string("zip")});
   for (const auto& [key, value] : part.metadata) {
     if (const auto* i = std::get_if<std::int64_t>(&value)) {
-      spec.attribute(kMetadataPrefix + key, std::to_string(*i));
+      attributes.push_back({kMetadataPrefix + key, std::to_string(*i)});
     } else if (const auto* d = std::get_if<double>(&value)) {
-      spec.attribute(kMetadataPrefix + key, float(*d));
+      attributes.push_back({kMetadataPrefix + key, float(*d)});
     } else {
-      spec.attribute(kMetadataPrefix + key, std::get<std::string>(value));
+      attributes.push_back({kMetadataPrefix + key, std::get<std::string>(value)});
     }
   }
-  spec.attribute(kPartFirstSample, std::to_string(part.first_sample));
-  spec.attribute(kPartSamples, std::to_string(part.samples));
-  spec.attribute(kPartJobSamples, std::to_string(part.job_samples));
-  spec.attribute(kDigest, part.digest);
+  attributes.push_back({kPartFirstSample, std::to_string(part.first_sample)});
+  attributes.push_back({kPartSamples, std::to_string(part.samples)});
+  attributes.push_back({kPartJobSamples, std::to_string(part.job_samples)});
+  attributes.push_back({kDigest, part.digest});
 
   // Native layout: per pixel 3 floats then 12 words, all 4 bytes wide.
   std::vector<std::uint32_t> data(std::size_t(part.width) * std::size_t(part.height) * kChannels);
@@ -117,14 +119,8 @@ void write_part(const std::string& path, const RenderPart& part) {
     }
   }
 
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw std::runtime_error("cannot write '" + path + "': no EXR writer");
   write_atomically(path, [&](const std::string& temporary, std::string& reason) {
-    const bool written = out->open(temporary, spec) &&
-                         out->write_image(OIIO::TypeDesc::UNKNOWN, data.data()) && out->close();
-    if (!written) reason = out->geterror();
-    out.reset();
-    return written && reads_back(temporary, reason);
+    return backend.write(temporary, header, data.data(), reason) && reads_back(temporary, reason);
   });
 }
 
@@ -134,40 +130,41 @@ namespace {
 // channels sorted by name), or nothing if the file is not a part file.
 using WordChannels = std::array<std::array<int, kWordsPerSum>, kColorChannels>;
 
-std::optional<WordChannels> find_sum_channels(const OIIO::ImageSpec& spec) {
-  if (spec.nchannels != kChannels || spec.get_string_attribute(kDigest).empty()) return {};
+std::optional<WordChannels> find_sum_channels(const ImageHeader& header) {
+  const std::vector<std::string>& names = header.channel_names;
+  if (names.size() != kChannels || header.string_attribute(kDigest).empty()) return {};
   WordChannels channels;
   for (int c = 0; c < kColorChannels; ++c) {
     for (int w = 0; w < kWordsPerSum; ++w) {
       const std::string channel = std::string("sum.") + "RGB"[c] + "." + std::to_string(w);
-      const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), channel);
-      if (it == spec.channelnames.end()) return {};
-      channels[std::size_t(c)][std::size_t(w)] = int(it - spec.channelnames.begin());
+      const auto it = std::find(names.begin(), names.end(), channel);
+      if (it == names.end()) return {};
+      channels[std::size_t(c)][std::size_t(w)] = int(it - names.begin());
     }
   }
   return channels;
 }
 
 // The header decides what is allocated: its size and sample fields are checked first.
-void read_part_header(const OIIO::ImageSpec& spec, const std::string& name, RenderPart& part) {
-  if (spec.width < 1 || spec.height < 1 || spec.width > limits::kMaxImageSide ||
-      spec.height > limits::kMaxImageSide || spec.depth != 1 || spec.x != 0 || spec.y != 0 ||
-      spec.full_width != spec.width || spec.full_height != spec.height) {
-    throw InvalidInput(name + ": header field size " + std::to_string(spec.width) + "x" +
-                       std::to_string(spec.height) + " is not an image rtiow renders");
+void read_part_header(const ImageHeader& header, const std::string& name, RenderPart& part) {
+  if (header.width < 1 || header.height < 1 || header.width > limits::kMaxImageSide ||
+      header.height > limits::kMaxImageSide || header.depth != 1 || header.x != 0 ||
+      header.y != 0 || header.full_width != header.width || header.full_height != header.height) {
+    throw InvalidInput(name + ": header field size " + std::to_string(header.width) + "x" +
+                       std::to_string(header.height) + " is not an image rtiow renders");
   }
   RenderSettings size;
-  size.width = spec.width, size.height = spec.height;
+  size.width = header.width, size.height = header.height;
   try {
     validate(size);  // pixel count and memory
   } catch (const InvalidInput& e) {
     throw InvalidInput(name + ": " + e.what());
   }
-  part.width = spec.width;
-  part.height = spec.height;
-  part.first_sample = header_number(spec, part.path, kPartFirstSample);
-  part.samples = header_number(spec, part.path, kPartSamples);
-  part.job_samples = header_number(spec, part.path, kPartJobSamples);
+  part.width = header.width;
+  part.height = header.height;
+  part.first_sample = header_number(header, part.path, kPartFirstSample);
+  part.samples = header_number(header, part.path, kPartSamples);
+  part.job_samples = header_number(header, part.path, kPartJobSamples);
   if (part.samples == 0 || part.job_samples == 0 || part.job_samples > limits::kMaxSampleIndex ||
       part.first_sample >= part.job_samples ||
       part.samples > part.job_samples - part.first_sample) {
@@ -175,42 +172,45 @@ void read_part_header(const OIIO::ImageSpec& spec, const std::string& name, Rend
                        ", +" + std::to_string(part.samples) + ") of a job of " +
                        std::to_string(part.job_samples) + ": not a share of it");
   }
-  part.digest = spec.get_string_attribute(kDigest);
+  part.digest = header.string_attribute(kDigest);
 }
 
 // The render's metadata: every "rtiow:" attribute but the part file's own fields.
-Metadata read_part_metadata(const OIIO::ImageSpec& spec) {
+Metadata read_part_metadata(const ImageHeader& header) {
   Metadata metadata;
-  for (const auto& attribute : spec.extra_attribs) {
-    const std::string attribute_name = attribute.name().string();
+  for (const ImageAttribute& attribute : header.attributes) {
+    const std::string& attribute_name = attribute.name;
     if (attribute_name.rfind(kMetadataPrefix, 0) != 0 ||
         attribute_name.rfind(kPartFieldPrefix, 0) == 0 || attribute_name == kDigest) {
       continue;
     }
     const std::string key = attribute_name.substr(std::string_view(kMetadataPrefix).size());
-    if (attribute.type() == OIIO::TypeDesc::FLOAT) {
-      metadata.emplace_back(key, double(attribute.get_float()));
-    } else {
-      const std::string text = attribute.get_string();
-      std::int64_t number = 0;
-      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
-      const bool integer = !text.empty() && text.front() != '-' && error == std::errc() &&
-                           end == text.data() + text.size();
-      metadata.emplace_back(key, integer ? MetadataValue(number) : MetadataValue(text));
+    if (const auto* f = std::get_if<float>(&attribute.value)) {
+      metadata.emplace_back(key, double(*f));
+      continue;
     }
+    const auto* i = std::get_if<int>(&attribute.value);
+    const std::string text = i ? std::to_string(*i) : std::get<std::string>(attribute.value);
+    std::int64_t number = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
+    const bool integer = !text.empty() && text.front() != '-' && error == std::errc() &&
+                         end == text.data() + text.size();
+    metadata.emplace_back(key, integer ? MetadataValue(number) : MetadataValue(text));
   }
   return metadata;
 }
 
 // The exact sums, every channel read as 32-bit words whatever the file stores.
-std::vector<PixelSum> read_part_sums(OIIO::ImageInput& in, const std::string& name,
+std::vector<PixelSum> read_part_sums(ImageReader& in, const std::string& name,
                                      const WordChannels& channels) {
-  const OIIO::ImageSpec& spec = in.spec();
-  std::vector<std::uint32_t> data(std::size_t(spec.width) * std::size_t(spec.height) * kChannels);
-  if (!in.read_image(0, 0, 0, kChannels, OIIO::TypeDesc::UINT, data.data())) {
-    throw InvalidInput(name + ": cannot read its pixels: " + one_line(in.geterror(), 200));
+  const ImageHeader& header = in.header();
+  const std::size_t pixels = std::size_t(header.width) * std::size_t(header.height);
+  std::vector<std::uint32_t> data(pixels * kChannels);
+  std::string reason;
+  if (!in.read_pixels(PixelType::UInt32, data.data(), reason)) {
+    throw InvalidInput(name + ": cannot read its pixels: " + one_line(reason, 200));
   }
-  std::vector<PixelSum> sums(std::size_t(spec.width) * std::size_t(spec.height));
+  std::vector<PixelSum> sums(pixels);
   for (std::size_t p = 0; p < sums.size(); ++p) {
     const std::uint32_t* pixel = &data[p * kChannels];
     for (std::size_t c = 0; c < kColorChannels; ++c) {
@@ -228,16 +228,17 @@ std::vector<PixelSum> read_part_sums(OIIO::ImageInput& in, const std::string& na
 RenderPart read_part(const std::string& path) {
   check_input_file(path, limits::kMaxPartFileBytes, "part file");
   const std::string name = "part file " + quote_value(path);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InvalidInput(name + ": cannot read: " + one_line(OIIO::geterror(), 200));
-  const std::optional<WordChannels> channels = find_sum_channels(in->spec());
+  std::string reason;
+  auto in = image_backend().open(path, reason);
+  if (!in) throw InvalidInput(name + ": cannot read: " + one_line(reason, 200));
+  const std::optional<WordChannels> channels = find_sum_channels(in->header());
   if (!channels) {
     throw InvalidInput(name + ": not a part file (render one with --sample-range or --part)");
   }
   RenderPart part;
   part.path = path;
-  read_part_header(in->spec(), name, part);
-  part.metadata = read_part_metadata(in->spec());
+  read_part_header(in->header(), name, part);
+  part.metadata = read_part_metadata(in->header());
   part.sums = read_part_sums(*in, name, *channels);
   return part;
 }

@@ -1,0 +1,104 @@
+#include "core/io/image_backend.h"
+
+#include <dlfcn.h>
+
+#include <chrono>
+#include <filesystem>
+#include <future>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include "core/io/image_file.h"
+
+#ifndef RTIOW_LIBDIR_FROM_BINDIR
+#define RTIOW_LIBDIR_FROM_BINDIR "../lib"
+#endif
+
+namespace rtiow {
+namespace {
+
+using Entry = const ImageBackend* (*)(int abi_version);
+constexpr const char* kEntryName = "rtiow_image_backend";
+
+struct Loaded {
+  const ImageBackend* backend = nullptr;
+  std::string error;
+};
+
+Loaded from_entry(void* symbol, const std::string& where) {
+  const ImageBackend* backend = reinterpret_cast<Entry>(symbol)(kImageBackendAbi);
+  if (!backend) return {nullptr, where + " is from another build of rtiow"};
+  return {backend, {}};
+}
+
+Loaded try_open(const std::string& path) {
+  // Kept open for the life of the process: the backend's objects live in it.
+  void* library = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!library) return {nullptr, {}};
+  void* entry = ::dlsym(library, kEntryName);
+  if (!entry) return {nullptr, path + " has no " + kEntryName};
+  return from_entry(entry, path);
+}
+
+std::string beside_program() {
+  std::error_code error;
+  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) return {};
+  return (program.parent_path() / RTIOW_LIBDIR_FROM_BINDIR / kImageBackendFile)
+      .lexically_normal()
+      .string();
+}
+
+Loaded linked() {
+  if (void* entry = ::dlsym(RTLD_DEFAULT, kEntryName))
+    return from_entry(entry, "the linked backend");
+  return {};
+}
+
+Loaded load() {
+  if (Loaded found = linked(); found.backend) return found;
+  const std::string local = beside_program();
+  std::string looked;
+  if (!local.empty()) {
+    Loaded found = try_open(local);
+    if (found.backend || !found.error.empty()) return found;
+    looked = local + ", ";
+  }
+  Loaded found = try_open(kImageBackendFile);
+  if (found.backend || !found.error.empty()) return found;
+  return {nullptr, std::string("cannot read or write images: ") + kImageBackendFile +
+                       " (rtiow's OpenImageIO module) was not found (looked at " + looked +
+                       "and the library path)"};
+}
+
+std::once_flag started;
+std::shared_future<Loaded> loading;
+
+const ImageBackend& loaded_backend() {
+  const Loaded& loaded = loading.get();
+  if (!loaded.backend) throw std::runtime_error(loaded.error);
+  return *loaded.backend;
+}
+
+}  // namespace
+
+void preload_image_backend() {
+  std::call_once(started, [] {
+    // In the background only where it will be found: otherwise load now, so that a missing
+    // backend is reported before a render rather than after it.
+    std::error_code error;
+    const bool beside = std::filesystem::exists(beside_program(), error);
+    const auto policy = beside && !linked().backend ? std::launch::async : std::launch::deferred;
+    loading = std::async(policy, load).share();
+  });
+  if (loading.wait_for(std::chrono::seconds(0)) == std::future_status::deferred) loaded_backend();
+}
+
+const ImageBackend& image_backend() {
+  std::call_once(started, [] { loading = std::async(std::launch::deferred, load).share(); });
+  return loaded_backend();
+}
+
+}  // namespace rtiow

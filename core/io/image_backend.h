@@ -1,0 +1,31 @@
+#pragma once
+// Finding the image backend (core/io/image_file.h) at run time. The backend is a shared
+// library, librtiow_image_io.so, that rtiow does not link: it is looked up
+//   1. among the libraries already loaded (a program that linked it, as rtiow::rtiow's
+//      users do through CMake),
+//   2. in the lib directory beside the program's bin directory (the build tree and the
+//      installed layout alike),
+//   3. by name, through the program's run path and the system's library path.
+// `rtiow --version`, `rtiow scene` and every refused input then start in milliseconds, and
+// a render can load the backend on a second thread while it renders (preload_image_backend).
+
+namespace rtiow {
+
+class ImageBackend;
+
+// Changes whenever image_file.h changes shape: a backend from another build is refused.
+inline constexpr int kImageBackendAbi = 1;
+
+// The name the backend's file has.
+inline constexpr const char* kImageBackendFile = "librtiow_image_io.so";
+
+// Starts loading the backend on a background thread, where the file is found beside the
+// program; otherwise loads it now. Throws std::runtime_error as image_backend() does when
+// it is missing, so a command can refuse before its work rather than lose it.
+void preload_image_backend();
+
+// The backend, loaded now unless a preload did it (waits for one under way). Throws
+// std::runtime_error naming the places it looked when there is none.
+const ImageBackend& image_backend();
+
+}  // namespace rtiow

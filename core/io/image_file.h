@@ -1,0 +1,75 @@
+#pragma once
+// Image files as rtiow reads and writes them, in words that name no image library: a
+// header (size, channels, attributes) and interleaved pixels. The one implementation,
+// over OpenImageIO, lives in a shared library of its own (core/io/oiio_image_backend.cpp)
+// that is loaded only when an image is read or written (core/io/image_backend.h): Debian's
+// OpenImageIO pulls in some 260 shared libraries, and a command that writes no image
+// should not wait for them.
+//
+// The types cross that library boundary, so they are plain: no exceptions are thrown across
+// it (failures come back as false and a reason).
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace rtiow {
+
+// How one channel's values are stored (in a file, or in a buffer handed over).
+enum class PixelType { UInt8, UInt32, Float };
+
+inline std::size_t pixel_type_bytes(PixelType type) {
+  return type == PixelType::UInt8 ? 1 : 4;
+}
+
+struct ImageAttribute {
+  std::string name;
+  std::variant<int, float, std::string> value;
+};
+
+struct ImageHeader {
+  int width = 0, height = 0;
+  // The data window and the display window, where a format has them: rtiow writes and
+  // accepts only x = y = 0, depth 1, full size = size.
+  int x = 0, y = 0, depth = 1, full_width = 0, full_height = 0;
+  std::vector<std::string> channel_names;
+  std::vector<PixelType> channel_types;  // when writing: how each channel is stored
+  std::vector<ImageAttribute> attributes;
+
+  // The value of a string attribute; "" when absent or not a string.
+  std::string string_attribute(const std::string& name) const {
+    for (const ImageAttribute& a : attributes) {
+      if (a.name != name) continue;
+      if (const auto* s = std::get_if<std::string>(&a.value)) return *s;
+    }
+    return {};
+  }
+};
+
+// An image file opened for reading: its header first, so that callers can check the size
+// before allocating anything, then all of its pixels.
+class ImageReader {
+ public:
+  virtual ~ImageReader() = default;
+  virtual const ImageHeader& header() const = 0;
+  // Every channel of every pixel, converted to `type`, interleaved, row major; `pixels`
+  // must hold width * height * channels values. False (and `reason`) on failure.
+  virtual bool read_pixels(PixelType type, void* pixels, std::string& reason) = 0;
+};
+
+class ImageBackend {
+ public:
+  virtual ~ImageBackend() = default;
+  // Writes `pixels`, interleaved in the header's channel types, to `path` in the format its
+  // extension names. False (and `reason`) on failure; the file may then be partial, so
+  // callers write to a temporary (core/io/atomic_file.h).
+  virtual bool write(const std::string& path, const ImageHeader& header, const void* pixels,
+                     std::string& reason) const = 0;
+  // Nothing (and `reason`) when the file does not open as an image.
+  virtual std::unique_ptr<ImageReader> open(const std::string& path, std::string& reason) const = 0;
+};
+
+}  // namespace rtiow

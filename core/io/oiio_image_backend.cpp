@@ -1,0 +1,141 @@
+// The image backend over OpenImageIO, built as its own shared library
+// (librtiow_image_io.so) and loaded on demand by core/io/image_backend.cpp. This is the one
+// file of rtiow that includes OpenImageIO.
+
+#include <OpenImageIO/imageio.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/io/image_backend.h"
+#include "core/io/image_file.h"
+
+namespace rtiow {
+namespace {
+
+OIIO::TypeDesc to_oiio(PixelType type) {
+  switch (type) {
+    case PixelType::UInt8:
+      return OIIO::TypeDesc::UINT8;
+    case PixelType::UInt32:
+      return OIIO::TypeDesc::UINT;
+    case PixelType::Float:
+      break;
+  }
+  return OIIO::TypeDesc::FLOAT;
+}
+
+std::optional<PixelType> from_oiio(OIIO::TypeDesc type) {
+  if (type == OIIO::TypeDesc::UINT8) return PixelType::UInt8;
+  if (type == OIIO::TypeDesc::UINT) return PixelType::UInt32;
+  if (type == OIIO::TypeDesc::FLOAT) return PixelType::Float;
+  return std::nullopt;
+}
+
+// OpenImageIO keeps the last error per thread until it is read: read it, always, so that a
+// stale error never shows up in a later message.
+std::string take_error(const std::string& first = {}) {
+  const std::string global = OIIO::geterror();
+  return first.empty() ? global : first;
+}
+
+OIIO::ImageSpec to_spec(const ImageHeader& header) {
+  OIIO::ImageSpec spec(header.width, header.height, int(header.channel_names.size()),
+                       OIIO::TypeDesc::FLOAT);
+  spec.channelnames = header.channel_names;
+  spec.channelformats.clear();
+  bool mixed = false;
+  for (const PixelType t : header.channel_types) mixed |= t != header.channel_types.front();
+  if (mixed) {
+    for (const PixelType t : header.channel_types) spec.channelformats.push_back(to_oiio(t));
+  }
+  spec.format = to_oiio(header.channel_types.front());
+  for (const ImageAttribute& a : header.attributes) {
+    if (const auto* i = std::get_if<int>(&a.value)) {
+      spec.attribute(a.name, *i);
+    } else if (const auto* f = std::get_if<float>(&a.value)) {
+      spec.attribute(a.name, *f);
+    } else {
+      spec.attribute(a.name, std::get<std::string>(a.value));
+    }
+  }
+  return spec;
+}
+
+ImageHeader to_header(const OIIO::ImageSpec& spec) {
+  ImageHeader header;
+  header.width = spec.width, header.height = spec.height;
+  header.x = spec.x, header.y = spec.y, header.depth = spec.depth;
+  header.full_width = spec.full_width, header.full_height = spec.full_height;
+  header.channel_names = spec.channelnames;
+  for (int c = 0; c < spec.nchannels; ++c) {
+    header.channel_types.push_back(from_oiio(spec.channelformat(c)).value_or(PixelType::Float));
+  }
+  for (const auto& attribute : spec.extra_attribs) {
+    ImageAttribute a{attribute.name().string(), 0};
+    if (attribute.type() == OIIO::TypeDesc::FLOAT) {
+      a.value = attribute.get_float();
+    } else if (attribute.type() == OIIO::TypeDesc::INT) {
+      a.value = attribute.get_int();
+    } else {
+      a.value = attribute.get_string();
+    }
+    header.attributes.push_back(std::move(a));
+  }
+  return header;
+}
+
+class OiioImageReader final : public ImageReader {
+ public:
+  explicit OiioImageReader(std::unique_ptr<OIIO::ImageInput> in)
+      : in_(std::move(in)), header_(to_header(in_->spec())) {}
+
+  const ImageHeader& header() const override { return header_; }
+
+  bool read_pixels(PixelType type, void* pixels, std::string& reason) override {
+    const int channels = in_->spec().nchannels;
+    if (in_->read_image(0, 0, 0, channels, to_oiio(type), pixels)) return true;
+    reason = take_error(in_->geterror());
+    return false;
+  }
+
+ private:
+  std::unique_ptr<OIIO::ImageInput> in_;
+  ImageHeader header_;
+};
+
+class OiioImageBackend final : public ImageBackend {
+ public:
+  bool write(const std::string& path, const ImageHeader& header, const void* pixels,
+             std::string& reason) const override {
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) {
+      reason = take_error();
+      return false;
+    }
+    // UNKNOWN: the buffer holds each channel in its own stored type.
+    const bool written = out->open(path, to_spec(header)) &&
+                         out->write_image(OIIO::TypeDesc::UNKNOWN, pixels) && out->close();
+    if (!written) reason = take_error(out->geterror());
+    return written;
+  }
+
+  std::unique_ptr<ImageReader> open(const std::string& path, std::string& reason) const override {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+      reason = take_error();
+      return nullptr;
+    }
+    return std::make_unique<OiioImageReader>(std::move(in));
+  }
+};
+
+}  // namespace
+}  // namespace rtiow
+
+extern "C" __attribute__((visibility("default"))) const rtiow::ImageBackend* rtiow_image_backend(
+    int abi_version) {
+  static const rtiow::OiioImageBackend backend;
+  return abi_version == rtiow::kImageBackendAbi ? &backend : nullptr;
+}
