@@ -21,7 +21,7 @@ class NaiveAccel {
 
   // Closest hit with 0 < t < t_max. Spheres go in blocks: a branch-free pass that the
   // compiler vectorises marks the few spheres whose line the ray comes near
-  // (sphere_may_hit), then the full sphere test runs on those alone. The answer is the one
+  // (sphere_line_may_hit), then the full sphere test runs on those alone. The answer is the one
   // a sphere-by-sphere loop gives, bit for bit.
   std::optional<Hit> intersect(const Ray& ray, float t_max) const {
     const SphereSet& s = *spheres_;
@@ -36,12 +36,12 @@ class NaiveAccel {
       const float* cz = s.center_z.data() + begin;
       const float* radius = s.radius.data() + begin;
       for (std::size_t i = 0; i < count; ++i) {
-        candidate[i] = sphere_may_hit(Vec3{cx[i], cy[i], cz[i]}, radius[i], ray);
+        candidate[i] = sphere_line_may_hit(Vec3{cx[i], cy[i], cz[i]}, radius[i], ray);
       }
       for (std::size_t i = 0; i < count; ++i) {
         if (!candidate[i]) continue;
         const float t =
-            sphere_hit_distance(Vec3{cx[i], cy[i], cz[i]}, radius[i], ray, 0.0f, closest);
+            sphere_hit_distance_exact(Vec3{cx[i], cy[i], cz[i]}, radius[i], ray, 0.0f, closest);
         if (t < closest) {
           closest = t;
           found = static_cast<std::uint32_t>(begin + i);

@@ -53,45 +53,56 @@ inline T sphere_hit_distance(const Vec3T<T>& center, T radius, const RayT<T>& ra
   return (t0 > t_min && t0 < t_max) ? t0 : far;
 }
 
-// A cheap conservative pre-test in float: false only where sphere_hit_distance certainly
-// finds no hit with t > t_min >= 0. Two cases, each decided with a bound on this float
-// evaluation's error (a few ulps of the magnitudes involved, with margin):
-//  - the ray's line passes farther from the centre than the radius;
-//  - the origin is outside the sphere and the ray moves away from the centre, so both
-//    roots are negative (their product c/a is positive and their sum -2 f.d/a negative).
-// No square root, one division, and it vectorises. Callers run the full test where it
-// says true, so results do not change.
-inline bool sphere_may_hit(const Vec3& center, float radius, const Ray& ray, float t_min = 0.0f) {
+// A cheap conservative pre-test in float for loops over many spheres: false only where
+// sphere_hit_distance certainly finds no hit, because the ray's line passes farther from
+// the centre than the radius plus a bound on this float evaluation's error (a few ulps of
+// |f|, with margin). No square root, one division, and it vectorises.
+inline bool sphere_line_may_hit(const Vec3& center, float radius, const Ray& ray) {
+  const Vec3 f = ray.origin - center;
+  const Vec3& d = ray.direction;
+  const Vec3 perpendicular = f - (dot(f, d) / dot(d, d)) * d;
+  const float slack = 32.0f * std::numeric_limits<float>::epsilon() *
+                      (std::abs(f.x) + std::abs(f.y) + std::abs(f.z));
+  const float reach = std::abs(radius) + slack;
+  return !(dot(perpendicular, perpendicular) > reach * reach * 1.0001f);
+}
+
+// The line test and a second certain miss, for one sphere at a time (Embree's callback):
+// the origin is outside the sphere and the ray moves away from the centre, so both roots
+// are negative (their product c/a is positive, their sum -2 f.d/a negative). Decided with
+// bounds on the float evaluation's error (a few ulps of the magnitudes, with margin), so
+// it is false only where sphere_hit_distance finds no hit with t > t_min >= 0.
+inline bool sphere_may_hit(const Vec3& center, float radius, const Ray& ray, float t_min) {
+  if (!sphere_line_may_hit(center, radius, ray)) return false;
   constexpr float kEps = std::numeric_limits<float>::epsilon();
   const Vec3 f = ray.origin - center;
   const Vec3& d = ray.direction;
-  const float half_b = dot(f, d);
-  const Vec3 perpendicular = f - (half_b / dot(d, d)) * d;
-  const float slack = 32.0f * kEps * (std::abs(f.x) + std::abs(f.y) + std::abs(f.z));
-  const float reach = std::abs(radius) + slack;
-  const bool line_misses = dot(perpendicular, perpendicular) > reach * reach * 1.0001f;
-
   const float ff = dot(f, f), rr = radius * radius;
-  const float c = ff - rr;
   const float half_b_error =
       16.0f * kEps * (std::abs(f.x * d.x) + std::abs(f.y * d.y) + std::abs(f.z * d.z));
   const bool leaves_from_outside =
-      t_min >= 0.0f && c > 16.0f * kEps * (ff + rr) && half_b > half_b_error;
-  return !(line_misses || leaves_from_outside);
+      t_min >= 0.0f && ff - rr > 16.0f * kEps * (ff + rr) && dot(f, d) > half_b_error;
+  return !leaves_from_outside;
 }
 
 // The renderer's test: float scene and ray, double arithmetic, float distance (the nearest
-// float to the double root, kept strictly inside (t_min, t_max)). The float pre-test first
-// turns away the certain misses, which changes no answer.
-inline float sphere_hit_distance(const Vec3& center, float radius, const Ray& ray, float t_min,
-                                 float t_max) {
-  if (!sphere_may_hit(center, radius, ray, t_min)) return std::numeric_limits<float>::infinity();
+// float to the double root, kept strictly inside (t_min, t_max)).
+inline float sphere_hit_distance_exact(const Vec3& center, float radius, const Ray& ray,
+                                       float t_min, float t_max) {
   const double t = sphere_hit_distance(Vec3d(center), double(radius),
                                        Rayd{Vec3d(ray.origin), Vec3d(ray.direction)}, double(t_min),
                                        double(t_max));
   const float rounded = float(t);
   if (rounded > t_min && rounded < t_max) return rounded;
   return std::numeric_limits<float>::infinity();
+}
+
+// The same, after the float pre-test has turned away the certain misses (a quarter of the
+// spheres Embree hands to its callback on the cover), which changes no answer.
+inline float sphere_hit_distance(const Vec3& center, float radius, const Ray& ray, float t_min,
+                                 float t_max) {
+  if (!sphere_may_hit(center, radius, ray, t_min)) return std::numeric_limits<float>::infinity();
+  return sphere_hit_distance_exact(center, radius, ray, t_min, t_max);
 }
 
 // The same test for callers that branch: true and the distance when there is a hit.
