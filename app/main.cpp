@@ -15,6 +15,7 @@
 
 #include "app/accuracy_command.h"
 #include "app/bench_command.h"
+#include "app/diff_command.h"
 #include "app/merge_command.h"
 #include "app/mpi_session.h"
 #include "app/render_command.h"
@@ -106,8 +107,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "rtiow 0.1.0");
   std::vector<std::function<int()>> commands{
       rtiow::add_render_command(app, mpi), rtiow::add_scene_command(app),
-      rtiow::add_merge_command(app), rtiow::add_bench_command(app),
-      rtiow::add_accuracy_command(app)};
+      rtiow::add_merge_command(app),       rtiow::add_bench_command(app),
+      rtiow::add_accuracy_command(app),    rtiow::add_diff_command(app)};
 
   if (refused_unknown_command(app, argc, argv)) return 2;
   try {

@@ -135,6 +135,31 @@ TEST(Cli, AMissingImageBackendIsReportedBeforeTheRender) {
   EXPECT_EQ(count_lines(err), 1) << err;
 }
 
+// rtiow diff's exit codes: 0 for two seeds, 2 for a turned camera, 2 (and one line) for
+// images that cannot be compared.
+TEST(Cli, DiffPassesOtherSeedsFailsAMutationAndRefusesMismatches) {
+  const std::string render =
+      "render -q --scene cover --width 64 --height 36 --spp 16 --stats-channels ";
+  const fs::path a = output_path("a.exr"), b = output_path("b.exr"), turned = output_path("t.exr"),
+                 small = output_path("s.exr");
+  ASSERT_EQ(run_rtiow(render + "--seed 3 -o " + a.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow(render + "--seed 4 -o " + b.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow(render + "--seed 4 --lookat 0.236,0,0 -o " + turned.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow("render -q --scene cover --width 32 --height 18 --spp 4 -o " + small.string())
+                .exit_code,
+            0);
+  const CommandResult same = run_rtiow("diff " + a.string() + " " + b.string());
+  EXPECT_EQ(same.exit_code, 0) << same.stdout_text;
+  EXPECT_NE(same.stdout_text.find("noise-aware"), std::string::npos);
+  const CommandResult mutated = run_rtiow("diff " + a.string() + " " + turned.string());
+  EXPECT_EQ(mutated.exit_code, 2) << mutated.stdout_text;
+  const CommandResult refused = run_rtiow("diff " + a.string() + " " + small.string());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_EQ(count_lines(refused.stderr_text), 1) << refused.stderr_text;
+  EXPECT_NE(refused.stderr_text.find("differ in size"), std::string::npos);
+  EXPECT_EQ(run_rtiow("diff " + a.string() + " /nonexistent.exr").exit_code, 2);
+}
+
 TEST(Cli, ListsTheBuiltinScenes) {
   const CommandResult r = run_rtiow("render --list-scenes");
   EXPECT_EQ(r.exit_code, 0);
