@@ -160,6 +160,40 @@ TEST(Cli, DiffPassesOtherSeedsFailsAMutationAndRefusesMismatches) {
   EXPECT_EQ(run_rtiow("diff " + a.string() + " /nonexistent.exr").exit_code, 2);
 }
 
+// A PNG whose header claims `side` x `side` pixels and holds none.
+std::string png_claiming(std::uint32_t side) {
+  const auto crc32 = [](const std::string& bytes) {
+    std::uint32_t crc = 0xffffffffu;
+    for (const unsigned char b : bytes) {
+      crc ^= b;
+      for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+  };
+  const auto be32 = [](std::uint32_t v) {
+    return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+  };
+  const auto chunk = [&](const std::string& type, const std::string& data) {
+    return be32(std::uint32_t(data.size())) + type + data + be32(crc32(type + data));
+  };
+  const std::string header = be32(side) + be32(side) + std::string{8, 2, 0, 0, 0};
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", header) +
+         chunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) + chunk("IEND", "");
+}
+
+// A header that lies about its size is refused before anything is allocated.
+TEST(Cli, DiffRefusesAnImageWhoseHeaderClaimsTooManyPixels) {
+  const fs::path huge = output_path("huge.png"), small = output_path("small.png");
+  rtiow::test::write_file(huge, png_claiming(1000000));
+  ASSERT_EQ(run_rtiow("render -q --scene cover --width 8 --height 8 --spp 1 -o " + small.string())
+                .exit_code,
+            0);
+  const CommandResult r = run_rtiow("diff " + huge.string() + " " + small.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(count_lines(r.stderr_text), 1) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("pixels"), std::string::npos) << r.stderr_text;
+}
+
 TEST(Cli, ListsTheBuiltinScenes) {
   const CommandResult r = run_rtiow("render --list-scenes");
   EXPECT_EQ(r.exit_code, 0);

@@ -9,6 +9,7 @@
 #include "core/io/image_file.h"
 #include "core/io/input_file.h"
 #include "core/io/input_limits.h"
+#include "core/render/render.h"
 
 namespace rtiow {
 namespace {
@@ -66,6 +67,13 @@ DiffInput read_diff_input(const std::string& path) {
     throw InvalidInput(name + ": " + std::to_string(header.width) + "x" +
                        std::to_string(header.height) + " with " + std::to_string(channels) +
                        " channels is not an image rtiow compares (R, G, B needed)");
+  }
+  RenderSettings size;  // the header decides what is allocated: the render's own limits
+  size.width = header.width, size.height = header.height;
+  try {
+    validate(size);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(name + ": " + e.what());
   }
   const std::size_t pixels = std::size_t(header.width) * std::size_t(header.height);
   std::vector<float> values(pixels * channels);

@@ -9,7 +9,6 @@
 // The types cross that library boundary, so they are plain: no exceptions are thrown across
 // it (failures come back as false and a reason).
 
-#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -20,10 +19,6 @@ namespace rtiow {
 
 // How one channel's values are stored (in a file, or in a buffer handed over).
 enum class PixelType { UInt8, UInt32, Float };
-
-inline std::size_t pixel_type_bytes(PixelType type) {
-  return type == PixelType::UInt8 ? 1 : 4;
-}
 
 struct ImageAttribute {
   std::string name;
