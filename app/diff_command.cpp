@@ -5,8 +5,9 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
-#include "core/film/film.h"
+#include "core/film/diff_images.h"
 #include "core/film/image_diff.h"
 #include "core/io/error.h"
 #include "core/io/image_output.h"
@@ -16,7 +17,8 @@ namespace rtiow {
 namespace {
 
 struct DiffOptions {
-  std::string reference, test;
+  std::string reference;
+  std::vector<std::string> tests;
   std::string mode = "auto";
   PlainThresholds thresholds;
   double alpha = 0.01;
@@ -24,83 +26,62 @@ struct DiffOptions {
   std::string out_diff, out_z;
 };
 
-// |test - reference| per channel, scaled so the largest difference is 1.
-Film difference_image(const DiffInput& test, const DiffInput& reference) {
-  Film film(test.width, test.height);
-  float largest = 1e-12f;
-  for (std::size_t i = 0; i < test.rgb.size(); ++i) {
-    const float e = std::abs(test.rgb[i] - reference.rgb[i]);
-    if (std::isfinite(e)) largest = std::max(largest, e);
+// auto: several tests -> seeds; one, both with variances -> noise; otherwise plain.
+std::string chosen_mode(const DiffOptions& o, const DiffInput& reference,
+                        const std::vector<DiffInput>& tests) {
+  const bool several = tests.size() > 1;
+  const bool variances = !reference.variance.empty() && !tests[0].variance.empty();
+  if (o.mode == "auto") return several ? "seeds" : variances ? "noise" : "plain";
+  if (several && o.mode != "seeds") {
+    throw InvalidInput("--mode " + o.mode +
+                       " compares one test image; several are compared with --mode seeds");
   }
-  for (int y = 0; y < test.height; ++y) {
-    for (int x = 0; x < test.width; ++x) {
-      const std::size_t p = 3 * (std::size_t(y) * std::size_t(test.width) + std::size_t(x));
-      const auto scaled = [&](std::size_t c) {
-        const float e = std::abs(test.rgb[p + c] - reference.rgb[p + c]) / largest;
-        return std::isfinite(e) ? e : 1.0f;  // NaN and infinities show as white
-      };
-      film.at(x, y) = {scaled(0), scaled(1), scaled(2)};
-    }
+  if (o.mode == "seeds" && !several) {
+    throw InvalidInput(
+        "--mode seeds needs at least two test images (renders of the same job with other "
+        "seeds)");
   }
-  return film;
-}
-
-// Each block coloured by its z-score: red where the test is brighter, blue where darker,
-// full at the critical value; grey where nothing shows.
-Film z_image(const NoiseDiff& d, int width, int height) {
-  Film film(width, height);
-  const int per_row = (width + d.block_size - 1) / d.block_size;
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      const float z = d.block_z[std::size_t((y / d.block_size) * per_row + x / d.block_size)];
-      const float level = std::min(1.0f, std::abs(z) / float(d.block_critical_z));
-      const float grey = 0.1f * (1.0f - level);
-      film.at(x, y) = z > 0 ? Color{grey + level, grey, grey} : Color{grey, grey, grey + level};
-    }
-  }
-  return film;
-}
-
-void print_plain(const PlainDiff& d, const PlainThresholds& t) {
-  std::printf(
-      "plain: mean error %.6g, RMS %.6g, max %.6g at (%d, %d); %.4g%% of pixels over %g "
-      "(fail over %g%%), %.4g%% over %g (warn over %g%%)\n",
-      d.mean_error, d.rms_error, d.max_error, d.worst_x, d.worst_y, d.fail_percent, t.fail,
-      t.fail_percent, d.warn_percent, t.warn, t.warn_percent);
-}
-
-void print_noise(const NoiseDiff& d) {
-  std::printf(
-      "noise-aware: mean difference %.6g +- %.3g (z = %.2f, critical %.2f); %d of %d blocks of "
-      "%dx%d beyond |z| = %.2f (alpha %g, Bonferroni), worst z = %.2f at (%d, %d)\n",
-      d.mean_difference, d.mean_difference_error, d.image_z, d.image_critical_z, d.failing_blocks,
-      d.blocks, d.block_size, d.block_size, d.block_critical_z, d.alpha, d.worst_block_z,
-      d.worst_block_x, d.worst_block_y);
-}
-
-int run_diff(const DiffOptions& o) {
-  if (!o.out_diff.empty()) check_image_output(o.out_diff, {o.reference, o.test});
-  if (!o.out_z.empty()) check_image_output(o.out_z, {o.reference, o.test});
-  const DiffInput reference = read_diff_input(o.reference);
-  const DiffInput test = read_diff_input(o.test);
-  const bool noisy = !reference.variance.empty() && !test.variance.empty();
-  if (o.mode == "noise" && !noisy) {
+  if (o.mode == "noise" && !variances) {
     throw InvalidInput(
         "--mode noise needs both images' variance channels (render with --stats-channels to "
         "an .exr)");
   }
-  if (!o.out_z.empty() && !(noisy && o.mode != "plain")) {
-    throw InvalidInput("--out-z needs the noise-aware comparison (both images with variances)");
+  return o.mode;
+}
+
+int run_diff(const DiffOptions& o) {
+  std::vector<std::string> inputs{o.reference};
+  inputs.insert(inputs.end(), o.tests.begin(), o.tests.end());
+  if (!o.out_diff.empty()) check_image_output(o.out_diff, inputs);
+  if (!o.out_z.empty()) check_image_output(o.out_z, inputs);
+  const DiffInput reference = read_diff_input(o.reference);
+  std::vector<DiffInput> tests;
+  for (const std::string& path : o.tests) {
+    tests.push_back(read_diff_input(path));
+    try {
+      check_comparable(tests.back(), reference);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("image " + quote_value(path) + " against the reference: " + e.what());
+    }
   }
+  const std::string mode = chosen_mode(o, reference, tests);
+  if (!o.out_z.empty() && mode == "plain") {
+    throw InvalidInput(
+        "--out-z needs a noise-aware comparison (both images with variances, or several "
+        "renders)");
+  }
+  // Several renders are judged, and pictured, by their mean.
+  const DiffInput test = tests.size() > 1 ? mean_image(tests) : tests[0];
   const NonFinite bad = find_non_finite(test, reference);
   DiffVerdict verdict = DiffVerdict::Pass;
-  if (o.mode == "plain" || !noisy) {
+  if (mode == "plain") {
     const PlainDiff d = plain_diff(test, reference, o.thresholds);
-    print_plain(d, o.thresholds);
+    std::printf("%s\n", describe(d, o.thresholds).c_str());
     verdict = d.verdict;
   } else {
-    const NoiseDiff d = noise_diff(test, reference, o.block, o.alpha);
-    print_noise(d);
+    const NoiseDiff d = mode == "seeds" ? seeds_diff(tests, reference, o.block, o.alpha)
+                                        : noise_diff(test, reference, o.block, o.alpha);
+    std::printf("%s\n", describe(d).c_str());
     verdict = d.verdict;
     if (!o.out_z.empty()) write_image(o.out_z, z_image(d, test.width, test.height));
   }
@@ -121,14 +102,18 @@ std::function<int()> add_diff_command(CLI::App& app) {
   auto o = std::make_shared<DiffOptions>();
   CLI::App* cmd = app.add_subcommand(
       "diff",
-      "Compare a test image with a reference: exit 0 pass, 1 warning, 2 failure (or refused "
-      "input). Noise-aware when both carry variance channels (--stats-channels EXR): then a "
-      "difference fails only where the noise cannot explain it");
+      "Compare a test image, or several renders with other seeds, with a reference: exit 0 "
+      "pass, 1 warning, 2 failure (or refused input). Noise-aware when given several renders "
+      "or when both images carry variance channels (--stats-channels EXR): then a difference "
+      "fails only where the noise cannot explain it");
   cmd->add_option("reference", o->reference, "The reference image")->required();
-  cmd->add_option("test", o->test, "The image to check")->required();
+  cmd->add_option("test", o->tests,
+                  "The image to check, or several renders of the same job with other seeds")
+      ->required();
   cmd->add_option("--mode", o->mode,
-                  "auto (noise-aware when both images have variances), plain, or noise")
-      ->check(CLI::IsMember({"auto", "plain", "noise"}))
+                  "auto (seeds for several tests; noise when both images have variances; else "
+                  "plain), plain, noise, or seeds")
+      ->check(CLI::IsMember({"auto", "plain", "noise", "seeds"}))
       ->capture_default_str();
   cmd->add_option("--fail", o->thresholds.fail,
                   "Plain: a pixel fails when a channel differs by more")
@@ -152,10 +137,11 @@ std::function<int()> add_diff_command(CLI::App& app) {
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
   cmd->add_option("--out-diff", o->out_diff,
-                  "Write |test - reference|, scaled so the largest difference is white");
+                  "Write |test - reference| (several tests: their mean), scaled so the largest "
+                  "difference is white");
   cmd->add_option("--out-z", o->out_z,
-                  "Noise-aware: write the blocks' z-scores (red: test brighter, blue: darker, "
-                  "full colour at the critical value)");
+                  "Noise-aware: write the blocks' z (or t) scores (red: test brighter, blue: "
+                  "darker, full colour at the critical value)");
   return [o, cmd] { return cmd->parsed() ? run_diff(*o) : -1; };
 }
 

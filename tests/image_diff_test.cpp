@@ -7,8 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <vector>
 
+#include "core/film/student_t.h"
 #include "core/io/error.h"
 #include "core/sampling/rng.h"
 
@@ -131,6 +134,141 @@ TEST(ImageDiff, RefusesImagesThatCannotBeCompared) {
   DiffInput no_variance = reference;
   no_variance.variance.clear();
   EXPECT_THROW(noise_diff(no_variance, reference, 16, 0.01), InvalidInput);
+}
+
+// ---- Several renders with other seeds ---------------------------------------------------
+
+std::vector<DiffInput> renders(std::uint64_t first_seed, int count, float gain = 1.0f) {
+  std::vector<DiffInput> images;
+  for (int k = 0; k < count; ++k) images.push_back(synthetic_render(first_seed + k, gain));
+  return images;
+}
+
+TEST(StudentT, CriticalValuesMatchTables) {
+  EXPECT_NEAR(student_t_critical_value(0.05, 15), 2.131, 1e-3);
+  EXPECT_NEAR(student_t_critical_value(0.01, 7), 3.499, 1e-3);
+  EXPECT_NEAR(student_t_critical_value(0.05, 1e6), 1.960, 1e-3);
+}
+
+TEST(SeedsDiff, CriticalValuesAreStudentsT) {
+  const NoiseDiff d = seeds_diff(renders(10, 8), synthetic_render(1), 16, 0.01);
+  EXPECT_EQ(d.renders, 8);
+  EXPECT_NEAR(d.image_critical_z, 3.4995, 1e-3);  // t(7), two-sided 1%
+  EXPECT_EQ(d.blocks, 6 * 4);
+  EXPECT_NEAR(d.block_critical_z, student_t_critical_value(0.01 / 24, 7), 1e-9);
+}
+
+// The renders' spread is the noise: sets of other seeds pass (family-wise chance of a false
+// failure ~2%: 3 in 40 would be unlikely), against a reference with variance channels or
+// without (then taken as exact to its rounding; here its 64-spp noise is real, so the
+// reference is the mean of 16 renders to keep it small).
+TEST(SeedsDiff, RendersWithOtherSeedsPass) {
+  const DiffInput reference = synthetic_render(1);
+  DiffInput converged = mean_image(renders(1000, 16));
+  int failures = 0, failures_without_variance = 0;
+  for (std::uint64_t set = 0; set < 40; ++set) {
+    const std::vector<DiffInput> tests = renders(100 + 8 * set, 8);
+    failures += seeds_diff(tests, reference, 16, 0.01).verdict == DiffVerdict::Fail;
+    failures_without_variance +=
+        seeds_diff(tests, converged, 16, 0.01).verdict == DiffVerdict::Fail;
+  }
+  std::printf("40 sets of 8 other seeds: %d failed (reference with variances), %d (without)\n",
+              failures, failures_without_variance);
+  EXPECT_LE(failures, 3);
+  EXPECT_LE(failures_without_variance, 3);
+}
+
+// A 2% brightness bias fails, seen in the image-wide mean; so does one block made 10%
+// brighter, seen in that block alone.
+TEST(SeedsDiff, BiasFails) {
+  const DiffInput reference = synthetic_render(1);
+  const NoiseDiff biased = seeds_diff(renders(10, 8, 1.02f), reference, 16, 0.01);
+  EXPECT_EQ(biased.verdict, DiffVerdict::Fail);
+  EXPECT_GT(biased.image_z, biased.image_critical_z);
+  // 2% of the mean level: 0.265 per sample value times the mean tint, 0.585.
+  EXPECT_NEAR(biased.mean_difference, 0.02 * 0.265 * 0.585, 0.0005);
+
+  std::vector<DiffInput> tests = renders(10, 8);
+  for (DiffInput& test : tests) {
+    for (int y = 16; y < 32; ++y) {
+      for (int x = 32; x < 48; ++x) {
+        for (int c = 0; c < 3; ++c) test.rgb[3 * std::size_t(y * kWidth + x) + c] *= 1.1f;
+      }
+    }
+  }
+  const NoiseDiff block = seeds_diff(tests, reference, 16, 0.01);
+  EXPECT_EQ(block.verdict, DiffVerdict::Fail);
+  EXPECT_EQ(block.worst_block_x, 32);
+  EXPECT_EQ(block.worst_block_y, 16);
+  EXPECT_GT(block.worst_block_z, block.block_critical_z);
+}
+
+TEST(SeedsDiff, RefusesFewerThanTwoRendersAndOtherSizes) {
+  const DiffInput reference = synthetic_render(1);
+  EXPECT_THROW(seeds_diff(renders(10, 1), reference, 16, 0.01), InvalidInput);
+  std::vector<DiffInput> tests = renders(10, 3);
+  tests[2].width -= 1;
+  EXPECT_THROW(seeds_diff(tests, reference, 16, 0.01), InvalidInput);
+}
+
+// A NaN in one render leaves that pixel out of all of them (and of the image mean).
+TEST(SeedsDiff, NonFinitePixelsAreLeftOut) {
+  const DiffInput reference = synthetic_render(1);
+  std::vector<DiffInput> tests = renders(10, 4);
+  tests[1].rgb[3 * (5 * kWidth + 7)] = std::numeric_limits<float>::quiet_NaN();
+  const NoiseDiff d = seeds_diff(tests, reference, 16, 0.01);
+  EXPECT_TRUE(std::isfinite(d.mean_difference));
+  EXPECT_TRUE(std::isfinite(d.worst_block_z));
+  EXPECT_EQ(find_non_finite(mean_image(tests), reference).pixels, 1u);
+}
+
+// A reference stored in half floats or 8 bits rounds whole smooth regions the same way: that
+// shared error is part of the comparison, or a converged render of a smooth gradient would
+// fail against its own rounded copy.
+TEST(SeedsDiff, ReferenceRoundingIsNotMistakenForBias) {
+  std::vector<DiffInput> tests = renders(10, 4);
+  for (DiffInput& test : tests) {
+    for (std::size_t i = 0; i < test.rgb.size(); ++i) {
+      // A smooth gradient with noise far below the rounding steps.
+      test.rgb[i] =
+          0.6f + 0.3f * float(i % (3 * kWidth)) / float(3 * kWidth) + 1e-6f * (test.rgb[i] - 0.15f);
+    }
+    test.variance.clear();
+  }
+  DiffInput half = mean_image(tests), eight_bit = half;
+  half.relative_rounding = 0x1p-11;
+  eight_bit.linear = false, eight_bit.relative_rounding = 0.0;
+  eight_bit.absolute_rounding = 0.5 / 255.0;
+  for (std::size_t i = 0; i < half.rgb.size(); ++i) {
+    // Round to 11 significant bits (half's), and to 1/255.
+    int exponent = 0;
+    const double fraction = std::frexp(double(half.rgb[i]), &exponent);
+    half.rgb[i] = float(std::ldexp(std::round(std::ldexp(fraction, 11)), exponent - 11));
+    eight_bit.rgb[i] = std::round(eight_bit.rgb[i] * 255.0f) / 255.0f;
+  }
+  std::vector<DiffInput> display_tests = tests;
+  for (DiffInput& test : display_tests) test.linear = false;
+  EXPECT_EQ(seeds_diff(tests, half, 16, 0.01).verdict, DiffVerdict::Pass);
+  EXPECT_EQ(seeds_diff(display_tests, eight_bit, 16, 0.01).verdict, DiffVerdict::Pass);
+  // Without the rounding counted, both fail: the test can fail.
+  half.relative_rounding = eight_bit.absolute_rounding = 0.0;
+  EXPECT_EQ(seeds_diff(tests, half, 16, 0.01).verdict, DiffVerdict::Fail);
+  EXPECT_EQ(seeds_diff(display_tests, eight_bit, 16, 0.01).verdict, DiffVerdict::Fail);
+}
+
+TEST(ImageDiff, DisplayReferredIsTheBooksGammaClamped) {
+  DiffInput linear;
+  linear.width = 4, linear.height = 1, linear.linear = true;
+  linear.rgb = {0.25f, 0.0f, 1.0f,  -1.0f, 4.0f, 0.01f, std::numeric_limits<float>::quiet_NaN(),
+                0.5f,  0.5f, 0.64f, 0.64f, 0.64f};
+  const DiffInput display = display_referred(linear);
+  EXPECT_FALSE(display.linear);
+  EXPECT_FLOAT_EQ(display.rgb[0], 0.5f);
+  EXPECT_FLOAT_EQ(display.rgb[3], 0.0f);
+  EXPECT_FLOAT_EQ(display.rgb[4], 1.0f);
+  EXPECT_FLOAT_EQ(display.rgb[5], 0.1f);
+  EXPECT_TRUE(std::isnan(display.rgb[6]));
+  EXPECT_FLOAT_EQ(display.rgb[9], 0.8f);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 
 #include "core/io/error.h"
 #include "core/io/image_backend.h"
@@ -20,7 +21,9 @@ int channel_index(const ImageHeader& header, const std::string& name) {
   return it == names.end() ? -1 : int(it - names.begin());
 }
 
-void check_same_size(const DiffInput& a, const DiffInput& b) {
+}  // namespace
+
+void check_comparable(const DiffInput& a, const DiffInput& b) {
   if (a.width != b.width || a.height != b.height) {
     throw InvalidInput("the images differ in size: " + std::to_string(a.width) + "x" +
                        std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
@@ -39,8 +42,6 @@ bool finite_pixel(const DiffInput& image, std::size_t p) {
   }
   return true;
 }
-
-}  // namespace
 
 std::string to_string(DiffVerdict verdict) {
   switch (verdict) {
@@ -90,7 +91,21 @@ DiffInput read_diff_input(const std::string& path) {
   }
   DiffInput image;
   image.width = header.width, image.height = header.height;
-  image.linear = header.channel_types[std::size_t(rgb[0])] == PixelType::Float;
+  switch (header.channel_types[std::size_t(rgb[0])]) {
+    case PixelType::Float:
+      image.linear = true;
+      break;
+    case PixelType::Half:
+      image.linear = true, image.relative_rounding = 0x1p-11;
+      break;
+    case PixelType::UInt8:
+      image.relative_rounding = 0.0, image.absolute_rounding = 0.5 / 255.0;
+      break;
+    case PixelType::UInt16:
+    case PixelType::UInt32:  // rare; read as 16-bit precision at best by most formats
+      image.relative_rounding = 0.0, image.absolute_rounding = 0.5 / 65535.0;
+      break;
+  }
   image.rgb.resize(pixels * 3);
   if (has_variance) image.variance.resize(pixels * 3);
   for (std::size_t p = 0; p < pixels; ++p) {
@@ -102,8 +117,41 @@ DiffInput read_diff_input(const std::string& path) {
   return image;
 }
 
+DiffInput diff_input(const Film& film) {
+  DiffInput image;
+  image.width = film.width(), image.height = film.height(), image.linear = true;
+  image.rgb.reserve(film.pixels().size() * 3);
+  for (const Color& c : film.pixels()) image.rgb.insert(image.rgb.end(), {c.x, c.y, c.z});
+  return image;
+}
+
+DiffInput display_referred(const DiffInput& linear) {
+  DiffInput display;
+  display.width = linear.width, display.height = linear.height, display.linear = false;
+  display.relative_rounding = 0.5 * linear.relative_rounding;  // sqrt halves relative errors
+  display.absolute_rounding = linear.absolute_rounding;
+  display.rgb.resize(linear.rgb.size());
+  for (std::size_t i = 0; i < linear.rgb.size(); ++i) {
+    const float v = linear.rgb[i];
+    // NaN stays NaN (reported, not hidden); everything else is clamped as on a screen.
+    display.rgb[i] = std::isnan(v) ? v : std::sqrt(std::clamp(v, 0.0f, 1.0f));
+  }
+  return display;
+}
+
+DiffInput mean_image(const std::vector<DiffInput>& images) {
+  DiffInput mean = images.at(0);
+  mean.variance.clear();
+  for (std::size_t k = 1; k < images.size(); ++k) {
+    check_comparable(mean, images[k]);
+    for (std::size_t i = 0; i < mean.rgb.size(); ++i) mean.rgb[i] += images[k].rgb[i];
+  }
+  for (float& v : mean.rgb) v /= float(images.size());
+  return mean;
+}
+
 NonFinite find_non_finite(const DiffInput& test, const DiffInput& reference) {
-  check_same_size(test, reference);
+  check_comparable(test, reference);
   NonFinite found;
   const std::size_t pixels = std::size_t(test.width) * std::size_t(test.height);
   for (std::size_t p = 0; p < pixels; ++p) {
@@ -117,7 +165,7 @@ NonFinite find_non_finite(const DiffInput& test, const DiffInput& reference) {
 }
 
 PlainDiff plain_diff(const DiffInput& test, const DiffInput& reference, const PlainThresholds& t) {
-  check_same_size(test, reference);
+  check_comparable(test, reference);
   PlainDiff d;
   const std::size_t pixels = std::size_t(test.width) * std::size_t(test.height);
   double sum = 0, sum_squares = 0;
@@ -142,7 +190,7 @@ PlainDiff plain_diff(const DiffInput& test, const DiffInput& reference, const Pl
   d.rms_error = std::sqrt(sum_squares / n);
   d.fail_percent = 100.0 * double(failing) / double(pixels);
   d.warn_percent = 100.0 * double(warning) / double(pixels);
-  if (d.fail_percent > t.fail_percent || d.max_error > t.hard_fail) {
+  if (d.fail_percent > t.fail_percent || d.max_error > t.hard_fail || counted == 0) {
     d.verdict = DiffVerdict::Fail;
   } else if (d.warn_percent > t.warn_percent) {
     d.verdict = DiffVerdict::Warn;
@@ -150,83 +198,14 @@ PlainDiff plain_diff(const DiffInput& test, const DiffInput& reference, const Pl
   return d;
 }
 
-double normal_critical_value(double p) {
-  // P(|Z| > z) = erfc(z / sqrt 2) falls from 1 at z = 0: bisect.
-  double lo = 0.0, hi = 40.0;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (std::erfc(mid / std::sqrt(2.0)) > p ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
-NoiseDiff noise_diff(const DiffInput& test, const DiffInput& reference, int block_size,
-                     double alpha) {
-  check_same_size(test, reference);
-  if (test.variance.empty() || reference.variance.empty()) {
-    throw InvalidInput(
-        "the noise-aware comparison needs both images' variance channels (render with "
-        "--stats-channels to an .exr)");
-  }
-  NoiseDiff d;
-  d.block_size = block_size;
-  d.alpha = alpha;
-  const int bx = (test.width + block_size - 1) / block_size;
-  const int by = (test.height + block_size - 1) / block_size;
-  d.blocks = bx * by;
-  d.block_critical_z = normal_critical_value(alpha / double(d.blocks));
-  d.image_critical_z = normal_critical_value(alpha);
-  d.block_z.assign(std::size_t(d.blocks), 0.0f);
-  double image_sum = 0, image_variance = 0, image_count = 0;
-  for (int j = 0; j < by; ++j) {
-    for (int i = 0; i < bx; ++i) {
-      double sum = 0, variance = 0, squares = 0, count = 0;
-      for (int y = j * block_size; y < std::min(test.height, (j + 1) * block_size); ++y) {
-        for (int x = i * block_size; x < std::min(test.width, (i + 1) * block_size); ++x) {
-          const std::size_t p = std::size_t(y) * std::size_t(test.width) + std::size_t(x);
-          if (!finite_pixel(test, p) || !finite_pixel(reference, p)) continue;
-          // Per pixel, over its three channels: one path gives all three, so they are
-          // correlated; the variance of their sum is at most (sum of their deviations)^2.
-          double difference = 0, deviation = 0;
-          for (std::size_t c = 0; c < 3; ++c) {
-            difference += double(test.rgb[3 * p + c]) - double(reference.rgb[3 * p + c]);
-            deviation +=
-                std::sqrt(double(test.variance[3 * p + c]) + double(reference.variance[3 * p + c]));
-          }
-          // A pixel with fewer than two samples has no noise estimate (infinite): left out.
-          if (!std::isfinite(deviation)) continue;
-          sum += difference;
-          squares += difference * difference;
-          variance += deviation * deviation;
-          count += 3;
-        }
-      }
-      // The noise of the block's mean difference: the images' own estimate, or the squared
-      // differences themselves where they are larger. Per-pixel variances from a few dozen
-      // samples run low where a pixel missed its rare bright paths; the differences of two
-      // renders of one scene are symmetric about zero, and for symmetric terms
-      // sum / sqrt(sum of squares) has Gaussian tails whatever their distribution (Efron
-      // 1969). A bias adds only its square to the sum of squares. A block without noise
-      // (all sky at 1 spp) is judged against a tiny floor, so any real difference shows.
-      const double noise = std::max({variance, squares, 1e-30});
-      image_sum += sum, image_variance += noise, image_count += count;
-      const double z = count > 0 ? sum / std::sqrt(noise) : 0.0;
-      d.block_z[std::size_t(j * bx + i)] = float(z);
-      if (std::abs(z) > d.block_critical_z) ++d.failing_blocks;
-      if (std::abs(z) > std::abs(d.worst_block_z)) {
-        d.worst_block_z = z;
-        d.worst_block_x = i * block_size, d.worst_block_y = j * block_size;
-      }
-    }
-  }
-  if (image_count > 0) {
-    d.mean_difference = image_sum / image_count;
-    d.mean_difference_error = std::sqrt(image_variance) / image_count;
-    d.image_z = image_sum / std::sqrt(std::max(image_variance, 1e-30));
-  }
-  const bool image_fails = std::abs(d.image_z) > d.image_critical_z;
-  d.verdict = d.failing_blocks > 0 || image_fails ? DiffVerdict::Fail : DiffVerdict::Pass;
-  return d;
+std::string describe(const PlainDiff& d, const PlainThresholds& t) {
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "plain: mean error %.6g, RMS %.6g, max %.6g at (%d, %d); %.4g%% of pixels over %g "
+                "(fail over %g%%), %.4g%% over %g (warn over %g%%)",
+                d.mean_error, d.rms_error, d.max_error, d.worst_x, d.worst_y, d.fail_percent,
+                t.fail, t.fail_percent, d.warn_percent, t.warn, t.warn_percent);
+  return line;
 }
 
 }  // namespace rtiow

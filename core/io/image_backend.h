@@ -14,7 +14,7 @@ namespace rtiow {
 class ImageBackend;
 
 // Changes whenever image_file.h changes shape: a backend from another build is refused.
-inline constexpr int kImageBackendAbi = 1;
+inline constexpr int kImageBackendAbi = 2;
 
 // The name the backend's file has.
 inline constexpr const char* kImageBackendFile = "librtiow_image_io.so";

@@ -17,8 +17,9 @@
 
 namespace rtiow {
 
-// How one channel's values are stored (in a file, or in a buffer handed over).
-enum class PixelType { UInt8, UInt32, Float };
+// How one channel's values are stored (in a file, or in a buffer handed over). Integers of a
+// width are one type whatever their sign; double is read as Float.
+enum class PixelType { UInt8, UInt16, UInt32, Half, Float };
 
 struct ImageAttribute {
   std::string name;

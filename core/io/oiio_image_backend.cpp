@@ -5,7 +5,6 @@
 #include <OpenImageIO/imageio.h>
 
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "core/io/image_backend.h"
@@ -18,19 +17,36 @@ OIIO::TypeDesc to_oiio(PixelType type) {
   switch (type) {
     case PixelType::UInt8:
       return OIIO::TypeDesc::UINT8;
+    case PixelType::UInt16:
+      return OIIO::TypeDesc::UINT16;
     case PixelType::UInt32:
       return OIIO::TypeDesc::UINT;
+    case PixelType::Half:
+      return OIIO::TypeDesc::HALF;
     case PixelType::Float:
       break;
   }
   return OIIO::TypeDesc::FLOAT;
 }
 
-std::optional<PixelType> from_oiio(OIIO::TypeDesc type) {
-  if (type == OIIO::TypeDesc::UINT8) return PixelType::UInt8;
-  if (type == OIIO::TypeDesc::UINT) return PixelType::UInt32;
-  if (type == OIIO::TypeDesc::FLOAT) return PixelType::Float;
-  return std::nullopt;
+PixelType from_oiio(OIIO::TypeDesc type) {
+  switch (type.basetype) {
+    case OIIO::TypeDesc::UINT8:
+    case OIIO::TypeDesc::INT8:
+      return PixelType::UInt8;
+    case OIIO::TypeDesc::UINT16:
+    case OIIO::TypeDesc::INT16:
+      return PixelType::UInt16;
+    case OIIO::TypeDesc::UINT32:
+    case OIIO::TypeDesc::INT32:
+    case OIIO::TypeDesc::UINT64:
+    case OIIO::TypeDesc::INT64:
+      return PixelType::UInt32;
+    case OIIO::TypeDesc::HALF:
+      return PixelType::Half;
+    default:
+      return PixelType::Float;
+  }
 }
 
 // OpenImageIO keeps the last error per thread until it is read: read it, always, so that a
@@ -70,7 +86,7 @@ ImageHeader to_header(const OIIO::ImageSpec& spec) {
   header.full_width = spec.full_width, header.full_height = spec.full_height;
   header.channel_names = spec.channelnames;
   for (int c = 0; c < spec.nchannels; ++c) {
-    header.channel_types.push_back(from_oiio(spec.channelformat(c)).value_or(PixelType::Float));
+    header.channel_types.push_back(from_oiio(spec.channelformat(c)));
   }
   for (const auto& attribute : spec.extra_attribs) {
     ImageAttribute a{attribute.name().string(), 0};

@@ -1,11 +1,11 @@
 #pragma once
-// Student's t distribution, for the statistical image test: the two-sided critical value
-// t such that P(|T_nu| > t) = alpha. Computed from the regularised incomplete beta
+// Student's t distribution, for comparing several renders with a reference: the two-sided
+// critical value t such that P(|T_nu| > t) = alpha. Computed from the regularised incomplete beta
 // function (continued fraction, modified Lentz) and bisection; accurate to ~1e-10.
 
 #include <cmath>
 
-namespace rtiow::test {
+namespace rtiow {
 
 // I_x(a, b) by its continued fraction; valid for x < (a + 1) / (a + b + 2).
 inline double incomplete_beta_fraction(double a, double b, double x) {
@@ -57,4 +57,4 @@ inline double student_t_critical_value(double alpha, double nu) {
   return 0.5 * (lo + hi);
 }
 
-}  // namespace rtiow::test
+}  // namespace rtiow
