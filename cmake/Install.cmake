@@ -1,6 +1,7 @@
 # `cmake --install build --prefix P`: the rtiow executable (with the plot scripts it runs),
-# the core as a static library with its headers and image backend, and a CMake package, so that a C++ project
-# can find_package(rtiow) and link rtiow::rtiow.
+# the core as a static library with its headers and image backend, and a CMake package, so
+# that a C++ project can find_package(rtiow) and link rtiow::rtiow, or declare image tests of
+# its scenes with rtiow_add_image_test (cmake/RtiowImageTest.cmake).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -22,9 +23,11 @@ set(rtiow_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/rtiow)
 install(EXPORT rtiowTargets NAMESPACE rtiow:: DESTINATION ${rtiow_cmake_dir})
 configure_package_config_file(cmake/rtiowConfig.cmake.in
                               ${CMAKE_CURRENT_BINARY_DIR}/rtiowConfig.cmake
-                              INSTALL_DESTINATION ${rtiow_cmake_dir})
+                              INSTALL_DESTINATION ${rtiow_cmake_dir}
+                              PATH_VARS CMAKE_INSTALL_BINDIR)
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/rtiowConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/rtiowConfig.cmake
               ${CMAKE_CURRENT_BINARY_DIR}/rtiowConfigVersion.cmake
+              cmake/RtiowImageTest.cmake cmake/RtiowImageTestRun.cmake
         DESTINATION ${rtiow_cmake_dir})

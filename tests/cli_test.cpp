@@ -158,6 +158,23 @@ TEST(Cli, DiffPassesOtherSeedsFailsAMutationAndRefusesMismatches) {
   EXPECT_EQ(count_lines(refused.stderr_text), 1) << refused.stderr_text;
   EXPECT_NE(refused.stderr_text.find("differ in size"), std::string::npos);
   EXPECT_EQ(run_rtiow("diff " + a.string() + " /nonexistent.exr").exit_code, 2);
+
+  // Several renders: compared by their spread (Student's t); a mismatched one is named.
+  const CommandResult seeds =
+      run_rtiow("diff " + a.string() + " " + b.string() + " " + turned.string() + " " + a.string());
+  EXPECT_NE(seeds.stdout_text.find("from 3 renders (t, 2 d.o.f.)"), std::string::npos)
+      << seeds.stdout_text;
+  const CommandResult mixed =
+      run_rtiow("diff " + a.string() + " " + b.string() + " " + small.string());
+  EXPECT_EQ(mixed.exit_code, 2);
+  EXPECT_EQ(count_lines(mixed.stderr_text), 1) << mixed.stderr_text;
+  EXPECT_NE(mixed.stderr_text.find("-s.exr' against the reference"), std::string::npos)
+      << mixed.stderr_text;
+  const CommandResult plain_of_several =
+      run_rtiow("diff --mode plain " + a.string() + " " + b.string() + " " + b.string());
+  EXPECT_EQ(plain_of_several.exit_code, 2);
+  EXPECT_NE(plain_of_several.stderr_text.find("--mode seeds"), std::string::npos);
+  EXPECT_EQ(run_rtiow("diff --mode seeds " + a.string() + " " + b.string()).exit_code, 2);
 }
 
 // A PNG whose header claims `side` x `side` pixels and holds none.
@@ -192,6 +209,13 @@ TEST(Cli, DiffRefusesAnImageWhoseHeaderClaimsTooManyPixels) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(count_lines(r.stderr_text), 1) << r.stderr_text;
   EXPECT_NE(r.stderr_text.find("pixels"), std::string::npos) << r.stderr_text;
+
+  // A truncated PNG: libpng's own complaint stays off stderr, OpenImageIO's joins the line.
+  const fs::path truncated = output_path("truncated.png");
+  rtiow::test::write_file(truncated, png_claiming(8).substr(0, 40));
+  const CommandResult cut = run_rtiow("diff " + small.string() + " " + truncated.string());
+  EXPECT_EQ(cut.exit_code, 2);
+  EXPECT_EQ(count_lines(cut.stderr_text), 1) << cut.stderr_text;
 }
 
 TEST(Cli, ListsTheBuiltinScenes) {

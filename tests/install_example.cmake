@@ -1,6 +1,9 @@
 # The library as a user gets it: install this build into a scratch prefix, configure and build
-# examples/spheres against it with find_package(rtiow), run it, and check it wrote its image.
-# Run by CTest as: cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -P install_example.cmake
+# examples/spheres against it with find_package(rtiow), run it, and check it wrote its image;
+# then run examples/image_tests (rtiow_add_image_test) against the install: make its
+# references, compare, and see its guard fail as it should.
+# Run by CTest as:
+#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DCTEST=... -P install_example.cmake
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT code EQUAL 0)
@@ -12,7 +15,8 @@ file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 foreach(installed bin/rtiow lib/librtiow.a lib/librtiow_image_io.so include/rtiow/core/rtiow.h
-                  include/rtiow/materials/material.h lib/cmake/rtiow/rtiowConfig.cmake)
+                  include/rtiow/materials/material.h lib/cmake/rtiow/rtiowConfig.cmake
+                  lib/cmake/rtiow/RtiowImageTest.cmake lib/cmake/rtiow/RtiowImageTestRun.cmake)
   if(NOT EXISTS ${prefix}/${installed})
     message(FATAL_ERROR "not installed: ${installed}")
   endif()
@@ -32,3 +36,22 @@ if(size LESS 10000)
   message(FATAL_ERROR "the example's image is only ${size} bytes")
 endif()
 message(STATUS "installed rtiow built and ran the example: three.png, ${size} bytes")
+
+# The image tests, copied out of the source tree so their references are written here.
+file(COPY ${SOURCE_DIR}/examples/image_tests DESTINATION ${WORK_DIR})
+set(tests_source ${WORK_DIR}/image_tests)
+run(${CMAKE_COMMAND} -S ${tests_source} -B ${WORK_DIR}/image_tests_build
+    -DCMAKE_PREFIX_PATH=${prefix})
+run(${CMAKE_COMMAND} -E env RTIOW_UPDATE_REFERENCES=1
+    ${CTEST} --test-dir ${WORK_DIR}/image_tests_build --output-on-failure)
+if(NOT EXISTS ${tests_source}/references/three-spheres.exr)
+  message(FATAL_ERROR "the image test wrote no reference")
+endif()
+execute_process(COMMAND ${CTEST} --test-dir ${WORK_DIR}/image_tests_build -V
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT code EQUAL 0 OR NOT out MATCHES "PASS" OR NOT out MATCHES "failed, as it should")
+  message(FATAL_ERROR "the installed image tests did not pass and fail as they should:\n"
+                      "${out}${err}")
+endif()
+message(STATUS "the installed rtiow_add_image_test made references, passed, and failed the "
+               "moved camera")

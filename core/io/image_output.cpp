@@ -5,9 +5,6 @@
 #include "core/io/image_file.h"
 #include "core/io/output_path.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -63,34 +60,8 @@ std::uint8_t encode_gamma2_8bit(float linear) {
   return static_cast<std::uint8_t>(std::lround(v * 255.0f));
 }
 
-// Quiets stderr while alive: libpng prints its own complaint about a truncated file, and the
-// error line rtiow prints is to be the only one. (Used after the render: no other thread
-// writes to stderr then.)
-class QuietStderr {
- public:
-  QuietStderr() : saved_(::dup(STDERR_FILENO)) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    if (null >= 0) {
-      ::dup2(null, STDERR_FILENO);
-      ::close(null);
-    }
-  }
-  ~QuietStderr() {
-    if (saved_ >= 0) {
-      ::dup2(saved_, STDERR_FILENO);
-      ::close(saved_);
-    }
-  }
-  QuietStderr(const QuietStderr&) = delete;
-  QuietStderr& operator=(const QuietStderr&) = delete;
-
- private:
-  int saved_;
-};
-
 bool reads_back(const std::string& path, std::string& reason) {
   const ImageBackend& backend = image_backend();
-  const QuietStderr quiet;
   std::string ignored;  // the reason below is the one that helps
   if (auto in = backend.open(path, ignored)) {
     const ImageHeader& header = in->header();

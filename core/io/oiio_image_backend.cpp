@@ -3,6 +3,8 @@
 // file of rtiow that includes OpenImageIO.
 
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <memory>
 #include <string>
@@ -49,11 +51,50 @@ PixelType from_oiio(OIIO::TypeDesc type) {
   }
 }
 
+// Quiets stderr while alive: libpng prints its own complaint about a truncated or corrupt
+// file, and the error line rtiow prints (with the same reason, from OpenImageIO) is to be
+// the only one. rtiow reads and writes images only where no other thread prints.
+class QuietStderr {
+ public:
+  QuietStderr() : saved_(::dup(STDERR_FILENO)) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+      ::dup2(null, STDERR_FILENO);
+      ::close(null);
+    }
+  }
+  ~QuietStderr() {
+    if (saved_ >= 0) {
+      ::dup2(saved_, STDERR_FILENO);
+      ::close(saved_);
+    }
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  int saved_;
+};
+
 // OpenImageIO keeps the last error per thread until it is read: read it, always, so that a
 // stale error never shows up in a later message.
+// Its messages may hold several lines (one per complaint): joined with "; ", and a line that
+// repeats one already taken is dropped.
 std::string take_error(const std::string& first = {}) {
   const std::string global = OIIO::geterror();
-  return first.empty() ? global : first;
+  const std::string& text = first.empty() ? global : first;
+  std::string joined;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string line = text.substr(start, end - start);
+    if (!line.empty() && joined.find(line) == std::string::npos) {
+      joined += (joined.empty() ? "" : "; ") + line;
+    }
+    start = end + 1;
+  }
+  return joined;
 }
 
 OIIO::ImageSpec to_spec(const ImageHeader& header) {
@@ -111,6 +152,7 @@ class OiioImageReader final : public ImageReader {
 
   bool read_pixels(PixelType type, void* pixels, std::string& reason) override {
     const int channels = in_->spec().nchannels;
+    const QuietStderr quiet;
     if (in_->read_image(0, 0, 0, channels, to_oiio(type), pixels)) return true;
     reason = take_error(in_->geterror());
     return false;
@@ -125,6 +167,7 @@ class OiioImageBackend final : public ImageBackend {
  public:
   bool write(const std::string& path, const ImageHeader& header, const void* pixels,
              std::string& reason) const override {
+    const QuietStderr quiet;
     auto out = OIIO::ImageOutput::create(path);
     if (!out) {
       reason = take_error();
@@ -138,6 +181,7 @@ class OiioImageBackend final : public ImageBackend {
   }
 
   std::unique_ptr<ImageReader> open(const std::string& path, std::string& reason) const override {
+    const QuietStderr quiet;
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
       reason = take_error();
