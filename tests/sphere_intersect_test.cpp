@@ -5,12 +5,47 @@
 #include <cmath>
 #include <limits>
 
+#include "core/geometry/sphere_bounds.h"
 #include "core/sampling/rng.h"
 
 namespace rtiow {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// The box an accelerator culls with holds the whole sphere, exactly, and every hit point the
+// float test reports, grazing ones included (an unpadded box rounds half of its faces inward).
+TEST(SphereBounds, HoldTheExactSphereAndEveryReportedHit) {
+  Pcg32 rng(42, 7);
+  int hits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const float scale = std::pow(10.0f, 4.0f * rng.next_float());
+    const Vec3 center{scale * (rng.next_float() - 0.5f), scale * (rng.next_float() - 0.5f),
+                      scale * (rng.next_float() - 0.5f)};
+    const float radius = std::pow(10.0f, 3.0f * rng.next_float() - 1.0f);
+    const Box box = padded_sphere_bounds(center, radius);
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      const double c = double(center[axis]), r = double(radius);
+      ASSERT_LE(double(box.lower[axis]), c - r) << i;
+      ASSERT_GE(double(box.upper[axis]), c + r) << i;
+    }
+    // A ray towards a point just inside the silhouette, seen from a random direction.
+    const Vec3 from = center + 3.0f * radius * Vec3{rng.next_float() - 0.5f, 1.0f,
+                                                    rng.next_float() - 0.5f};
+    const Vec3 side = normalize(cross(center - from, Vec3{1, 0, 0}));
+    const Vec3 target = center + (radius * (1.0f - 1e-4f * rng.next_float())) * side;
+    const Ray ray{from, target - from};
+    float t = 0;
+    if (!intersect_sphere(center, radius, ray, 0.0f, kInf, t)) continue;
+    ++hits;
+    const Vec3 p = ray.origin + t * ray.direction;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      ASSERT_LE(box.lower[axis], p[axis]) << i;
+      ASSERT_GE(box.upper[axis], p[axis]) << i;
+    }
+  }
+  EXPECT_GT(hits, 10000);
+}
 
 TEST(SphereIntersect, HitsFromOutsideAtTheNearRoot) {
   float t = 0;
