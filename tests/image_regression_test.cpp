@@ -226,19 +226,66 @@ TEST_P(ImageRegression, CatchesAWrongRender) {
 // cannot flake; a change to the sampler may still fail it with the ~2% chance noise has,
 // and then shows in which block.) A render whose diffuse albedos are 5% darker (a bias the
 // fixed thresholds above are far too coarse to see) must fail, in more than 1% of blocks.
-NoiseDiff compare_seeds(const Scene& scene, const DiffInput& reference) {
-  constexpr int kRenders = 16, kSpp = 16, kBlock = 4;
+constexpr int kSeedBlock = 4;
+
+std::vector<DiffInput> seed_renders(const Scene& scene) {
+  constexpr int kRenders = 16, kSpp = 16;
   RenderSettings s = settings_for(scene, kSpp, 0);
   std::vector<DiffInput> renders;
   for (int k = 0; k < kRenders; ++k) {
     s.seed = 500 + std::uint64_t(k);
     renders.push_back(diff_input(render(scene, s).film));
   }
-  return seeds_diff(renders, reference, kBlock, 0.01);
+  return renders;
+}
+
+NoiseDiff compare_seeds(const Scene& scene, const DiffInput& reference) {
+  return seeds_diff(seed_renders(scene), reference, kSeedBlock, 0.01);
 }
 
 double failing_percent(const NoiseDiff& d) {
   return 100.0 * d.failing_blocks / double(d.blocks);
+}
+
+// A third of the image: a band of rows (top, middle, bottom) or of columns (left, ...).
+struct Third {
+  const char* name;
+  bool rows;
+  int index;
+};
+constexpr Third kThirds[] = {{"top", true, 0},   {"middle rows", true, 1},     {"bottom", true, 2},
+                             {"left", false, 0}, {"middle columns", false, 1}, {"right", false, 2}};
+
+// The renders with every value in `third` scaled by 1 + shift.
+std::vector<DiffInput> shifted(std::vector<DiffInput> renders, const Third& third, double shift) {
+  for (DiffInput& image : renders) {
+    const int extent = third.rows ? image.height : image.width;
+    const int from = third.index * extent / 3, to = (third.index + 1) * extent / 3;
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) {
+        if ((third.rows ? y : x) < from || (third.rows ? y : x) >= to) continue;
+        float* rgb = &image.rgb[3 * (std::size_t(y) * std::size_t(image.width) + std::size_t(x))];
+        for (int c = 0; c < 3; ++c) rgb[c] = float(double(rgb[c]) * (1.0 + shift));
+      }
+    }
+  }
+  return renders;
+}
+
+// The smallest relative brightening of `third` that the comparison fails, to 2%: bisection
+// on these renders (a failure at s implies one at every larger s, bar noise in the last
+// digit).
+double smallest_detected_shift(const std::vector<DiffInput>& renders, const DiffInput& reference,
+                               const Third& third) {
+  double passes = 0.0, fails = 0.05;
+  while (fails - passes > 0.02 * fails) {
+    const double mid = 0.5 * (passes + fails);
+    const bool failed =
+        seeds_diff(shifted(renders, third, mid), reference, kSeedBlock, 0.01).verdict ==
+        DiffVerdict::Fail;
+    (failed ? fails : passes) = mid;
+  }
+  return fails;
 }
 
 TEST_P(ImageRegression, AgreesInTheMeanWithReference) {
@@ -248,8 +295,25 @@ TEST_P(ImageRegression, AgreesInTheMeanWithReference) {
   const RenderSettings s = settings_for(scene, kTestSpp, kTestSeed);
   const DiffInput reference = read_reference(c.scene, s);
   if (HasFailure()) return;
-  const NoiseDiff unbiased = compare_seeds(scene, reference);
+  const std::vector<DiffInput> renders = seed_renders(scene);
+  const NoiseDiff unbiased = seeds_diff(renders, reference, kSeedBlock, 0.01);
   EXPECT_EQ(unbiased.verdict, DiffVerdict::Pass) << describe(unbiased);
+
+  // Power: 0.5% brighter over any third of the image must fail; and the smallest such shift
+  // each third's comparison sees, for the docs.
+  double worst = 0;
+  const char* worst_third = "";
+  for (const Third& third : kThirds) {
+    const NoiseDiff d = seeds_diff(shifted(renders, third, 0.005), reference, kSeedBlock, 0.01);
+    EXPECT_EQ(d.verdict, DiffVerdict::Fail)
+        << "0.5% brighter over the " << third.name << " third passed: " << describe(d);
+    const double smallest = smallest_detected_shift(renders, reference, third);
+    if (smallest > worst) worst = smallest, worst_third = third.name;
+  }
+  std::printf(
+      "%s: the smallest brightening of a third of the image that fails: %.3f%% or less "
+      "(the hardest third: %s)\n",
+      c.scene, 100.0 * worst, worst_third);
 
   Scene darker = scene;
   for (Material& m : darker.materials) {

@@ -30,8 +30,8 @@ TEST(SphereBounds, HoldTheExactSphereAndEveryReportedHit) {
       ASSERT_GE(double(box.upper[axis]), c + r) << i;
     }
     // A ray towards a point just inside the silhouette, seen from a random direction.
-    const Vec3 from = center + 3.0f * radius * Vec3{rng.next_float() - 0.5f, 1.0f,
-                                                    rng.next_float() - 0.5f};
+    const Vec3 from =
+        center + 3.0f * radius * Vec3{rng.next_float() - 0.5f, 1.0f, rng.next_float() - 0.5f};
     const Vec3 side = normalize(cross(center - from, Vec3{1, 0, 0}));
     const Vec3 target = center + (radius * (1.0f - 1e-4f * rng.next_float())) * side;
     const Ray ray{from, target - from};
