@@ -20,9 +20,9 @@ class RecordingAccel {
   RecordingAccel(const EmbreeAccel& inner, tbb::enumerable_thread_specific<std::vector<Ray>>& log)
       : inner_(inner), log_(log) {}
 
-  std::optional<Hit> intersect(const Ray& ray, float t_max) const {
+  std::optional<Hit> intersect(const Ray& ray, float t_max, std::uint32_t skip) const {
     log_.local().push_back(ray);
-    return inner_.intersect(ray, t_max);
+    return inner_.intersect(ray, t_max, skip);
   }
 
  private:

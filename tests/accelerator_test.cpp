@@ -42,6 +42,64 @@ TEST(Accelerators, EmbreeAndNaiveFindIdenticalHits) {
   EXPECT_GT(hits, 5000);
 }
 
+// Coincident spheres (a scene file that lists one twice, with another material): every ray
+// hits both at the same t, and both accelerators must name the same one, the lower index,
+// whatever order the BVH visits them in.
+TEST(Accelerators, CoincidentSpheresResolveToTheLowerIndex) {
+  const Scene cover = make_builtin_scene("cover", 1);
+  SphereSet spheres;
+  for (int copy = 0; copy < 2; ++copy) {
+    for (std::size_t i = 0; i < cover.spheres.size(); ++i) {
+      spheres.add(cover.spheres.center(i), cover.spheres.radius[i], std::uint32_t(copy));
+    }
+  }
+  const EmbreeAccel embree(spheres);
+  const NaiveAccel naive(spheres);
+  Pcg32 rng(5, 6);
+  int hits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 origin{-15 + 30 * rng.next_float(), 0.01f + 4 * rng.next_float(),
+                      -15 + 30 * rng.next_float()};
+    const Ray ray{origin, sample_unit_vector(rng.next_float(), rng.next_float())};
+    const std::optional<Hit> a = embree.intersect(ray, kInf);
+    const std::optional<Hit> b = naive.intersect(ray, kInf);
+    ASSERT_EQ(a.has_value(), b.has_value()) << "ray " << i;
+    if (!a) continue;
+    ++hits;
+    ASSERT_EQ(a->sphere, b->sphere) << "ray " << i;
+    ASSERT_LT(a->sphere, cover.spheres.size()) << "ray " << i;
+    ASSERT_EQ(a->t, b->t) << "ray " << i;
+  }
+  EXPECT_GT(hits, 5000);
+}
+
+// A ray may leave out one sphere (the one it leaves outward): both accelerators then find
+// the closest hit among the others, the same one.
+TEST(Accelerators, LeaveOutTheSphereTheyAreToldTo) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  const EmbreeAccel embree(scene.spheres);
+  const NaiveAccel naive(scene.spheres);
+  Pcg32 rng(7, 8);
+  int second_hits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 origin{-15 + 30 * rng.next_float(), 0.01f + 4 * rng.next_float(),
+                      -15 + 30 * rng.next_float()};
+    const Ray ray{origin, sample_unit_vector(rng.next_float(), rng.next_float())};
+    const std::optional<Hit> first = naive.intersect(ray, kInf);
+    if (!first) continue;
+    const std::optional<Hit> a = embree.intersect(ray, kInf, first->sphere);
+    const std::optional<Hit> b = naive.intersect(ray, kInf, first->sphere);
+    ASSERT_EQ(a.has_value(), b.has_value()) << "ray " << i;
+    if (!a) continue;
+    ASSERT_NE(a->sphere, first->sphere) << "ray " << i;
+    ASSERT_EQ(a->sphere, b->sphere) << "ray " << i;
+    ASSERT_EQ(a->t, b->t) << "ray " << i;
+    ASSERT_GE(a->t, first->t) << "ray " << i;
+    ++second_hits;
+  }
+  EXPECT_GT(second_hits, 1000);
+}
+
 TEST(Accelerators, RespectTMax) {
   SphereSet spheres;
   spheres.add({0, 0, -5}, 1.0f, 0);

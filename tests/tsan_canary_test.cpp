@@ -17,7 +17,7 @@ namespace {
 // microseconds, so that both threads get tiles even on a loaded machine.
 struct RacyAccel {
   mutable int queries = 0;
-  std::optional<Hit> intersect(const Ray&, float) const {
+  std::optional<Hit> intersect(const Ray&, float, std::uint32_t) const {
     queries = queries + 1;
     const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(5);
     while (std::chrono::steady_clock::now() < until) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/geometry/ray_offset.h"
 #include "core/geometry/sphere_bounds.h"
 #include "core/geometry/sphere_intersect.h"
 #include "core/render/thread_sanitizer.h"
@@ -37,11 +38,20 @@ void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto& s = *static_cast<const SphereSet*>(args->geometryUserPtr);
   const unsigned i = args->primID;
+  // The context is the one EmbreeAccel::intersect passed, extended (Embree's documented way).
+  if (i == reinterpret_cast<const EmbreeAccel::SkippingContext*>(args->context)->skip) return;
   RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
   const Ray ray{{rh->ray.org_x, rh->ray.org_y, rh->ray.org_z},
                 {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z}};
-  float t;
-  if (!intersect_sphere(s.center(i), s.radius[i], ray, rh->ray.tnear, rh->ray.tfar, t)) return;
+  // Up to and including tfar: a sphere at exactly the distance of the hit found so far
+  // (coincident spheres) wins if its index is lower, as in the naive loop, whatever order
+  // the traversal visits them in.
+  const float t = sphere_hit_distance(s.center(i), s.radius[i], ray, rh->ray.tnear,
+                                      next_float_up(rh->ray.tfar));
+  const bool closer = t < rh->ray.tfar;
+  const bool tie_won =
+      t == rh->ray.tfar && rh->hit.geomID != RTC_INVALID_GEOMETRY_ID && i < rh->hit.primID;
+  if (!closer && !tie_won) return;
   rh->ray.tfar = t;
   rh->hit.u = 0.0f;
   rh->hit.v = 0.0f;

@@ -4,6 +4,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <cstdint>
 #include <optional>
 
 #include "core/geometry/hit.h"
@@ -22,10 +23,17 @@ class EmbreeAccel {
 
   static constexpr const char* name() { return "embree"; }
 
+  // Embree's context, extended with the sphere to leave out (its callback reads it back).
+  struct SkippingContext {
+    RTCIntersectContext embree;
+    std::uint32_t skip;
+  };
+
   // Closest hit with 0 < t < t_max, through rtcIntersect1.
-  std::optional<Hit> intersect(const Ray& ray, float t_max) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+  std::optional<Hit> intersect(const Ray& ray, float t_max, std::uint32_t skip = kNoSphere) const {
+    SkippingContext context;
+    rtcInitIntersectContext(&context.embree);
+    context.skip = skip;
     RTCRayHit rh;
     rh.ray.org_x = ray.origin.x;
     rh.ray.org_y = ray.origin.y;
@@ -41,7 +49,7 @@ class EmbreeAccel {
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &rh);
+    rtcIntersect1(scene_, &context.embree, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
     return Hit{rh.ray.tfar, rh.hit.primID};
   }

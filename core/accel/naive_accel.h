@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 
 #include "core/geometry/hit.h"
@@ -23,7 +24,7 @@ class NaiveAccel {
   // compiler vectorises marks the few spheres whose line the ray comes near
   // (sphere_line_may_hit), then the full sphere test runs on those alone. The answer is the one
   // a sphere-by-sphere loop gives, bit for bit.
-  std::optional<Hit> intersect(const Ray& ray, float t_max) const {
+  std::optional<Hit> intersect(const Ray& ray, float t_max, std::uint32_t skip = kNoSphere) const {
     const SphereSet& s = *spheres_;
     const std::size_t n = s.size();
     float closest = t_max;
@@ -39,7 +40,7 @@ class NaiveAccel {
         candidate[i] = sphere_line_may_hit(Vec3{cx[i], cy[i], cz[i]}, radius[i], ray);
       }
       for (std::size_t i = 0; i < count; ++i) {
-        if (!candidate[i]) continue;
+        if (!candidate[i] || begin + i == skip) continue;
         const float t =
             sphere_hit_distance_exact(Vec3{cx[i], cy[i], cz[i]}, radius[i], ray, 0.0f, closest);
         if (t < closest) {

@@ -10,4 +10,7 @@ struct Hit {
   std::uint32_t sphere;
 };
 
+// "No sphere", where a sphere index is expected.
+inline constexpr std::uint32_t kNoSphere = 0xffffffffu;
+
 }  // namespace rtiow

@@ -56,6 +56,16 @@ inline SurfaceHit make_surface_hit(const SphereSet& spheres, const Ray& ray, con
   return s;
 }
 
+// True when a ray spawned with `direction` starts outside the sphere's ball and moves away
+// from it: the ball lies behind the tangent plane, so the ray cannot hit that sphere again,
+// and an accelerator may leave it out (the double test, which finds no hit there either,
+// is a third of the callbacks on the cover). Decided as spawn_ray picks the side; `radius`
+// is the sphere's, whose sign says whether the normal side is the ball's outside.
+inline bool leaves_outward(const SurfaceHit& s, const Vec3& direction, float radius) {
+  const bool normal_points_out = s.front_face == (radius > 0.0f);
+  return !(dot(direction, s.normal) < 0.0f) == normal_points_out;
+}
+
 // A ray leaving the surface in `direction`, with an origin outside the hit point's error box.
 inline Ray spawn_ray(const SurfaceHit& s, const Vec3& direction) {
   const float d = dot(abs(s.normal), s.point_error);

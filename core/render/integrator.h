@@ -17,10 +17,12 @@ template <Accelerator Accel>
 Color trace_path(const Scene& scene, const Accel& accel, Ray ray, int max_depth, SampleStream& rng,
                  std::uint64_t& rays_traced) {
   Color throughput{1.0f, 1.0f, 1.0f};
+  std::uint32_t left_behind = kNoSphere;  // the sphere the ray leaves outward, if any
   for (int depth = 0; depth < max_depth; ++depth) {
     if (!is_traceable(ray)) return Color{};
     ++rays_traced;
-    const std::optional<Hit> hit = accel.intersect(ray, std::numeric_limits<float>::infinity());
+    const std::optional<Hit> hit =
+        accel.intersect(ray, std::numeric_limits<float>::infinity(), left_behind);
     if (!hit) return throughput * scene.background(ray.direction);
     const SurfaceHit surface = make_surface_hit(scene.spheres, ray, *hit);
     const std::optional<Scattered> scattered =
@@ -28,6 +30,9 @@ Color trace_path(const Scene& scene, const Accel& accel, Ray ray, int max_depth,
     if (!scattered) return Color{};  // absorbed
     throughput *= scattered->attenuation;
     ray = spawn_ray(surface, scattered->direction);
+    left_behind = leaves_outward(surface, scattered->direction, scene.spheres.radius[hit->sphere])
+                      ? hit->sphere
+                      : kNoSphere;
   }
   return Color{};  // the depth limit: the book counts the path as black
 }
