@@ -100,6 +100,39 @@ TEST(Accelerators, LeaveOutTheSphereTheyAreToldTo) {
   EXPECT_GT(second_hits, 1000);
 }
 
+// Packets of 1 to 8 rays, coherent (a pixel's camera rays) or not: Embree's rtcIntersect8
+// finds the hits rtcIntersect1 finds, bit for bit.
+TEST(Accelerators, PacketsFindTheHitsOfSingleRays) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  const EmbreeAccel embree(scene.spheres);
+  Pcg32 rng(9, 10);
+  int hits = 0;
+  for (int packet = 0; packet < 4000; ++packet) {
+    const int count = 1 + packet % kRayPacketSize;
+    const bool coherent = packet % 2 == 0;
+    const Vec3 origin{13.0f, 2.0f, 3.0f};
+    Ray rays[kRayPacketSize];
+    for (int k = 0; k < count; ++k) {
+      const Vec3 target = coherent ? Vec3{float(packet % 40) * 0.1f - 2.0f, 0.5f, 0.0f} +
+                                         0.01f * Vec3{rng.next_float(), rng.next_float(), 0.0f}
+                                   : Vec3{-15 + 30 * rng.next_float(), 3 * rng.next_float(),
+                                          -15 + 30 * rng.next_float()};
+      rays[k] = Ray{origin, target - origin};
+    }
+    std::optional<Hit> packet_hits[kRayPacketSize];
+    intersect_packet(embree, rays, count, packet_hits);
+    for (int k = 0; k < count; ++k) {
+      const std::optional<Hit> single = embree.intersect(rays[k], kInf);
+      ASSERT_EQ(packet_hits[k].has_value(), single.has_value()) << packet << " " << k;
+      if (!single) continue;
+      ++hits;
+      ASSERT_EQ(packet_hits[k]->sphere, single->sphere) << packet << " " << k;
+      ASSERT_EQ(packet_hits[k]->t, single->t) << packet << " " << k;
+    }
+  }
+  EXPECT_GT(hits, 10000);
+}
+
 TEST(Accelerators, RespectTMax) {
   SphereSet spheres;
   spheres.add({0, 0, -5}, 1.0f, 0);

@@ -33,34 +33,58 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
   tsan_release(&s);  // ...and finish before the commit returns
 }
 
-// Called by rtcIntersect1 for each sphere whose box the ray enters; N is 1 for single rays.
+// The distance at which sphere i replaces the hit found so far (tfar, and `prim` when
+// `has_hit`), or infinity. Up to and including tfar: a sphere at exactly the distance of the
+// hit so far (coincident spheres) wins if its index is lower, as in the naive loop, whatever
+// order the traversal visits them in.
+float replacing_hit(const SphereSet& s, unsigned i, const Ray& ray, float tnear, float tfar,
+                    bool has_hit, unsigned prim) {
+  const float t = sphere_hit_distance(s.center(i), s.radius[i], ray, tnear, next_float_up(tfar));
+  const bool closer = t < tfar;
+  const bool tie_won = t == tfar && has_hit && i < prim;
+  return closer || tie_won ? t : std::numeric_limits<float>::infinity();
+}
+
+// Called for each sphere whose box a ray enters: N = 1 for rtcIntersect1, 8 for the camera
+// rays of rtcIntersect8 (the rays of the packet that entered it are `valid`).
 void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
-  if (!args->valid[0]) return;
   const auto& s = *static_cast<const SphereSet*>(args->geometryUserPtr);
   const unsigned i = args->primID;
-  // The context is the one EmbreeAccel::intersect passed, extended (Embree's documented way).
+  // The context is the one EmbreeAccel passed, extended (Embree's documented way).
   if (i == reinterpret_cast<const EmbreeAccel::SkippingContext*>(args->context)->skip) return;
-  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  const Ray ray{{rh->ray.org_x, rh->ray.org_y, rh->ray.org_z},
-                {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z}};
-  // Up to and including tfar: a sphere at exactly the distance of the hit found so far
-  // (coincident spheres) wins if its index is lower, as in the naive loop, whatever order
-  // the traversal visits them in.
-  const float t = sphere_hit_distance(s.center(i), s.radius[i], ray, rh->ray.tnear,
-                                      next_float_up(rh->ray.tfar));
-  const bool closer = t < rh->ray.tfar;
-  const bool tie_won =
-      t == rh->ray.tfar && rh->hit.geomID != RTC_INVALID_GEOMETRY_ID && i < rh->hit.primID;
-  if (!closer && !tie_won) return;
-  rh->ray.tfar = t;
-  rh->hit.u = 0.0f;
-  rh->hit.v = 0.0f;
-  rh->hit.Ng_x = 0.0f;  // the integrator derives the normal from the sphere
-  rh->hit.Ng_y = 0.0f;
-  rh->hit.Ng_z = 0.0f;
-  rh->hit.primID = i;
-  rh->hit.geomID = args->geomID;
-  rh->hit.instID[0] = args->context->instID[0];
+  constexpr float kNone = std::numeric_limits<float>::infinity();
+  if (args->N == 1) {
+    if (!args->valid[0]) return;
+    RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+    const Ray ray{{rh->ray.org_x, rh->ray.org_y, rh->ray.org_z},
+                  {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z}};
+    const float t = replacing_hit(s, i, ray, rh->ray.tnear, rh->ray.tfar,
+                                  rh->hit.geomID != RTC_INVALID_GEOMETRY_ID, rh->hit.primID);
+    if (t == kNone) return;
+    rh->ray.tfar = t;
+    rh->hit.primID = i;
+    rh->hit.geomID = args->geomID;
+    rh->hit.instID[0] = args->context->instID[0];
+    // u, v and Ng are left as they are: the integrator derives the normal from the sphere.
+    return;
+  }
+  const unsigned n = args->N;
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, n);
+  RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, n);
+  for (unsigned k = 0; k < n; ++k) {
+    if (!args->valid[k]) continue;
+    const Ray ray{
+        {RTCRayN_org_x(rays, n, k), RTCRayN_org_y(rays, n, k), RTCRayN_org_z(rays, n, k)},
+        {RTCRayN_dir_x(rays, n, k), RTCRayN_dir_y(rays, n, k), RTCRayN_dir_z(rays, n, k)}};
+    const float t = replacing_hit(s, i, ray, RTCRayN_tnear(rays, n, k), RTCRayN_tfar(rays, n, k),
+                                  RTCHitN_geomID(hits, n, k) != RTC_INVALID_GEOMETRY_ID,
+                                  RTCHitN_primID(hits, n, k));
+    if (t == kNone) continue;
+    RTCRayN_tfar(rays, n, k) = t;
+    RTCHitN_primID(hits, n, k) = i;
+    RTCHitN_geomID(hits, n, k) = args->geomID;
+    RTCHitN_instID(hits, n, k, 0) = args->context->instID[0];
+  }
 }
 
 }  // namespace
@@ -91,6 +115,40 @@ EmbreeAccel::EmbreeAccel(const SphereSet& spheres) {
     if (scene_) rtcReleaseScene(scene_);
     rtcReleaseDevice(device_);
     throw;
+  }
+}
+
+void EmbreeAccel::intersect_packet(const Ray* rays, int count, std::optional<Hit>* hits) const {
+  SkippingContext context;
+  rtcInitIntersectContext(&context.embree);
+  context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  context.skip = kNoSphere;
+  alignas(32) int valid[kPacketSize];
+  alignas(32) RTCRayHit8 packet;
+  for (int k = 0; k < kPacketSize; ++k) {
+    const bool active = k < count;
+    valid[k] = active ? -1 : 0;
+    const Ray& ray = rays[active ? k : 0];
+    packet.ray.org_x[k] = ray.origin.x;
+    packet.ray.org_y[k] = ray.origin.y;
+    packet.ray.org_z[k] = ray.origin.z;
+    packet.ray.dir_x[k] = ray.direction.x;
+    packet.ray.dir_y[k] = ray.direction.y;
+    packet.ray.dir_z[k] = ray.direction.z;
+    packet.ray.tnear[k] = 0.0f;
+    packet.ray.tfar[k] = std::numeric_limits<float>::infinity();
+    packet.ray.time[k] = 0.0f;
+    packet.ray.mask[k] = ~0u;
+    packet.ray.id[k] = unsigned(k);
+    packet.ray.flags[k] = 0;
+    packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect8(valid, scene_, &context.embree, &packet);
+  for (int k = 0; k < count; ++k) {
+    hits[k] = packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID
+                  ? std::nullopt
+                  : std::optional<Hit>(Hit{packet.ray.tfar[k], packet.hit.primID[k]});
   }
 }
 

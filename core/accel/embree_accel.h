@@ -54,6 +54,12 @@ class EmbreeAccel {
     return Hit{rh.ray.tfar, rh.hit.primID};
   }
 
+  // The closest hits (0 < t < infinity) of up to kPacketSize coherent rays at once (a
+  // pixel's camera rays), through rtcIntersect8: the same hits as one by one, bit for bit
+  // (the callback breaks ties by index, so the order Embree visits spheres in is moot).
+  static constexpr int kPacketSize = 8;
+  void intersect_packet(const Ray* rays, int count, std::optional<Hit>* hits) const;
+
  private:
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;

@@ -13,28 +13,44 @@
 
 namespace rtiow {
 
+// Follows a path on from its first ray, already traced (and counted): `hit` is what it hit.
 template <Accelerator Accel>
-Color trace_path(const Scene& scene, const Accel& accel, Ray ray, int max_depth, SampleStream& rng,
-                 std::uint64_t& rays_traced) {
+Color continue_path(const Scene& scene, const Accel& accel, Ray ray, std::optional<Hit> hit,
+                    int max_depth, SampleStream& rng, std::uint64_t& rays_traced) {
   Color throughput{1.0f, 1.0f, 1.0f};
-  std::uint32_t left_behind = kNoSphere;  // the sphere the ray leaves outward, if any
-  for (int depth = 0; depth < max_depth; ++depth) {
-    if (!is_traceable(ray)) return Color{};
-    ++rays_traced;
-    const std::optional<Hit> hit =
-        accel.intersect(ray, std::numeric_limits<float>::infinity(), left_behind);
+  for (int depth = 1;; ++depth) {
     if (!hit) return throughput * scene.background(ray.direction);
     const SurfaceHit surface = make_surface_hit(scene.spheres, ray, *hit);
     const std::optional<Scattered> scattered =
         scatter(scene.materials[surface.material], ray.direction, surface, rng);
     if (!scattered) return Color{};  // absorbed
     throughput *= scattered->attenuation;
+    // The sphere the ray leaves outward, which it cannot hit again.
+    const std::uint32_t left_behind =
+        leaves_outward(surface, scattered->direction, scene.spheres.radius[hit->sphere])
+            ? hit->sphere
+            : kNoSphere;
     ray = spawn_ray(surface, scattered->direction);
-    left_behind = leaves_outward(surface, scattered->direction, scene.spheres.radius[hit->sphere])
-                      ? hit->sphere
-                      : kNoSphere;
+    if (depth >= max_depth) return Color{};  // the depth limit: the book counts it black
+    if (!is_traceable(ray)) return Color{};
+    ++rays_traced;
+    hit = accel.intersect(ray, std::numeric_limits<float>::infinity(), left_behind);
   }
-  return Color{};  // the depth limit: the book counts the path as black
+}
+
+// Whether a path's first ray is traced at all (a depth of 0, or a ray gone NaN, is black).
+inline bool starts_path(const Ray& ray, int max_depth) {
+  return max_depth > 0 && is_traceable(ray);
+}
+
+template <Accelerator Accel>
+Color trace_path(const Scene& scene, const Accel& accel, const Ray& ray, int max_depth,
+                 SampleStream& rng, std::uint64_t& rays_traced) {
+  if (!starts_path(ray, max_depth)) return Color{};
+  ++rays_traced;
+  const std::optional<Hit> hit =
+      accel.intersect(ray, std::numeric_limits<float>::infinity(), kNoSphere);
+  return continue_path(scene, accel, ray, hit, max_depth, rng, rays_traced);
 }
 
 }  // namespace rtiow

@@ -9,9 +9,12 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "core/film/film.h"
@@ -45,20 +48,43 @@ void accumulate_pixel(const RenderContext<Accel>& ctx, int x, int y, std::uint64
   const RenderSettings& settings = ctx.settings;
   const Camera& camera = ctx.camera;
   const float inv_w = 1.0f / float(settings.width), inv_h = 1.0f / float(settings.height);
-  for (std::uint64_t i = first; i < last; ++i) {
-    SampleStream rng(settings.sampler, settings.seed, std::uint32_t(x), std::uint32_t(y), i);
-    const float s = (float(x) + rng.next_1d()) * inv_w;
-    const float t = (float(y) + rng.next_1d()) * inv_h;
-    float lens_u = 0.0f, lens_v = 0.0f;
-    if (camera.has_lens()) {
-      lens_u = rng.next_1d(), lens_v = rng.next_1d();
-    } else {
-      rng.skip(2);
+  // The camera rays of kRayPacketSize samples go to the accelerator together (coherent: one
+  // pixel); each path then goes on alone. Every sample has its own stream, so the image is
+  // the one sample-by-sample tracing gives.
+  std::array<std::optional<SampleStream>, kRayPacketSize> streams;
+  std::array<Ray, kRayPacketSize> rays_out;
+  std::array<std::optional<Hit>, kRayPacketSize> hits;
+  for (std::uint64_t i = first; i < last; i += kRayPacketSize) {
+    const int count = int(std::min<std::uint64_t>(kRayPacketSize, last - i));
+    int traced = 0;  // the packet holds the samples whose first ray is traced, in order
+    std::array<int, kRayPacketSize> slot;
+    for (int k = 0; k < count; ++k) {
+      SampleStream& rng =
+          streams[std::size_t(k)].emplace(settings.sampler, settings.seed, std::uint32_t(x),
+                                          std::uint32_t(y), i + std::uint64_t(k));
+      const float s = (float(x) + rng.next_1d()) * inv_w;
+      const float t = (float(y) + rng.next_1d()) * inv_h;
+      float lens_u = 0.0f, lens_v = 0.0f;
+      if (camera.has_lens()) {
+        lens_u = rng.next_1d(), lens_v = rng.next_1d();
+      } else {
+        rng.skip(2);
+      }
+      const Ray ray = camera.generate_ray(s, t, lens_u, lens_v);
+      slot[std::size_t(k)] = starts_path(ray, settings.max_depth) ? traced : -1;
+      if (slot[std::size_t(k)] >= 0) rays_out[std::size_t(traced++)] = ray;
     }
-    const Ray ray = camera.generate_ray(s, t, lens_u, lens_v);
-    const Color value = trace_path(ctx.scene, ctx.accel, ray, settings.max_depth, rng, rays);
-    sum.add(value);
-    squares.add(value);
+    intersect_packet(ctx.accel, rays_out.data(), traced, hits.data());
+    rays += std::uint64_t(traced);
+    for (int k = 0; k < count; ++k) {
+      const int j = slot[std::size_t(k)];
+      const Color value = j < 0 ? Color{}
+                                : continue_path(ctx.scene, ctx.accel, rays_out[std::size_t(j)],
+                                                hits[std::size_t(j)], settings.max_depth,
+                                                *streams[std::size_t(k)], rays);
+      sum.add(value);
+      squares.add(value);
+    }
   }
 }
 
