@@ -1,7 +1,10 @@
 #include "app/diff_command.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -25,6 +28,21 @@ struct DiffOptions {
   int block = 16;
   std::string out_diff, out_z;
 };
+
+// Refuses, before reading them, more images of the reference's size than half of this
+// machine's memory holds (each read image keeps R, G, B and their variances as floats).
+void check_memory_for(std::size_t images, const DiffInput& reference) {
+  const std::uint64_t per_image =
+      std::uint64_t(reference.width) * std::uint64_t(reference.height) * 6 * sizeof(float);
+  const std::uint64_t available =
+      std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGESIZE));
+  if (per_image * images > available / 2) {
+    throw InvalidInput(
+        std::to_string(images) + " images of " + std::to_string(reference.width) + "x" +
+        std::to_string(reference.height) + " need " + std::to_string((per_image * images) >> 20) +
+        " MiB, more than half of this machine's " + std::to_string(available >> 20) + " MiB");
+  }
+}
 
 // auto: several tests -> seeds; one, both with variances -> noise; otherwise plain.
 std::string chosen_mode(const DiffOptions& o, const DiffInput& reference,
@@ -55,6 +73,7 @@ int run_diff(const DiffOptions& o) {
   if (!o.out_diff.empty()) check_image_output(o.out_diff, inputs);
   if (!o.out_z.empty()) check_image_output(o.out_z, inputs);
   const DiffInput reference = read_diff_input(o.reference);
+  check_memory_for(inputs.size(), reference);
   std::vector<DiffInput> tests;
   for (const std::string& path : o.tests) {
     tests.push_back(read_diff_input(path));
