@@ -158,6 +158,24 @@ TEST(Render, DepthZeroIsBlackAsInTheBook) {
   EXPECT_EQ(r.rays_traced, 0u);
 }
 
+// The depth limit, exactly: inside a closed diffuse sphere no path escapes or is absorbed,
+// so every path traces exactly max_depth rays and ends black. One bounce more or less
+// changes the count by a sample's worth.
+TEST(Render, EveryPathTracesExactlyMaxDepthRaysInAClosedRoom) {
+  Scene room = make_builtin_scene("materials", 1);
+  room.spheres = SphereSet{};
+  room.spheres.add({0, 0, 0}, 50.0f, room.add_material(Lambertian{{0.5f, 0.5f, 0.5f}}));
+  RenderSettings settings = tiny(room);
+  for (int depth : {1, 2, 5}) {
+    settings.max_depth = depth;
+    const RenderResult r = render(room, settings);
+    const std::uint64_t samples = std::uint64_t(settings.width) * std::uint64_t(settings.height) *
+                                  std::uint64_t(settings.samples_per_pixel);
+    EXPECT_EQ(r.rays_traced, std::uint64_t(depth) * samples) << "depth " << depth;
+    for (const Color& c : r.film.pixels()) ASSERT_EQ(c, (Color{0, 0, 0})) << "depth " << depth;
+  }
+}
+
 TEST(Render, CoverLayoutFollowsTheSceneSeed) {
   const Scene a = make_builtin_scene("cover", 1), b = make_builtin_scene("cover", 1),
               c = make_builtin_scene("cover", 2);
