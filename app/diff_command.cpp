@@ -1,7 +1,5 @@
 #include "app/diff_command.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +12,7 @@
 #include "core/film/image_diff.h"
 #include "core/io/error.h"
 #include "core/io/image_output.h"
+#include "core/io/input_file.h"
 #include "core/io/output_path.h"
 
 namespace rtiow {
@@ -34,8 +33,7 @@ struct DiffOptions {
 void check_memory_for(std::size_t images, const DiffInput& reference) {
   const std::uint64_t per_image =
       std::uint64_t(reference.width) * std::uint64_t(reference.height) * 6 * sizeof(float);
-  const std::uint64_t available =
-      std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGESIZE));
+  const std::uint64_t available = physical_memory_bytes();
   if (per_image * images > available / 2) {
     throw InvalidInput(
         std::to_string(images) + " images of " + std::to_string(reference.width) + "x" +

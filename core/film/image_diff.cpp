@@ -8,7 +8,6 @@
 #include "core/io/error.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
-#include "core/io/input_file.h"
 #include "core/io/input_limits.h"
 #include "core/render/render.h"
 
@@ -56,11 +55,9 @@ std::string to_string(DiffVerdict verdict) {
 }
 
 DiffInput read_diff_input(const std::string& path) {
-  check_input_file(path, limits::kMaxPartFileBytes, "image");
   const std::string name = "image " + quote_value(path);
+  auto in = open_input_image(path, name, limits::kMaxPartFileBytes, "image");
   std::string reason;
-  auto in = image_backend().open(path, reason);
-  if (!in) throw InvalidInput(name + ": cannot read: " + one_line(reason, 200));
   const ImageHeader& header = in->header();
   const std::size_t channels = header.channel_names.size();
   if (header.width < 1 || header.height < 1 || header.width > limits::kMaxImageSide ||

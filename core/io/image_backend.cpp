@@ -10,7 +10,9 @@
 #include <string>
 #include <system_error>
 
+#include "core/io/error.h"
 #include "core/io/image_file.h"
+#include "core/io/input_file.h"
 
 #ifndef RTIOW_LIBDIR_FROM_BINDIR
 #define RTIOW_LIBDIR_FROM_BINDIR "../lib"
@@ -99,6 +101,15 @@ void preload_image_backend() {
 const ImageBackend& image_backend() {
   std::call_once(started, [] { loading = std::async(std::launch::deferred, load).share(); });
   return loaded_backend();
+}
+
+std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std::string& name,
+                                              std::uint64_t max_bytes, const char* what) {
+  check_input_file(path, max_bytes, what);
+  std::string reason;
+  auto in = image_backend().open(path, reason);
+  if (!in) throw InvalidInput(name + ": cannot read: " + one_line(reason, 200));
+  return in;
 }
 
 }  // namespace rtiow

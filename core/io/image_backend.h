@@ -9,9 +9,14 @@
 // `rtiow --version`, `rtiow scene` and every refused input then start in milliseconds, and
 // a render can load the backend on a second thread while it renders (preload_image_backend).
 
+#include <cstdint>
+#include <memory>
+#include <string>
+
 namespace rtiow {
 
 class ImageBackend;
+class ImageReader;
 
 // Changes whenever image_file.h changes shape: a backend from another build is refused.
 inline constexpr int kImageBackendAbi = 2;
@@ -23,6 +28,12 @@ inline constexpr const char* kImageBackendFile = "librtiow_image_io.so";
 // program; otherwise loads it now. Throws std::runtime_error as image_backend() does when
 // it is missing, so a command can refuse before its work rather than lose it.
 void preload_image_backend();
+
+// An image file rtiow reads (a part file, an image to compare), opened: checked first like
+// any input (check_input_file, at most `max_bytes`), then its header read. Throws
+// InvalidInput "<name>: cannot read: <reason>" in one line.
+std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std::string& name,
+                                              std::uint64_t max_bytes, const char* what);
 
 // The backend, loaded now unless a preload did it (waits for one under way). Throws
 // std::runtime_error naming the places it looked when there is none.

@@ -1,7 +1,8 @@
 #pragma once
 // The book's path tracer as an iterative loop: follow one path for at most `max_depth`
 // rays, multiplying the throughput by each material's attenuation, until it escapes to
-// the background or is absorbed. No recursion, no allocation.
+// the background or is absorbed. No recursion, no allocation. The first ray is traced by
+// the sample loop (core/render/render_loop.h), with other samples' first rays in a packet.
 
 #include <cstdint>
 #include <limits>
@@ -41,16 +42,6 @@ Color continue_path(const Scene& scene, const Accel& accel, Ray ray, std::option
 // Whether a path's first ray is traced at all (a depth of 0, or a ray gone NaN, is black).
 inline bool starts_path(const Ray& ray, int max_depth) {
   return max_depth > 0 && is_traceable(ray);
-}
-
-template <Accelerator Accel>
-Color trace_path(const Scene& scene, const Accel& accel, const Ray& ray, int max_depth,
-                 SampleStream& rng, std::uint64_t& rays_traced) {
-  if (!starts_path(ray, max_depth)) return Color{};
-  ++rays_traced;
-  const std::optional<Hit> hit =
-      accel.intersect(ray, std::numeric_limits<float>::infinity(), kNoSphere);
-  return continue_path(scene, accel, ray, hit, max_depth, rng, rays_traced);
 }
 
 }  // namespace rtiow

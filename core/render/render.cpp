@@ -1,7 +1,6 @@
 #include "core/render/render.h"
 
 #include <oneapi/tbb/task_arena.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -11,6 +10,7 @@
 #include "core/accel/embree_accel.h"
 #include "core/accel/naive_accel.h"
 #include "core/io/error.h"
+#include "core/io/input_file.h"
 #include "core/io/input_limits.h"
 #include "core/render/adaptive_sampling.h"
 #include "core/render/render_loop.h"
@@ -107,8 +107,7 @@ void validate(const RenderSettings& s) {
   }
   // Refuse before allocating what the machine cannot hold: the film and its accumulator.
   const std::uint64_t needed = pixels * kBytesPerPixel;
-  const std::uint64_t available =
-      std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGESIZE));
+  const std::uint64_t available = physical_memory_bytes();
   if (needed > available / 2) {
     throw InvalidInput("image " + std::to_string(s.width) + "x" + std::to_string(s.height) +
                        " needs " + std::to_string(needed >> 20) +

@@ -13,7 +13,6 @@
 #include "core/io/error.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
-#include "core/io/input_file.h"
 #include "core/io/input_limits.h"
 #include "core/render/render_metadata.h"
 #include "core/sampling/rng.h"
@@ -226,11 +225,8 @@ std::vector<PixelSum> read_part_sums(ImageReader& in, const std::string& name,
 }  // namespace
 
 RenderPart read_part(const std::string& path) {
-  check_input_file(path, limits::kMaxPartFileBytes, "part file");
   const std::string name = "part file " + quote_value(path);
-  std::string reason;
-  auto in = image_backend().open(path, reason);
-  if (!in) throw InvalidInput(name + ": cannot read: " + one_line(reason, 200));
+  auto in = open_input_image(path, name, limits::kMaxPartFileBytes, "part file");
   const std::optional<WordChannels> channels = find_sum_channels(in->header());
   if (!channels) {
     throw InvalidInput(name + ": not a part file (render one with --sample-range or --part)");
