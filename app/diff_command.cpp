@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli_checks.h"
 #include "core/film/diff_images.h"
 #include "core/film/image_diff.h"
 #include "core/io/error.h"
@@ -134,20 +135,26 @@ std::function<int()> add_diff_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--fail", o->thresholds.fail,
                   "Plain: a pixel fails when a channel differs by more")
+      ->check(kFiniteNotNegative)
       ->capture_default_str();
   cmd->add_option("--failpercent", o->thresholds.fail_percent,
                   "Plain: the percentage of failing pixels allowed")
+      ->check(kFiniteNotNegative)
       ->capture_default_str();
   cmd->add_option("--hardfail", o->thresholds.hard_fail,
-                  "Plain: fail when any channel differs by more (default: no limit)");
+                  "Plain: fail when any channel differs by more (default: no limit)")
+      ->check(kFiniteNotNegative);
   cmd->add_option("--warn", o->thresholds.warn,
                   "Plain: a pixel warns when a channel differs by more")
+      ->check(kFiniteNotNegative)
       ->capture_default_str();
   cmd->add_option("--warnpercent", o->thresholds.warn_percent,
                   "Plain: the percentage of warning pixels allowed")
+      ->check(kFiniteNotNegative)
       ->capture_default_str();
   cmd->add_option("--alpha", o->alpha,
                   "Noise-aware: the chance that noise alone fails a block or the image mean")
+      ->check(kFiniteNotNegative)
       ->check(CLI::Range(1e-12, 0.5))
       ->capture_default_str();
   cmd->add_option("--block", o->block, "Noise-aware: the side of a block of pixels")

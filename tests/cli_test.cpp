@@ -175,6 +175,13 @@ TEST(Cli, DiffPassesOtherSeedsFailsAMutationAndRefusesMismatches) {
   EXPECT_EQ(plain_of_several.exit_code, 2);
   EXPECT_NE(plain_of_several.stderr_text.find("--mode seeds"), std::string::npos);
   EXPECT_EQ(run_rtiow("diff --mode seeds " + a.string() + " " + b.string()).exit_code, 2);
+  // Thresholds and alpha are finite amounts: NaN would make every comparison false.
+  for (const char* option : {"--alpha nan", "--fail nan", "--hardfail inf", "--warn -1"}) {
+    const CommandResult r =
+        run_rtiow(std::string("diff ") + option + " " + a.string() + " " + b.string());
+    EXPECT_EQ(r.exit_code, 2) << option;
+    EXPECT_EQ(count_lines(r.stderr_text), 1) << option << ": " << r.stderr_text;
+  }
 }
 
 // A PNG whose header claims `side` x `side` pixels and holds none.
