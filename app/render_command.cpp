@@ -378,10 +378,11 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                   "the file holds the samples completed. With --spp, stop at that many")
       ->check(kFiniteNotNegative);
   cmd->add_option("--sampler", o.sampler,
-                  "Sampler of the pixel position, lens and first bounce: independent (the book's) "
-                  "or sobol (Owen-scrambled Sobol: on the cover 1.9x lower relMSE at 16 spp, 2.5x "
-                  "at 64, 4x at 1024)")
-      ->check(CLI::IsMember({"independent", "sobol"}))
+                  "Sampler: independent (the book's), sobol (one Owen-scrambled Sobol point for "
+                  "pixel, lens and first bounce, padded Sobol for later bounces) or padded-sobol "
+                  "(every 1D and 2D dimension its own scrambled Sobol sequence)")
+      ->check(CLI::IsMember({to_string(SamplerKind::Independent), to_string(SamplerKind::Sobol),
+                             to_string(SamplerKind::PaddedSobol)}))
       ->capture_default_str();
   cmd->add_option("--target-error", o.target_error,
                   "Adaptive sampling: each pixel stops once its relative standard error is below "

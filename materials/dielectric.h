@@ -7,7 +7,7 @@
 
 #include "core/geometry/surface_hit.h"
 #include "core/io/input_limits.h"
-#include "core/sampling/sampler.h"
+#include "core/sampling/sample_layout.h"
 #include "materials/fresnel.h"
 #include "materials/parameter_check.h"
 #include "materials/scattered.h"
@@ -27,15 +27,19 @@ inline std::optional<ParameterProblem> check_parameters(const Dielectric& m) {
   return std::nullopt;
 }
 
+// The bounce dimensions scatter reads.
+constexpr unsigned bounce_uses(const Dielectric&) {
+  return kUsesLobe;
+}
+
 inline std::optional<Scattered> scatter(const Dielectric& m, const Vec3& in_direction,
-                                        const SurfaceHit& hit, SampleStream& rng) {
+                                        const SurfaceHit& hit, const BounceSample& u) {
   const Color white{1.0f, 1.0f, 1.0f};  // glass absorbs nothing
   const float eta = hit.front_face ? 1.0f / m.ior : m.ior;
   const Vec3 unit = normalize(in_direction);
   const float cos_theta = std::min(dot(-unit, hit.normal), 1.0f);
   const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
   const bool total_internal_reflection = eta * sin_theta > 1.0f;
-  const float u = rng.next_1d();  // drawn always, so the stream does not depend on the branch
   // Index 1 is no interface at all: Schlick's formula would still reflect (1-cos)^5 at grazing
   // angles and draw a rim around an invisible sphere.
   float reflectance = 0.0f;
@@ -43,7 +47,7 @@ inline std::optional<Scattered> scatter(const Dielectric& m, const Vec3& in_dire
     reflectance = m.fresnel == FresnelModel::Exact ? exact_reflectance(cos_theta, eta)
                                                    : schlick_reflectance(cos_theta, eta);
   }
-  if (total_internal_reflection || reflectance > u)
+  if (total_internal_reflection || reflectance > u.lobe)
     return Scattered{reflect(unit, hit.normal), white};
   return Scattered{refract(unit, hit.normal, eta), white};
 }

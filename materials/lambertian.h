@@ -3,7 +3,7 @@
 // normal plus a uniform unit vector, which is cosine-distributed about the normal.
 
 #include "core/geometry/surface_hit.h"
-#include "core/sampling/sampler.h"
+#include "core/sampling/sample_layout.h"
 #include "core/sampling/sampling.h"
 #include "materials/parameter_check.h"
 #include "materials/scattered.h"
@@ -18,10 +18,14 @@ inline std::optional<ParameterProblem> check_parameters(const Lambertian& m) {
   return check_albedo(m.albedo);
 }
 
+// The bounce dimensions scatter reads.
+constexpr unsigned bounce_uses(const Lambertian&) {
+  return kUsesDirection;
+}
+
 inline std::optional<Scattered> scatter(const Lambertian& m, const Vec3& /*in_direction*/,
-                                        const SurfaceHit& hit, SampleStream& rng) {
-  const float u1 = rng.next_1d(), u2 = rng.next_1d();
-  Vec3 direction = hit.normal + sample_unit_vector(u1, u2);
+                                        const SurfaceHit& hit, const BounceSample& u) {
+  Vec3 direction = hit.normal + sample_unit_vector(u.direction[0], u.direction[1]);
   // The unit vector can cancel the normal; a zero direction would give NaNs downstream.
   if (near_zero(direction)) direction = hit.normal;
   return Scattered{direction, m.albedo};

@@ -7,7 +7,7 @@
 #include <algorithm>
 
 #include "core/geometry/surface_hit.h"
-#include "core/sampling/sampler.h"
+#include "core/sampling/sample_layout.h"
 #include "core/sampling/sampling.h"
 #include "materials/parameter_check.h"
 #include "materials/scattered.h"
@@ -32,12 +32,17 @@ inline std::optional<ParameterProblem> check_parameters(const Metal& m) {
   return std::nullopt;
 }
 
+// The bounce dimensions scatter reads: none for a mirror.
+constexpr unsigned bounce_uses(const Metal& m) {
+  return m.fuzz > 0.0f ? kUsesDirection | kUsesRadius : kUsesNothing;
+}
+
 inline std::optional<Scattered> scatter(const Metal& m, const Vec3& in_direction,
-                                        const SurfaceHit& hit, SampleStream& rng) {
+                                        const SurfaceHit& hit, const BounceSample& u) {
   Vec3 direction = reflect(normalize(in_direction), hit.normal);
   if (m.fuzz > 0.0f) {
-    const float u1 = rng.next_1d(), u2 = rng.next_1d(), u3 = rng.next_1d();
-    direction = direction + m.fuzz * sample_in_unit_sphere(u1, u2, u3);
+    direction =
+        direction + m.fuzz * sample_in_unit_sphere(u.direction[0], u.direction[1], u.radius);
   }
   if (!(dot(direction, hit.normal) > 0.0f)) return std::nullopt;  // below the surface
   return Scattered{direction, m.albedo};

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/io/error.h"
+#include "core/sampling/sampler.h"
 #include "core/scene/scene.h"
 #include "core/scene/scene_file.h"
 #include "materials/material.h"
@@ -66,17 +67,101 @@ TEST(Fresnel, SchlickErrorIsBoundedAsMeasured) {
   EXPECT_LT(worst_out, 0.62f);
 }
 
-TEST(Dielectric, TotalInternalReflectionBeyondTheCriticalAngle) {
+// The uniforms of bounce `i` of an independent stream: for the statistical tests.
+BounceSample random_bounce(std::uint64_t seed, std::uint64_t i) {
+  return SampleStream(seed, 0, 0, i).next_bounce();
+}
+
+BounceSample given(float lobe, float u1, float u2, float radius) {
+  BounceSample b;
+  b.lobe = lobe, b.direction[0] = u1, b.direction[1] = u2, b.radius = radius;
+  return b;
+}
+
+void expect_direction(const std::optional<Scattered>& s, Vec3 expected, const char* what) {
+  ASSERT_TRUE(s) << what;
+  EXPECT_NEAR(s->direction.x, expected.x, 1e-6f) << what;
+  EXPECT_NEAR(s->direction.y, expected.y, 1e-6f) << what;
+  EXPECT_NEAR(s->direction.z, expected.z, 1e-6f) << what;
+}
+
+// Given uniforms in, one direction out: the materials are exact functions of their
+// BounceSample, so each branch is pinned without statistics.
+TEST(ScatterOnGivenUniforms, GlassReflectsBelowTheFresnelReflectanceAndRefractsAbove) {
+  const Material glass = Dielectric{1.5f};
+  const Vec3 down{0, -1, 0};  // normal incidence: Schlick's reflectance is 0.04
+  expect_direction(scatter(glass, down, hit_facing_up(true), given(0.039f, 0.3f, 0.3f, 0.3f)),
+                   {0, 1, 0}, "lobe 0.039 < 0.04 reflects");
+  expect_direction(scatter(glass, down, hit_facing_up(true), given(0.041f, 0.3f, 0.3f, 0.3f)),
+                   {0, -1, 0}, "lobe 0.041 refracts straight through");
+  // Entering at 45 degrees: Snell's law, sin t = sin 45 / 1.5.
+  const float s45 = std::sqrt(0.5f), sin_t = s45 / 1.5f;
+  expect_direction(
+      scatter(glass, Vec3{s45, -s45, 0}, hit_facing_up(true), given(0.99f, 0.0f, 0.0f, 0.0f)),
+      {sin_t, -std::sqrt(1 - sin_t * sin_t), 0}, "refraction obeys Snell's law");
+}
+
+TEST(ScatterOnGivenUniforms, GlassReflectsTotallyPastTheCriticalAngleForAnyLobe) {
   // From inside glass (n = 1.5) the critical angle is asin(1/1.5) = 41.8 degrees.
   const Material glass = Dielectric{1.5f};
   const float theta = 60.0f * 3.14159265f / 180.0f;
   const Vec3 in{std::sin(theta), -std::cos(theta), 0};
-  for (std::uint64_t i = 0; i < 200; ++i) {
-    SampleStream rng(1, 0, 0, i);
-    const std::optional<Scattered> s = scatter(glass, in, hit_facing_up(false), rng);
-    ASSERT_TRUE(s);
-    EXPECT_NEAR(s->direction.y, -in.y, 1e-6f) << "always reflected";
+  for (const float lobe : {0.0f, 0.5f, 0.99999994f}) {
+    const std::optional<Scattered> s =
+        scatter(glass, in, hit_facing_up(false), given(lobe, 0.5f, 0.5f, 0.5f));
+    expect_direction(s, {in.x, -in.y, 0}, "total internal reflection");
     EXPECT_EQ(s->attenuation, (Color{1, 1, 1}));
+  }
+}
+
+TEST(ScatterOnGivenUniforms, LambertianIsTheNormalPlusTheUnitVectorOfTheDirectionPair) {
+  const Material diffuse = Lambertian{{0.5f, 0.25f, 1.0f}};
+  // u = (0.25, 0): z = 1 - 2 u1 = 0.5, phi = 0, so the unit vector is (sqrt(0.75), 0, 0.5).
+  for (const float other : {0.0f, 0.7f}) {  // the lobe and radius are not used
+    const std::optional<Scattered> s =
+        scatter(diffuse, Vec3{0, -1, 0}, hit_facing_up(true), given(other, 0.25f, 0.0f, other));
+    expect_direction(s, {std::sqrt(0.75f), 1.0f, 0.5f}, "normal + unit vector");
+    EXPECT_EQ(s->attenuation, (Color{0.5f, 0.25f, 1.0f}));
+  }
+}
+
+TEST(ScatterOnGivenUniforms, FuzzyMetalOffsetsTheMirrorByFuzzTimesTheBallPoint) {
+  const Material metal = make_metal({0.9f, 0.8f, 0.7f}, 0.5f);
+  // Unit vector (1, 0, 0) (u = (0.5, 0)) at radius cbrt(0.125) = 0.5: offset 0.25 along x.
+  expect_direction(
+      scatter(metal, Vec3{0, -1, 0}, hit_facing_up(true), given(0.9f, 0.5f, 0.0f, 0.125f)),
+      {0.25f, 1.0f, 0.0f}, "mirror + fuzz * ball point");
+  // Fuzz 1 pushing a grazing reflection straight down (u = (0.5, 0.75): (0, -1, 0)) absorbs.
+  const Material rough = make_metal({1, 1, 1}, 1.0f);
+  EXPECT_FALSE(scatter(rough, normalize(Vec3{1, -0.05f, 0}), hit_facing_up(true),
+                       given(0.0f, 0.5f, 0.75f, 0.999f)));
+}
+
+// A sampler computes only the dimensions a material declares (bounce_uses) and leaves the
+// rest 0: so a material must not read any other. Changing the undeclared ones must not
+// change what it does.
+TEST(ScatterOnGivenUniforms, MaterialsReadOnlyTheDimensionsTheyDeclare) {
+  const Material materials[] = {Lambertian{{0.5f, 0.5f, 0.5f}}, make_metal({1, 1, 1}, 0.0f),
+                                make_metal({1, 1, 1}, 0.6f), Dielectric{1.5f}};
+  const Vec3 in = normalize(Vec3{0.4f, -1.0f, 0.2f});
+  for (const Material& m : materials) {
+    const unsigned uses = bounce_uses(m);
+    for (std::uint64_t i = 0; i < 200; ++i) {
+      const BounceSample u = random_bounce(7, i), other = random_bounce(8, i);
+      BounceSample mixed = other;  // the declared dimensions from u, the rest from other
+      if (uses & kUsesLobe) mixed.lobe = u.lobe;
+      if (uses & kUsesDirection)
+        mixed.direction[0] = u.direction[0], mixed.direction[1] = u.direction[1];
+      if (uses & kUsesRadius) mixed.radius = u.radius;
+      for (const bool front : {true, false}) {
+        const std::optional<Scattered> a = scatter(m, in, hit_facing_up(front), u),
+                                       b = scatter(m, in, hit_facing_up(front), mixed);
+        ASSERT_EQ(bool(a), bool(b)) << "material " << m.index();
+        if (a) {
+          ASSERT_EQ(a->direction, b->direction) << "material " << m.index();
+        }
+      }
+    }
   }
 }
 
@@ -86,8 +171,9 @@ TEST(Dielectric, ReflectsWithSchlicksProbability) {
   int reflected = 0;
   const int n = 100000;
   for (int i = 0; i < n; ++i) {
-    SampleStream rng(2, 0, 0, std::uint64_t(i));
-    if (scatter(glass, in, hit_facing_up(true), rng)->direction.y > 0) ++reflected;
+    if (scatter(glass, in, hit_facing_up(true), random_bounce(2, std::uint64_t(i)))->direction.y >
+        0)
+      ++reflected;
   }
   // Binomial(n, 0.04): sd = 62; 5 sd.
   EXPECT_NEAR(reflected, 0.04 * n, 310);
@@ -96,17 +182,20 @@ TEST(Dielectric, ReflectsWithSchlicksProbability) {
 TEST(Dielectric, IndexOneIsInvisible) {
   const Material air = Dielectric{1.0f};
   const Vec3 in = normalize(Vec3{0.3f, -1, 0.2f});
-  SampleStream rng(3, 0, 0, 0);
-  EXPECT_NEAR(length(scatter(air, in, hit_facing_up(true), rng)->direction - in), 0.0f, 1e-6f);
+  for (const float lobe : {0.0f, 0.5f}) {
+    EXPECT_NEAR(length(scatter(air, in, hit_facing_up(true), given(lobe, 0, 0, 0))->direction - in),
+                0.0f, 1e-6f);
+  }
 }
 
-TEST(Metal, PolishedMetalReflectsExactly) {
+TEST(Metal, PolishedMetalReflectsExactlyWhateverTheUniforms) {
   const Material mirror = make_metal({0.9f, 0.8f, 0.7f}, 0.0f);
-  SampleStream rng(4, 0, 0, 0);
-  const std::optional<Scattered> s = scatter(mirror, Vec3{1, -1, 0}, hit_facing_up(true), rng);
-  ASSERT_TRUE(s);
-  EXPECT_NEAR(length(s->direction - normalize(Vec3{1, 1, 0})), 0.0f, 1e-6f);
-  EXPECT_EQ(s->attenuation, (Color{0.9f, 0.8f, 0.7f}));
+  for (const float u : {0.0f, 0.3f, 0.99f}) {
+    const std::optional<Scattered> s =
+        scatter(mirror, Vec3{1, -1, 0}, hit_facing_up(true), given(u, u, u, u));
+    expect_direction(s, normalize(Vec3{1, 1, 0}), "mirror");
+    EXPECT_EQ(s->attenuation, (Color{0.9f, 0.8f, 0.7f}));
+  }
 }
 
 TEST(Metal, FuzzIsClampedToOneAndAbsorbsBelowTheSurface) {
@@ -115,8 +204,8 @@ TEST(Metal, FuzzIsClampedToOneAndAbsorbsBelowTheSurface) {
   const Vec3 grazing = normalize(Vec3{1, -0.05f, 0});
   int absorbed = 0;
   for (std::uint64_t i = 0; i < 1000; ++i) {
-    SampleStream rng(5, 0, 0, i);
-    if (const std::optional<Scattered> s = scatter(rough, grazing, hit_facing_up(true), rng)) {
+    if (const std::optional<Scattered> s =
+            scatter(rough, grazing, hit_facing_up(true), random_bounce(5, i))) {
       EXPECT_GT(dot(s->direction, Vec3{0, 1, 0}), 0.0f) << "only rays above the surface leave";
     } else {
       ++absorbed;
@@ -130,8 +219,8 @@ TEST(Lambertian, ScattersIntoTheUpperHemisphere) {
   double mean_cos = 0;
   const int n = 20000;
   for (int i = 0; i < n; ++i) {
-    SampleStream rng(6, 0, 0, std::uint64_t(i));
-    const std::optional<Scattered> s = scatter(diffuse, Vec3{0, -1, 0}, hit_facing_up(true), rng);
+    const std::optional<Scattered> s =
+        scatter(diffuse, Vec3{0, -1, 0}, hit_facing_up(true), random_bounce(6, std::uint64_t(i)));
     ASSERT_TRUE(s);
     ASSERT_EQ(s->attenuation, (Color{0.5f, 0.5f, 0.5f})) << "the albedo, exactly";
     const Vec3 out = s->direction;

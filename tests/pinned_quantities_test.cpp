@@ -76,8 +76,8 @@ TEST(PinnedFresnel, GlassReflectsAsOftenAsSchlickSays) {
   const int n = 400000;
   int reflected = 0;
   for (int i = 0; i < n; ++i) {
-    SampleStream rng(11, 0, 0, std::uint64_t(i));
-    if (scatter(glass, in, facing_up(), rng)->direction.y > 0) ++reflected;
+    const BounceSample u = SampleStream(11, 0, 0, std::uint64_t(i)).next_bounce();
+    if (scatter(glass, in, facing_up(), u)->direction.y > 0) ++reflected;
   }
   const double p = 0.04 + 0.96 * std::pow(0.5, 5);
   EXPECT_NEAR(double(reflected) / n, p, 5 * std::sqrt(p * (1 - p) / n));
@@ -143,8 +143,8 @@ TEST(PinnedMetal, FuzzBallHasTheStatedRadius) {
   const int n = 200000;
   double sum_squares = 0, longest = 0;
   for (int i = 0; i < n; ++i) {
-    SampleStream rng(12, 0, 0, std::uint64_t(i));
-    const std::optional<Scattered> s = scatter(metal, in, facing_up(), rng);
+    const BounceSample u = SampleStream(12, 0, 0, std::uint64_t(i)).next_bounce();
+    const std::optional<Scattered> s = scatter(metal, in, facing_up(), u);
     ASSERT_TRUE(s) << "fuzz 0.5 at normal incidence never goes below the surface";
     const double d = length(Vec3d(s->direction - mirror));
     sum_squares += d * d;

@@ -10,13 +10,17 @@
 #include <utility>
 #include <vector>
 
+#include "core/accel/naive_accel.h"
 #include "core/io/error.h"
+#include "core/render/integrator.h"
 #include "core/render/render.h"
 #include "core/scene/builtin_scenes.h"
 #include "tests/film_equality.h"
 
 namespace rtiow {
 namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 RenderSettings tiny(const Scene& scene) {
   RenderSettings s;
@@ -173,6 +177,34 @@ TEST(Render, EveryPathTracesExactlyMaxDepthRaysInAClosedRoom) {
                                   std::uint64_t(settings.samples_per_pixel);
     EXPECT_EQ(r.rays_traced, std::uint64_t(depth) * samples) << "depth " << depth;
     for (const Color& c : r.film.pixels()) ASSERT_EQ(c, (Color{0, 0, 0})) << "depth " << depth;
+  }
+}
+
+// The sample layout is the integrator's: a path draws the camera's dimensions and then the
+// same number per bounce whatever it hits. In closed rooms every ray hits, so a path of
+// depth D always draws camera + D bounces, for each material and each sampler.
+TEST(Render, EveryBounceDrawsTheSameDimensionsWhateverTheMaterial) {
+  const Material materials[] = {Lambertian{{0.5f, 0.5f, 0.5f}},
+                                make_metal({0.9f, 0.9f, 0.9f}, 0.3f), make_metal({1, 1, 1}, 0.0f),
+                                Dielectric{1.5f}};
+  for (const Material& inner : materials) {
+    Scene room = make_builtin_scene("materials", 1);
+    room.spheres = SphereSet{};
+    room.spheres.add({0, 0, 0}, 50.0f, room.add_material(Lambertian{{0.5f, 0.5f, 0.5f}}));
+    room.spheres.add({0, 0, -20}, 10.0f, room.add_material(inner));
+    const NaiveAccel accel(room.spheres);
+    for (const SamplerKind kind :
+         {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
+      for (std::uint64_t sample = 0; sample < 16; ++sample) {
+        SampleStream rng(kind, 3, 0, 0, sample);
+        const auto u = rng.next_camera();
+        const Ray first{{0, 0, 0}, normalize(Vec3{u[0] - 0.5f, u[1] - 0.5f, -1.0f})};
+        std::uint64_t rays = 1;
+        continue_path(room, accel, first, accel.intersect(first, kInfinity), 7, rng, rays);
+        EXPECT_EQ(rays, 7u) << "every ray hits a wall or the inner sphere";
+        EXPECT_EQ(rng.dimension(), bounce_dimension(7)) << to_string(kind);
+      }
+    }
   }
 }
 

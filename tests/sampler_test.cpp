@@ -1,12 +1,15 @@
-// The Sobol sampler: each dimension's power-of-two prefixes fill their strata, the first
-// two dimensions form a (0,2)-sequence, scrambling keeps both, and a pixel sample's numbers
-// are a pure function of (seed, pixel, sample) whichever sampler draws them.
+// The samplers: each Sobol dimension's power-of-two prefixes fill their strata, the first two
+// dimensions form a (0,2)-sequence, scrambling keeps both; every bounce's 1D and 2D groups
+// are stratified; the layout is fixed; a pixel sample's numbers are a pure function of
+// (seed, pixel, sample) whichever sampler draws them.
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "core/sampling/sampler.h"
@@ -77,68 +80,161 @@ TEST(Sobol, ScramblingIsUniformAcrossSeeds) {
 
 using test::draws;
 
-TEST(SobolSampleStream, IsAPureFunctionOfSeedPixelAndSample) {
-  std::vector<std::vector<float>> forward;
-  for (std::uint64_t s = 0; s < 32; ++s) forward.push_back(draws(SampleStream(7, 3, 4, s, 8), 12));
-  for (int s = 31; s >= 0; --s) {
-    EXPECT_EQ(draws(SampleStream(7, 3, 4, std::uint64_t(s), 8), 12), forward[std::size_t(s)]);
-  }
-  EXPECT_NE(draws(SampleStream(8, 3, 4, 0, 8), 12), forward[0]);
-  EXPECT_NE(draws(SampleStream(7, 4, 3, 0, 8), 12), forward[0]);
-}
+constexpr SamplerKind kKinds[] = {SamplerKind::Independent, SamplerKind::Sobol,
+                                  SamplerKind::PaddedSobol};
 
-TEST(SobolSampleStream, PixelDimensionsFillStrataAndLaterOnesComeFromTheStream) {
-  std::vector<float> x, y;
-  for (std::uint64_t s = 0; s < 256; ++s) {
-    SampleStream stream(5, 10, 20, s, 4);
-    x.push_back(stream.next_1d());
-    y.push_back(stream.next_1d());
-    stream.skip(2);
-    // Past the Sobol dimensions: the independent stream's numbers, as without Sobol.
-    SampleStream independent(5, 10, 20, s);
-    EXPECT_EQ(stream.next_1d(), independent.next_1d());
-  }
-  for (int m = 0; m <= 8; ++m) {
-    EXPECT_TRUE(fills_strata(x, m)) << m;
-    EXPECT_TRUE(fills_strata(y, m)) << m;
-  }
-}
-
-// Each dimension has its own scramble: over many pixels, no two Sobol dimensions of a sample
-// are correlated. At sample 0 every Sobol dimension's unscrambled point is 0, so the values
-// there are the scrambles themselves; two dimensions that shared one would be equal (r = 1).
-// Under independence r has a standard deviation of 1/64 here: |r| < 0.1 is over 6 of them.
-TEST(SobolSampleStream, EveryDimensionHasItsOwnScramble) {
-  constexpr int kPixels = 4096;
-  for (std::uint64_t sample : {0u, 1u, 5u}) {
-    std::vector<std::vector<double>> values(kSobolDimensions);
-    for (std::uint32_t p = 0; p < kPixels; ++p) {
-      SampleStream stream(11, p % 64, p / 64, sample, kSobolDimensions);
-      for (int d = 0; d < kSobolDimensions; ++d) values[std::size_t(d)].push_back(stream.next_1d());
+TEST(SampleStream, EveryKindIsAPureFunctionOfSeedPixelAndSample) {
+  for (const SamplerKind kind : kKinds) {
+    std::vector<std::vector<float>> forward;
+    for (std::uint64_t s = 0; s < 32; ++s) {
+      forward.push_back(draws(SampleStream(7, 3, 4, s, kind), 40));
     }
-    const auto correlation = [](const std::vector<double>& a, const std::vector<double>& b) {
-      const double n = double(a.size());
-      double ma = 0, mb = 0;
-      for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
-      double ab = 0, aa = 0, bb = 0;
-      for (std::size_t i = 0; i < a.size(); ++i) {
-        ab += (a[i] - ma) * (b[i] - mb), aa += (a[i] - ma) * (a[i] - ma);
-        bb += (b[i] - mb) * (b[i] - mb);
-      }
-      return ab / std::sqrt(aa * bb);
-    };
-    for (int d = 0; d < kSobolDimensions; ++d) {
-      for (int e = d + 1; e < kSobolDimensions; ++e) {
-        EXPECT_LT(std::abs(correlation(values[std::size_t(d)], values[std::size_t(e)])), 0.1)
-            << "dimensions " << d << " and " << e << " at sample " << sample;
+    for (int s = 31; s >= 0; --s) {
+      EXPECT_EQ(draws(SampleStream(7, 3, 4, std::uint64_t(s), kind), 40), forward[std::size_t(s)]);
+    }
+    EXPECT_NE(draws(SampleStream(8, 3, 4, 0, kind), 40), forward[0]) << to_string(kind);
+    EXPECT_NE(draws(SampleStream(7, 4, 3, 0, kind), 40), forward[0]) << to_string(kind);
+  }
+}
+
+// The layout is fixed: the camera takes 4 dimensions and every bounce 4, for every sampler,
+// and a bounce's numbers are the dimensions it starts at (1D, 2D, 1D), whatever is drawn
+// before them.
+TEST(SampleStream, CameraAndBouncesTakeAFixedNumberOfDimensions) {
+  for (const SamplerKind kind : kKinds) {
+    SampleStream stream(kind, 1, 2, 3, 5);
+    stream.next_camera();
+    EXPECT_EQ(stream.dimension(), kCameraDimensions);
+    for (int bounce = 0; bounce < 60; ++bounce) {
+      const BounceSample u = stream.next_bounce();
+      EXPECT_EQ(stream.dimension(), bounce_dimension(bounce + 1)) << to_string(kind);
+      for (const float v : {u.lobe, u.direction[0], u.direction[1], u.radius}) {
+        ASSERT_GE(v, 0.0f);
+        ASSERT_LT(v, 1.0f);
       }
     }
   }
+  // Independent: the bounce's numbers are the stream's next four, in layout order.
+  SampleStream a(9, 1, 1, 4), b(9, 1, 1, 4);
+  const BounceSample u = a.next_bounce();
+  EXPECT_EQ((std::vector<float>{u.lobe, u.direction[0], u.direction[1], u.radius}), draws(b, 4));
 }
 
-TEST(SobolSampleStream, IndependentModeIsTheBooksSampler) {
-  // Zero Sobol dimensions: the same numbers as before the Sobol sampler existed.
-  EXPECT_EQ(draws(SampleStream(3, 1, 2, 9, 0), 16), draws(SampleStream(3, 1, 2, 9), 16));
+// A bounce computed in part (the dimensions a material reads) has the same values there as
+// the whole bounce, and the stream goes on at the same dimension.
+TEST(SampleStream, PartialBouncesKeepEveryDimensionInPlace) {
+  for (const SamplerKind kind : kKinds) {
+    for (const unsigned uses : {unsigned(kUsesNothing), unsigned(kUsesLobe),
+                                unsigned(kUsesDirection), kUsesDirection | kUsesRadius}) {
+      SampleStream whole(kind, 2, 5, 6, 77), part(kind, 2, 5, 6, 77);
+      whole.next_camera(), part.next_camera();
+      const BounceSample a = whole.next_bounce(), b = part.next_bounce(uses);
+      if (uses & kUsesLobe) {
+        EXPECT_EQ(a.lobe, b.lobe);
+      }
+      if (uses & kUsesDirection) {
+        EXPECT_EQ(a.direction[0], b.direction[0]);
+        EXPECT_EQ(a.direction[1], b.direction[1]);
+      }
+      if (uses & kUsesRadius) {
+        EXPECT_EQ(a.radius, b.radius);
+      }
+      EXPECT_EQ(part.dimension(), whole.dimension());
+      EXPECT_EQ(whole.next_bounce().direction[0], part.next_bounce().direction[0])
+          << to_string(kind) << " uses " << uses;
+    }
+  }
+}
+
+// True if the first 2^m points put one point in each elementary interval of area 2^-m
+// (every 2^k x 2^(m-k) grid): a (0,m,2)-net.
+bool is_zero_m_two_net(const std::vector<std::array<float, 2>>& points, int m) {
+  const std::uint32_t n = 1u << m;
+  for (int k = 0; k <= m; ++k) {
+    std::set<std::uint32_t> cells;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const auto cx = std::uint32_t(points[i][0] * float(1u << k)),
+                 cy = std::uint32_t(points[i][1] * float(1u << (m - k)));
+      cells.insert(cx << (m - k) | cy);
+    }
+    if (cells.size() != n) return false;
+  }
+  return true;
+}
+
+// The joint Sobol point covers the camera and the first bounce; every later group (and, for
+// padded-sobol, every group) is a shuffled, scrambled (0,2)-sequence of its own: the first
+// 2^m samples of a pixel form a (0,m,2)-net in each 2D group and fill the strata of each 1D
+// dimension, at every power of two.
+TEST(SampleStream, EveryGroupOfEveryBounceIsStratified) {
+  for (const SamplerKind kind : {SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
+    for (const int bounce : {0, 1, 7, 40}) {
+      std::vector<std::array<float, 2>> film, direction;
+      std::vector<float> lobe, radius;
+      for (std::uint64_t s = 0; s < 256; ++s) {
+        SampleStream stream(kind, 5, 10, 20, s);
+        const auto camera = stream.next_camera();
+        film.push_back({camera[0], camera[1]});
+        BounceSample u;
+        for (int b = 0; b <= bounce; ++b) u = stream.next_bounce();
+        direction.push_back({u.direction[0], u.direction[1]});
+        lobe.push_back(u.lobe);
+        radius.push_back(u.radius);
+      }
+      for (int m = 0; m <= 8; ++m) {
+        const std::string where =
+            to_string(kind) + " bounce " + std::to_string(bounce) + " m " + std::to_string(m);
+        EXPECT_TRUE(fills_strata(lobe, m)) << where;
+        EXPECT_TRUE(fills_strata(radius, m)) << where;
+        EXPECT_TRUE(is_zero_m_two_net(film, m)) << where;
+        // Sobol's joint dimensions 5 and 6 are not a (0,2)-sequence; later groups are.
+        if (kind == SamplerKind::PaddedSobol || bounce > 0) {
+          EXPECT_TRUE(is_zero_m_two_net(direction, m)) << where;
+        }
+      }
+    }
+  }
+}
+
+// Each dimension has its own scramble (and, padded, its own shuffle): over many pixels, no
+// two dimensions of a sample are correlated. Two dimensions sharing a scramble at sample 0
+// would be equal (r = 1). Under independence r has a standard deviation of 1/64 here:
+// |r| < 0.1 is over 6 of them.
+TEST(SampleStream, NoTwoDimensionsAreCorrelatedAcrossPixels) {
+  constexpr int kPixels = 4096, kDimensions = 24;
+  const auto correlation = [](const std::vector<double>& a, const std::vector<double>& b) {
+    const double n = double(a.size());
+    double ma = 0, mb = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
+    double ab = 0, aa = 0, bb = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      ab += (a[i] - ma) * (b[i] - mb), aa += (a[i] - ma) * (a[i] - ma);
+      bb += (b[i] - mb) * (b[i] - mb);
+    }
+    return ab / std::sqrt(aa * bb);
+  };
+  for (const SamplerKind kind : {SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
+    for (std::uint64_t sample : {0u, 1u, 5u}) {
+      std::vector<std::vector<double>> values(kDimensions);
+      for (std::uint32_t p = 0; p < kPixels; ++p) {
+        SampleStream stream(kind, 11, p % 64, p / 64, sample);
+        stream.next_camera();
+        for (int d = kCameraDimensions; d < kDimensions; d += kBounceDimensions) {
+          const BounceSample u = stream.next_bounce();
+          values[std::size_t(d)].push_back(u.lobe);
+          values[std::size_t(d + 1)].push_back(u.direction[0]);
+          values[std::size_t(d + 2)].push_back(u.direction[1]);
+          values[std::size_t(d + 3)].push_back(u.radius);
+        }
+      }
+      for (int d = kCameraDimensions; d < kDimensions; ++d) {
+        for (int e = d + 1; e < kDimensions; ++e) {
+          EXPECT_LT(std::abs(correlation(values[std::size_t(d)], values[std::size_t(e)])), 0.1)
+              << to_string(kind) << " dimensions " << d << " and " << e << " at sample " << sample;
+        }
+      }
+    }
+  }
 }
 
 }  // namespace

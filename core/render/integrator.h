@@ -10,6 +10,7 @@
 
 #include "core/accel/accelerator.h"
 #include "core/geometry/ray_offset.h"
+#include "core/sampling/sampler.h"
 #include "core/scene/scene.h"
 
 namespace rtiow {
@@ -22,8 +23,11 @@ Color continue_path(const Scene& scene, const Accel& accel, Ray ray, std::option
   for (int depth = 1;; ++depth) {
     if (!hit) return throughput * scene.background(ray.direction);
     const SurfaceHit surface = make_surface_hit(scene.spheres, ray, *hit);
-    const std::optional<Scattered> scattered =
-        scatter(scene.materials[surface.material], ray.direction, surface, rng);
+    // Every bounce takes the same dimensions whatever it hits (core/sampling/sample_layout.h);
+    // the sampler computes only those the material reads.
+    const Material& material = scene.materials[surface.material];
+    const BounceSample u = rng.next_bounce(bounce_uses(material));
+    const std::optional<Scattered> scattered = scatter(material, ray.direction, surface, u);
     if (!scattered) return Color{};  // absorbed
     throughput *= scattered->attenuation;
     // The sphere the ray leaves outward, which it cannot hit again.

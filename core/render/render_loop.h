@@ -62,15 +62,10 @@ void accumulate_pixel(const RenderContext<Accel>& ctx, int x, int y, std::uint64
       SampleStream& rng =
           streams[std::size_t(k)].emplace(settings.sampler, settings.seed, std::uint32_t(x),
                                           std::uint32_t(y), i + std::uint64_t(k));
-      const float s = (float(x) + rng.next_1d()) * inv_w;
-      const float t = (float(y) + rng.next_1d()) * inv_h;
-      float lens_u = 0.0f, lens_v = 0.0f;
-      if (camera.has_lens()) {
-        lens_u = rng.next_1d(), lens_v = rng.next_1d();
-      } else {
-        rng.skip(2);
-      }
-      const Ray ray = camera.generate_ray(s, t, lens_u, lens_v);
+      const std::array<float, 4> u = rng.next_camera();  // a pinhole ignores the lens's two
+      const float s = (float(x) + u[0]) * inv_w;
+      const float t = (float(y) + u[1]) * inv_h;
+      const Ray ray = camera.generate_ray(s, t, u[2], u[3]);
       slot[std::size_t(k)] = starts_path(ray, settings.max_depth) ? traced : -1;
       if (slot[std::size_t(k)] >= 0) rays_out[std::size_t(traced++)] = ray;
     }

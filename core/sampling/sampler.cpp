@@ -5,13 +5,27 @@
 namespace rtiow {
 
 std::string to_string(SamplerKind kind) {
-  return kind == SamplerKind::Independent ? "independent" : "sobol";
+  switch (kind) {
+    case SamplerKind::Independent:
+      return "independent";
+    case SamplerKind::Sobol:
+      return "sobol";
+    default:
+      return "padded-sobol";
+  }
+}
+
+const char* sampler_names() {
+  return "independent, sobol, padded-sobol";
 }
 
 SamplerKind parse_sampler(const std::string& name) {
-  if (name == "independent") return SamplerKind::Independent;
-  if (name == "sobol") return SamplerKind::Sobol;
-  throw InvalidInput("unknown sampler " + quote_value(name, 40) + " (known: independent, sobol)");
+  for (const SamplerKind kind :
+       {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
+    if (name == to_string(kind)) return kind;
+  }
+  throw InvalidInput("unknown sampler " + quote_value(name, 40) + " (known: " + sampler_names() +
+                     ")");
 }
 
 }  // namespace rtiow

@@ -68,41 +68,82 @@ constexpr std::array<Matrix, kSobolDimensions> make_matrices() {
 
 inline constexpr std::array<Matrix, kSobolDimensions> kMatrices = make_matrices();
 
-constexpr std::uint32_t reverse_bits(std::uint32_t x) {
-  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-  return (x >> 16) | (x << 16);
+// The matrix product by bytes: entry [d][b][v] is the point's contribution from byte b of the
+// index having value v, so a point is four lookups instead of a loop over the index's bits
+// (a shuffled index has about 16 of them set).
+using ByteTables = std::array<std::array<std::array<std::uint32_t, 256>, 4>, kSobolDimensions>;
+
+constexpr ByteTables make_byte_tables() {
+  ByteTables t{};
+  for (int d = 0; d < kSobolDimensions; ++d) {
+    for (int b = 0; b < 4; ++b) {
+      for (std::uint32_t v = 0; v < 256; ++v) {
+        std::uint32_t x = 0;
+        for (int k = 0; k < 8; ++k) {
+          if ((v >> k) & 1u) x ^= kMatrices[std::size_t(d)][std::size_t(8 * b + k)];
+        }
+        t[std::size_t(d)][std::size_t(b)][v] = x;
+      }
+    }
+  }
+  return t;
 }
+
+inline constexpr ByteTables kByteTables = make_byte_tables();
 
 }  // namespace sobol_detail
 
 // The unscrambled Sobol point: index i's bits select columns of the dimension's matrix.
 // `dimension` must be below kSobolDimensions (the remainder only tells the compiler so).
 constexpr std::uint32_t sobol_bits(std::uint32_t index, int dimension) {
-  const auto& columns = sobol_detail::kMatrices[std::size_t(dimension) % kSobolDimensions];
-  std::uint32_t x = 0;
-  for (int k = 0; index != 0; index >>= 1, ++k) {
-    if (index & 1u) x ^= columns[k];
-  }
-  return x;
+  const auto& t = sobol_detail::kByteTables[std::size_t(dimension) % kSobolDimensions];
+  return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^
+         t[3][index >> 24];
 }
 
-// A nested uniform permutation of the 32-bit fraction `x`, chosen by `seed`.
-constexpr std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) {
-  x = sobol_detail::reverse_bits(x);
+constexpr std::uint32_t reverse_bits(std::uint32_t x) {
+  x = __builtin_bswap32(x);
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  return ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+}
+
+// Laine and Karras's permutation: bit k of the result depends only on bits 0..k of `x`.
+constexpr std::uint32_t laine_karras(std::uint32_t x, std::uint32_t seed) {
   x ^= x * 0x3d20adeau;
   x += seed;
   x *= (seed >> 16) | 1u;
   x ^= x * 0x05526c56u;
   x ^= x * 0x53a22864u;
-  return sobol_detail::reverse_bits(x);
+  return x;
+}
+
+// A nested uniform permutation of the 32-bit fraction `x`, chosen by `seed`: applied to
+// the reversed bits, each bit depends only on the bits above it.
+constexpr std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) {
+  return reverse_bits(laine_karras(reverse_bits(x), seed));
+}
+
+constexpr float to_unit_float(std::uint32_t x) {
+  return float(x >> 8) * 0x1p-24f;
 }
 
 // In [0, 1) with 24 bits, like the independent sampler's floats.
 constexpr float scrambled_sobol(std::uint32_t index, int dimension, std::uint32_t seed) {
-  return float(owen_scramble(sobol_bits(index, dimension), seed) >> 8) * 0x1p-24f;
+  return to_unit_float(owen_scramble(sobol_bits(index, dimension), seed));
+}
+
+// Padded sampling: an index shuffled by a nested scramble of its bits (Burley 2020), which
+// maps the first 2^m indices onto an aligned block of 2^m, whose Sobol points are again a
+// (0,m,2)-net. `reversed_index` is reverse_bits(index), computed once per sample.
+constexpr std::uint32_t shuffled_index(std::uint32_t reversed_index, std::uint32_t seed) {
+  return reverse_bits(laine_karras(reversed_index, seed));
+}
+
+// Dimension 0 (van der Corput) of a shuffled index, scrambled: Sobol's dimension 0 is the
+// reversed index, so the scramble's first reversal cancels it.
+constexpr float scrambled_van_der_corput(std::uint32_t index, std::uint32_t seed) {
+  return to_unit_float(reverse_bits(laine_karras(index, seed)));
 }
 
 }  // namespace rtiow

@@ -15,6 +15,7 @@
 #include "core/accel/embree_accel.h"
 #include "core/accel/naive_accel.h"
 #include "core/geometry/sphere_intersect.h"
+#include "core/sampling/sampler.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/scene/scene_file.h"
@@ -74,7 +75,7 @@ void BM_Scatter(benchmark::State& state, M material) {
   hit.front_face = true;
   const Vec3 in = normalize(Vec3{0.3f, -1.0f, 0.1f});
   SampleStream rng(1, 2, 3, 4);
-  for (auto _ : state) benchmark::DoNotOptimize(scatter(m, in, hit, rng));
+  for (auto _ : state) benchmark::DoNotOptimize(scatter(m, in, hit, rng.next_bounce()));
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK_CAPTURE(BM_Scatter, lambertian, Lambertian{{0.5f, 0.5f, 0.5f}});
