@@ -44,6 +44,8 @@ struct AccuracyOptions {
   int repeat = 3;
   std::vector<int> depths{1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 50};
   std::vector<double> target_errors{0.2, 0.1, 0.07, 0.05, 0.035};
+  std::vector<double> image_errors{0.1, 0.05, 0.03, 0.02};
+  int book_spp = 500;  // the book's choice: its quality is the headline's goal
   std::string out_dir = "accuracy";
   std::string cache_dir;  // default: $XDG_CACHE_HOME/rtiow or ~/.cache/rtiow
   bool quiet = false;
@@ -134,6 +136,9 @@ std::vector<double> column(const json& rows, const std::string& key) {
   return values;
 }
 
+constexpr SamplerKind kSamplers[] = {SamplerKind::Independent, SamplerKind::Sobol,
+                                     SamplerKind::PaddedSobol};
+
 json sweep_spp(const Experiment& x, const AccuracyOptions& o, SamplerKind sampler) {
   json rows = json::array();
   for (int spp = 1; spp <= o.max_spp; spp *= 2) {
@@ -141,6 +146,33 @@ json sweep_spp(const Experiment& x, const AccuracyOptions& o, SamplerKind sample
     s.samples_per_pixel = spp;
     s.sampler = sampler;
     rows.push_back(x.run("spp", to_string(sampler), spp, s).row);
+  }
+  return rows;
+}
+
+// --adaptive on the budget of 32..max_spp uniform samples (16 is the minimum every pixel takes).
+json sweep_budget(const Experiment& x, const AccuracyOptions& o, SamplerKind sampler) {
+  json rows = json::array();
+  for (int spp = 32; spp <= o.max_spp; spp *= 2) {
+    RenderSettings s = x.settings();
+    s.samples_per_pixel = spp;
+    s.sampler = sampler;
+    s.adaptive = true;
+    rows.push_back(x.run("budget", to_string(sampler), spp, s).row);
+  }
+  return rows;
+}
+
+json sweep_image_error(const Experiment& x, const AccuracyOptions& o, SamplerKind sampler) {
+  json rows = json::array();
+  for (const double target : o.image_errors) {
+    RenderSettings s = x.settings();
+    s.samples_per_pixel = 4 * o.max_spp;
+    s.sampler = sampler;
+    s.image_error = target;
+    Trial t = x.run("image_error", to_string(sampler), target, s);
+    t.row["achieved_error"] = std::sqrt(t.row["rel_mse"].get<double>());
+    rows.push_back(t.row);
   }
   return rows;
 }
@@ -200,17 +232,23 @@ json sweep_adaptive(const Experiment& x, const AccuracyOptions& o) {
   return rows;
 }
 
-// How much lower a method's relMSE is than independent sampling's at the same time, from
-// the independent sweep's log-log fit (spp >= 4, where times are long enough to trust).
-json equal_time_factors(const json& independent, const json& rows) {
+// The log-log fit of relMSE against seconds over a sweep's rows with spp >= min_spp (below
+// 4 the times are too short to trust).
+std::pair<double, double> error_time_fit(const json& rows, double min_spp = 4) {
   std::vector<double> t, e;
-  for (const json& r : independent) {
-    if (r["parameter"].get<double>() >= 4) {
+  for (const json& r : rows) {
+    if (r["parameter"].get<double>() >= min_spp) {
       t.push_back(r["seconds"].get<double>());
       e.push_back(r["rel_mse"].get<double>());
     }
   }
-  const auto [slope, intercept] = log_log_fit(t, e);
+  return log_log_fit(t, e);
+}
+
+// How much lower a method's relMSE is than a baseline's (independent sampling's, or uniform
+// sampling's with the same sampler) at the same time, from the baseline's log-log fit.
+json equal_time_factors(const json& baseline, const json& rows) {
+  const auto [slope, intercept] = error_time_fit(baseline);
   json factors = json::array();
   for (const json& r : rows) {
     const double seconds = r["seconds"].get<double>();
@@ -234,23 +272,83 @@ double median_factor(const json& factors, double min_parameter) {
 
 void print_spp_table(const json& r) {
   std::printf("\nsamples per pixel (relMSE = mean (v-ref)^2/(ref+0.01)^2)\n");
-  std::printf("  %-11s %5s %9s %9s %10s %11s\n", "sampler", "spp", "seconds", "RMSE", "relMSE",
+  std::printf("  %-12s %5s %9s %9s %10s %11s\n", "sampler", "spp", "seconds", "RMSE", "relMSE",
               "efficiency");
-  for (const char* sampler : {"independent", "sobol"}) {
-    for (const json& row : r["spp"][sampler]) {
-      std::printf("  %-11s %5.0f %9.4f %9.5f %10.3e %11.4g\n", sampler,
+  for (const SamplerKind kind : kSamplers) {
+    const std::string name = to_string(kind);
+    for (const json& row : r["spp"][name]) {
+      std::printf("  %-12s %5.0f %9.4f %9.5f %10.3e %11.4g\n", name.c_str(),
                   row["parameter"].get<double>(), row["seconds"].get<double>(),
                   row["rmse"].get<double>(), row["rel_mse"].get<double>(),
                   row["efficiency"].get<double>());
     }
   }
   const json& s = r["summary"];
-  std::printf("  RMSE slope against spp (log-log): independent %.3f, sobol %.3f (ideal -0.5)\n",
-              s["rmse_slope_independent"].get<double>(), s["rmse_slope_sobol"].get<double>());
-  std::printf("  sobol vs independent, relMSE ratio at equal spp (median, spp >= 16): %.2fx\n",
-              s["sobol_equal_spp_factor"].get<double>());
-  std::printf("  sobol vs independent, relMSE ratio at equal time (median, spp >= 16): %.2fx\n",
-              s["sobol_equal_time_factor"].get<double>());
+  std::printf("  RMSE slope against spp (log-log, ideal -0.5 for independent samples):");
+  for (const SamplerKind kind : kSamplers) {
+    std::printf(" %s %.3f", to_string(kind).c_str(),
+                s["rmse_slope"][to_string(kind)].get<double>());
+  }
+  std::printf("\n  against independent, relMSE ratio (median, spp >= 16):");
+  for (const SamplerKind kind : {SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
+    const std::string name = to_string(kind);
+    std::printf(" %s %.2fx at equal spp, %.2fx at equal time;", name.c_str(),
+                s["equal_spp_factor"][name].get<double>(),
+                s["equal_time_factor"][name].get<double>());
+  }
+  std::printf("\n");
+}
+
+void print_budget_table(const json& r) {
+  const json& s = r["summary"];
+  std::printf(
+      "\nadaptive sampling on a budget (--adaptive: the time of N uniform spp, samples in "
+      "proportion to sqrt(variance/cost))\n");
+  std::printf("  %-12s %5s %9s %9s %10s %20s %11s\n", "sampler", "N", "mean spp", "seconds",
+              "relMSE", "mean difference", "vs uniform");
+  for (const SamplerKind kind : kSamplers) {
+    const std::string name = to_string(kind);
+    for (std::size_t i = 0; i < r["budget"][name].size(); ++i) {
+      const json& row = r["budget"][name][i];
+      std::printf("  %-12s %5.0f %9.1f %9.4f %10.3e %+9.5f +- %7.5f %10.2fx\n", name.c_str(),
+                  row["parameter"].get<double>(), row["spp_mean"].get<double>(),
+                  row["seconds"].get<double>(), row["rel_mse"].get<double>(),
+                  row["mean_difference"].get<double>(), row["mean_difference_error"].get<double>(),
+                  s["budget_equal_time_factors"][name][i]["factor"].get<double>());
+    }
+    std::printf("  %-12s median over N >= 32: %.2fx lower relMSE than uniform at equal time\n",
+                name.c_str(), s["budget_equal_time_factor"][name].get<double>());
+  }
+}
+
+void print_image_error_table(const json& r) {
+  const json& s = r["summary"];
+  std::printf("\nimage error (--image-error with %s, at most %d spp per pixel)\n",
+              r["image_error_sampler"].get<std::string>().c_str(), 4 * r["max_spp"].get<int>());
+  std::printf("  %6s %9s %9s %10s %9s %20s %11s\n", "target", "mean spp", "seconds", "relMSE",
+              "achieved", "mean difference", "vs uniform");
+  for (std::size_t i = 0; i < r["image_error"].size(); ++i) {
+    const json& row = r["image_error"][i];
+    std::printf("  %6.3f %9.1f %9.4f %10.3e %9.4f %+9.5f +- %7.5f %10.2fx\n",
+                row["parameter"].get<double>(), row["spp_mean"].get<double>(),
+                row["seconds"].get<double>(), row["rel_mse"].get<double>(),
+                row["achieved_error"].get<double>(), row["mean_difference"].get<double>(),
+                row["mean_difference_error"].get<double>(),
+                s["image_error_equal_time_factors"][i]["factor"].get<double>());
+  }
+}
+
+void print_book_quality(const json& r) {
+  const json& q = r["summary"]["book_quality"];
+  std::printf(
+      "\ntime to the book's quality (the relMSE of independent sampling at %d spp: %.3e; "
+      "independent takes %.3f s)\n",
+      q["book_spp"].get<int>(), q["rel_mse"].get<double>(), q["independent_seconds"].get<double>());
+  for (const json& m : q["methods"]) {
+    std::printf("  %-9s %-12s %9.3f s  %6.2fx less time\n", m["mode"].get<std::string>().c_str(),
+                m["sampler"].get<std::string>().c_str(), m["seconds"].get<double>(),
+                m["speedup"].get<double>());
+  }
 }
 
 void print_depth_table(const json& r) {
@@ -324,6 +422,9 @@ void print_table(const json& r) {
               r["reference_seed"].get<unsigned long long>(),
               r["reference_reused"].get<bool>() ? ", reused from the cache" : "");
   print_spp_table(r);
+  print_budget_table(r);
+  print_image_error_table(r);
+  print_book_quality(r);
   print_depth_table(r);
   print_choice_tables(r);
   print_adaptive_table(r);
@@ -338,10 +439,12 @@ void write_csv(const json& r, const std::string& path) {
   for (const char* k : keys) text.append(text.empty() ? "" : ",").append(k);
   text += "\n";
   std::vector<const json*> rows;
-  for (const char* sampler : {"independent", "sobol"}) {
-    for (const json& row : r["spp"][sampler]) rows.push_back(&row);
+  for (const char* group : {"spp", "budget"}) {
+    for (const SamplerKind kind : kSamplers) {
+      for (const json& row : r[group][to_string(kind)]) rows.push_back(&row);
+    }
   }
-  for (const char* group : {"depth_sweep", "intersector", "fresnel", "adaptive"}) {
+  for (const char* group : {"image_error", "depth_sweep", "intersector", "fresnel", "adaptive"}) {
     for (const json& row : r[group]) rows.push_back(&row);
   }
   for (const json* row : rows) {
@@ -376,6 +479,13 @@ void check_options(const AccuracyOptions& o) {
   for (const double e : o.target_errors) {
     if (!(e > 0) || !std::isfinite(e)) throw InvalidInput("--target-errors must be > 0");
   }
+  for (const double e : o.image_errors) {
+    if (!(e > 0) || !std::isfinite(e)) throw InvalidInput("--image-errors must be > 0");
+  }
+  if (o.max_spp < 64) {
+    throw InvalidInput("--max-spp must be >= 64: the fits and the budget sweep start at 16-32");
+  }
+  if (o.book_spp < 16) throw InvalidInput("--book-spp must be >= 16");
 }
 
 // The measured renders' settings: the scene's depth and aspect ratio at the given width.
@@ -391,26 +501,76 @@ RenderSettings base_settings(const AccuracyOptions& o, const Scene& scene) {
   return base;
 }
 
-// The ratios a reader looks for: convergence slopes and Sobol's and adaptive sampling's
-// gains over independent sampling at equal spp and at equal time.
-json summarise(const json& r) {
+// The seconds a sweep needs to reach `rel_mse`, from its fit (spp >= 16: the regime of the
+// goal, where every sampler's slope has settled).
+double seconds_to_reach(const json& rows, double rel_mse) {
+  const auto [slope, intercept] = error_time_fit(rows, 16);
+  return std::exp((std::log(rel_mse) - intercept) / slope);
+}
+
+// The headline: the relMSE independent sampling reaches at the book's spp (from the fit of
+// relMSE against spp), and how long each method takes to reach it.
+json book_quality(const json& r, int book_spp) {
+  const json& independent = r["spp"]["independent"];
+  std::vector<double> spp, e;
+  for (const json& row : independent) {
+    if (row["parameter"].get<double>() >= 16) {
+      spp.push_back(row["parameter"].get<double>());
+      e.push_back(row["rel_mse"].get<double>());
+    }
+  }
+  const auto [slope, intercept] = log_log_fit(spp, e);
+  const double goal = std::exp(intercept + slope * std::log(double(book_spp)));
+  const double baseline = seconds_to_reach(independent, goal);
+  json q = {{"book_spp", book_spp}, {"rel_mse", goal}, {"independent_seconds", baseline}};
+  json methods = json::array();
+  for (const auto& [group, label] :
+       {std::pair<const char*, const char*>{"spp", "uniform"}, {"budget", "adaptive"}}) {
+    for (const SamplerKind kind : kSamplers) {
+      const std::string name = to_string(kind);
+      if (!r[group].contains(name)) continue;
+      const double seconds = seconds_to_reach(r[group][name], goal);
+      methods.push_back({{"sampler", name},
+                         {"mode", label},
+                         {"seconds", seconds},
+                         {"speedup", baseline / seconds}});
+    }
+  }
+  q["methods"] = methods;
+  return q;
+}
+
+// The ratios a reader looks for: convergence slopes, each sampler's gain over independent
+// sampling at equal spp and at equal time, adaptive sampling's over uniform sampling with the
+// same sampler, and the time to the book's quality.
+json summarise(const json& r, const AccuracyOptions& o) {
   json s;
   const json& independent = r["spp"]["independent"];
-  const json& sobol = r["spp"]["sobol"];
-  s["rmse_slope_independent"] =
-      log_log_fit(column(independent, "parameter"), column(independent, "rmse")).first;
-  s["rmse_slope_sobol"] = log_log_fit(column(sobol, "parameter"), column(sobol, "rmse")).first;
-  json equal_spp = json::array();
-  for (std::size_t i = 0; i < sobol.size(); ++i) {
-    equal_spp.push_back(
-        {{"parameter", sobol[i]["parameter"]},
-         {"factor", independent[i]["rel_mse"].get<double>() / sobol[i]["rel_mse"].get<double>()}});
+  for (const SamplerKind kind : kSamplers) {
+    const std::string name = to_string(kind);
+    const json& rows = r["spp"][name];
+    s["rmse_slope"][name] = log_log_fit(column(rows, "parameter"), column(rows, "rmse")).first;
+    if (kind == SamplerKind::Independent) continue;
+    json equal_spp = json::array();
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      equal_spp.push_back(
+          {{"parameter", rows[i]["parameter"]},
+           {"factor", independent[i]["rel_mse"].get<double>() / rows[i]["rel_mse"].get<double>()}});
+    }
+    s["equal_spp_factors"][name] = equal_spp;
+    s["equal_spp_factor"][name] = median_factor(equal_spp, 16);
+    s["equal_time_factors"][name] = equal_time_factors(independent, rows);
+    s["equal_time_factor"][name] = median_factor(s["equal_time_factors"][name], 16);
   }
-  s["sobol_equal_spp_factors"] = equal_spp;
-  s["sobol_equal_spp_factor"] = median_factor(equal_spp, 16);
-  s["sobol_equal_time_factors"] = equal_time_factors(independent, sobol);
-  s["sobol_equal_time_factor"] = median_factor(s["sobol_equal_time_factors"], 16);
+  for (const SamplerKind kind : kSamplers) {
+    const std::string name = to_string(kind);
+    s["budget_equal_time_factors"][name] = equal_time_factors(r["spp"][name], r["budget"][name]);
+    s["budget_equal_time_factor"][name] = median_factor(s["budget_equal_time_factors"][name], 32);
+  }
   s["adaptive_equal_time_factors"] = equal_time_factors(independent, r["adaptive"]);
+  s["image_error_equal_time_factors"] =
+      equal_time_factors(r["spp"][r["image_error_sampler"].get<std::string>()], r["image_error"]);
+  s["book_quality"] = book_quality(r, o.book_spp);
   return s;
 }
 
@@ -454,14 +614,16 @@ int run_accuracy(const AccuracyOptions& o) {
             {"max_spp", o.max_spp},
             {"repeat", o.repeat},
             {"threads", o.threads}};
-  r["spp"]["independent"] = sweep_spp(x, o, SamplerKind::Independent);
-  r["spp"]["sobol"] = sweep_spp(x, o, SamplerKind::Sobol);
+  for (const SamplerKind kind : kSamplers) r["spp"][to_string(kind)] = sweep_spp(x, o, kind);
+  for (const SamplerKind kind : kSamplers) r["budget"][to_string(kind)] = sweep_budget(x, o, kind);
+  r["image_error_sampler"] = to_string(SamplerKind::Sobol);
+  r["image_error"] = sweep_image_error(x, o, SamplerKind::Sobol);
   r["depth_sweep"] = sweep_depth(x, o);
   r["intersector"] = compare_intersectors(x, o);
   r["fresnel"] = compare_fresnel(x, o, scene);
   r["adaptive"] = sweep_adaptive(x, o);
 
-  r["summary"] = summarise(r);
+  r["summary"] = summarise(r, o);
   print_table(r);
   write_figures(o, r);
   return 0;
@@ -475,8 +637,9 @@ std::function<int()> add_accuracy_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "accuracy",
       "Measure speed against accuracy on a scene: error against a cached high-spp reference "
-      "for spp 1..N with each sampler, the depth limit, the intersector, the Fresnel model and "
-      "adaptive sampling; prints tables, writes JSON, CSV and a PNG plot");
+      "for spp 1..N with each sampler, adaptive sampling (budget, image error, target error), "
+      "the time to the book's quality, the depth limit, the intersector and the Fresnel "
+      "model; prints tables, writes JSON, CSV and a PNG plot");
   cmd->add_option("--scene", o.scene, "Built-in scene")->capture_default_str();
   cmd->add_option("--scene-seed", o.scene_seed, "Seed of the scene's random layout")
       ->check(kNotNegative)
@@ -495,6 +658,13 @@ std::function<int()> add_accuracy_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--target-errors", o.target_errors, "Adaptive sampling targets to compare")
       ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--image-errors", o.image_errors, "Image errors (--image-error) to compare")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--book-spp", o.book_spp,
+                  "The spp whose independent-sampling error is the goal of the time-to-quality "
+                  "headline (the book's final render: 500)")
       ->capture_default_str();
   cmd->add_option("--seed", o.seed, "Seed of the measured renders")
       ->check(kNotNegative)

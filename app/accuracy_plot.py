@@ -18,11 +18,15 @@ def main(json_path, png_path):
         r = json.load(f)
     fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(16, 5))
 
-    ax1.plot(*xy(r["spp"]["independent"], "seconds", "rel_mse"), "o-",
-             label="independent (spp 1..%d)" % r["max_spp"])
-    ax1.plot(*xy(r["spp"]["sobol"], "seconds", "rel_mse"), "s-", label="sobol (spp 1..%d)" %
-             r["max_spp"])
-    ax1.plot(*xy(r["adaptive"], "seconds", "rel_mse"), "^-", label="adaptive (target error)")
+    for sampler, marker in zip(r["spp"], "os^"):
+        ax1.plot(*xy(r["spp"][sampler], "seconds", "rel_mse"), marker + "-",
+                 label="%s (spp 1..%d)" % (sampler, r["max_spp"]))
+    for sampler, marker in zip(r["budget"], "os^"):
+        ax1.plot(*xy(r["budget"][sampler], "seconds", "rel_mse"), marker + "--", mfc="none",
+                 label="%s --adaptive (budget 32..%d)" % (sampler, r["max_spp"]))
+    ax1.plot(*xy(r["image_error"], "seconds", "rel_mse"), "v-",
+             label="%s --image-error" % r["image_error_sampler"])
+    ax1.plot(*xy(r["adaptive"], "seconds", "rel_mse"), "<-", label="--target-error")
     for row in r["adaptive"]:
         ax1.annotate("%g" % row["parameter"], (row["seconds"], row["rel_mse"]),
                      textcoords="offset points", xytext=(4, 4), fontsize=7)
@@ -43,10 +47,9 @@ def main(json_path, png_path):
     ax1.legend(fontsize=7)
 
     s = r["summary"]
-    ax2.plot(*xy(r["spp"]["independent"], "parameter", "rmse"), "o-",
-             label="independent, slope %.3f" % s["rmse_slope_independent"])
-    ax2.plot(*xy(r["spp"]["sobol"], "parameter", "rmse"), "s-",
-             label="sobol, slope %.3f" % s["rmse_slope_sobol"])
+    for sampler, marker in zip(r["spp"], "os^"):
+        ax2.plot(*xy(r["spp"][sampler], "parameter", "rmse"), marker + "-",
+                 label="%s, slope %.3f" % (sampler, s["rmse_slope"][sampler]))
     first = r["spp"]["independent"][0]
     spp = [row["parameter"] for row in r["spp"]["independent"]]
     ax2.plot(spp, [first["rmse"] * (n / first["parameter"]) ** -0.5 for n in spp], "k--",

@@ -46,6 +46,8 @@ struct RenderOptions {
   double time_limit = 0.0;
   std::string sampler = "independent";
   double target_error = 0.0;
+  double image_error = 0.0;
+  bool adaptive = false;
   int min_spp = 16;
   bool stats_channels = false;
   bool quiet = false;
@@ -104,12 +106,15 @@ void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& setti
   }
   // With a target error and no --spp, a pixel takes at most kDefaultAdaptiveMaxSpp; with
   // only a time limit, samples are added until the time is spent.
-  settings.samples_per_pixel = o.spp.value_or(o.target_error > 0 ? kDefaultAdaptiveMaxSpp
+  const bool capped_adaptive = o.target_error > 0 || o.image_error > 0;
+  settings.samples_per_pixel = o.spp.value_or(capped_adaptive    ? kDefaultAdaptiveMaxSpp
                                               : o.time_limit > 0 ? std::numeric_limits<int>::max()
                                                                  : image.samples_per_pixel);
   settings.time_limit_seconds = o.time_limit;
   settings.sampler = parse_sampler(o.sampler);
   settings.target_error = o.target_error;
+  settings.image_error = o.image_error;
+  settings.adaptive = o.adaptive;
   settings.min_samples = o.min_spp;
   settings.max_depth = o.depth.value_or(image.max_depth);
   settings.seed = o.seed;
@@ -130,10 +135,13 @@ int list_scenes() {
 // "64 spp", or for adaptive sampling the range and mean of the pixels' counts.
 std::string describe_samples(const RenderSettings& s, const RenderResult& r) {
   char text[96];
-  if (s.target_error > 0) {
+  if (is_adaptive(s)) {
     const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
-    std::snprintf(text, sizeof text, "%u-%u spp (mean %.1f, target error %g)", *least, *most,
-                  mean_samples(r), s.target_error);
+    char goal[48] = "adaptive";
+    if (s.target_error > 0) std::snprintf(goal, sizeof goal, "target error %g", s.target_error);
+    if (s.image_error > 0) std::snprintf(goal, sizeof goal, "image error %g", s.image_error);
+    std::snprintf(text, sizeof text, "%u-%u spp (mean %.1f, %s)", *least, *most, mean_samples(r),
+                  goal);
   } else {
     std::snprintf(text, sizeof text, "%d spp", r.samples_completed);
   }
@@ -197,11 +205,16 @@ void check_adaptive_options(const RenderOptions& o, const std::string& output,
     throw InvalidInput("--stats-channels: output " + quote_value(output) +
                        " must be .exr to hold the spp and variance channels");
   }
-  if (o.target_error > 0 && (!o.sample_range.empty() || !o.part.empty() || mpi.distributed())) {
-    throw InvalidInput(
-        "--target-error needs all of a pixel's samples in one process: it cannot be combined "
-        "with --sample-range, --part or mpirun");
+  const char* adaptive = o.target_error > 0  ? "--target-error"
+                         : o.image_error > 0 ? "--image-error"
+                         : o.adaptive        ? "--adaptive"
+                                             : nullptr;
+  if (adaptive && (!o.sample_range.empty() || !o.part.empty() || mpi.distributed())) {
+    throw InvalidInput(std::string(adaptive) +
+                       " needs all of a pixel's samples in one process: it cannot be combined "
+                       "with --sample-range, --part or mpirun");
   }
+
   if (o.stats_channels && (!o.sample_range.empty() || !o.part.empty() || mpi.distributed())) {
     throw InvalidInput("--stats-channels is for a render in one process, not a part or mpirun");
   }
@@ -251,7 +264,7 @@ RenderResult render_with_progress(const RenderOptions& o, const Job& job, const 
     // Adaptive sampling and an open-ended time limit have no total to show progress against.
     const RenderSettings& s = job.settings;
     const bool open_ended =
-        s.target_error > 0 || s.samples_per_pixel == std::numeric_limits<int>::max();
+        is_adaptive(s) || s.samples_per_pixel == std::numeric_limits<int>::max();
     display = std::make_unique<ProgressDisplay>(
         progress, open_ended ? 0
                              : std::uint64_t(s.width) * std::uint64_t(s.height) *
@@ -388,6 +401,15 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                   "Adaptive sampling: each pixel stops once its relative standard error is below "
                   "this (e.g. 0.05); --spp is then the most a pixel takes (default 8192)")
       ->check(kFiniteNotNegative);
+  cmd->add_option("--image-error", o.image_error,
+                  "Adaptive sampling: stop once the image's estimated relative RMS error is "
+                  "below this (e.g. 0.02), giving each pixel samples in proportion to "
+                  "sqrt(variance / cost); --spp is then the most a pixel takes (default 8192)")
+      ->check(kFiniteNotNegative);
+  cmd->add_flag("--adaptive", o.adaptive,
+                "Adaptive sampling on a budget: the time of --spp uniform samples (or "
+                "--time-limit), spread over the pixels in proportion to sqrt(variance / cost), "
+                "which gives the lowest image error for the time");
   cmd->add_option("--min-spp", o.min_spp,
                   "Adaptive sampling: samples every pixel takes before it may stop")
       ->check(CLI::Range(2, std::numeric_limits<int>::max()))

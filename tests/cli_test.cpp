@@ -363,6 +363,9 @@ TEST(Cli, RefusesAdaptiveAndStatisticsOptionsWhereTheyCannotWork) {
   expect_refused("--scene cover --width 8 --spp 4 --stats-channels", "must be .exr");
   expect_refused("--scene cover --width 8 --spp 4 --target-error -1", "--target-error");
   expect_refused("--scene cover --width 8 --spp 4 --target-error 0.1 --min-spp 1", "--min-spp");
+  expect_refused("--scene cover --width 8 --spp 4 --image-error nan", "--image-error");
+  expect_refused("--scene cover --width 8 --spp 4 --adaptive --image-error 0.1",
+                 "choose one adaptive mode");
   const fs::path part = output_path("part.exr");
   const CommandResult r = run_rtiow(
       "render -q --scene cover --width 8 --spp 4 --target-error 0.1 "
@@ -370,6 +373,11 @@ TEST(Cli, RefusesAdaptiveAndStatisticsOptionsWhereTheyCannotWork) {
       part.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.stderr_text.find("--target-error"), std::string::npos) << r.stderr_text;
+  const CommandResult budget = run_rtiow(
+      "render -q --scene cover --width 8 --spp 4 --adaptive --part 0/2 -o " + part.string());
+  EXPECT_EQ(budget.exit_code, 2);
+  EXPECT_NE(budget.stderr_text.find("--adaptive needs all of a pixel's samples"), std::string::npos)
+      << budget.stderr_text;
   EXPECT_FALSE(fs::exists(part));
 }
 
@@ -377,8 +385,8 @@ TEST(Cli, AccuracyMeasuresWritesFiguresAndReusesItsReference) {
   const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + "-accuracy");
   fs::remove_all(dir);  // a previous run's reference must not be reused
   const std::string args =
-      "accuracy -q --width 16 --reference-spp 256 --max-spp 16 "
-      "--fixed-spp 4 --depths 1,2,50 --target-errors 0.3 --repeat 1 --out " +
+      "accuracy -q --width 16 --reference-spp 256 --max-spp 64 "
+      "--fixed-spp 4 --depths 1,2,50 --target-errors 0.3 --image-errors 0.3 --repeat 1 --out " +
       dir.string() + " --cache-dir " + (dir / "cache").string();
   const CommandResult first = run_rtiow(args);
   ASSERT_EQ(first.exit_code, 0) << first.stderr_text << first.stdout_text;
@@ -386,13 +394,17 @@ TEST(Cli, AccuracyMeasuresWritesFiguresAndReusesItsReference) {
   EXPECT_NE(first.stdout_text.find("bit-identical to embree"), std::string::npos);
   EXPECT_EQ(first.stdout_text.find("reused from the cache"), std::string::npos);
   const std::string figures = slurp(dir / "accuracy.json");
-  for (const char* key : {"\"rmse_slope_independent\"", "\"sobol_equal_time_factor\"",
+  for (const char* key : {"\"rmse_slope\"", "\"equal_time_factor\"", "\"budget_equal_time_factor\"",
+                          "\"book_quality\"", "\"padded-sobol\"", "\"image_error\"",
                           "\"depth_sweep\"", "\"fresnel\"", "\"adaptive\"", "\"intersector\""}) {
     EXPECT_NE(figures.find(key), std::string::npos) << key;
   }
   const std::string csv = slurp(dir / "accuracy.csv");
   EXPECT_EQ(csv.rfind("group,choice,parameter", 0), 0u) << csv;
-  EXPECT_EQ(count_lines(csv), 1 + 5 + 5 + 3 + 2 + 2 + 1) << csv;
+  // Header, 3 samplers x spp 1..64, 3 x budgets 32 and 64, one image error, 3 depths, two
+  // intersectors, two Fresnel models, one target error.
+  EXPECT_EQ(count_lines(csv), 1 + 3 * 7 + 3 * 2 + 1 + 3 + 2 + 2 + 1) << csv;
+  EXPECT_NE(first.stdout_text.find("time to the book's quality"), std::string::npos);
   EXPECT_TRUE(fs::exists(dir / "accuracy.png")) << first.stdout_text;
 
   const CommandResult second = run_rtiow(args);
@@ -404,7 +416,7 @@ TEST(Cli, AccuracyMeasuresWritesFiguresAndReusesItsReference) {
   EXPECT_EQ(other.stdout_text.find("reused from the cache"), std::string::npos);
 
   const CommandResult refused =
-      run_rtiow("accuracy -q --reference-spp 64 --max-spp 64 --out " + dir.string());
+      run_rtiow("accuracy -q --reference-spp 128 --max-spp 64 --out " + dir.string());
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_NE(refused.stderr_text.find("--reference-spp"), std::string::npos);
 }

@@ -80,26 +80,34 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, EveryScene,
                            return name;
                          });
 
-// The Sobol sampler and adaptive sampling keep the guarantee: the same image for any
+// The Sobol samplers and every adaptive mode keep the guarantee: the same image for any
 // thread count and either accelerator (adaptive decisions are taken between rounds, from
-// counts and sums that do not depend on the schedule).
+// counts, sums and ray counts that do not depend on the schedule).
 TEST(Render, SobolAndAdaptiveRendersAreDeterministic) {
   const Scene scene = make_builtin_scene("cover", 1);
-  for (const bool adaptive : {false, true}) {
+  enum Mode { kSobol, kPaddedSobol, kTargetError, kImageError, kBudget };
+  for (const Mode mode : {kSobol, kPaddedSobol, kTargetError, kImageError, kBudget}) {
     RenderSettings settings = tiny(scene);
-    settings.sampler = adaptive ? SamplerKind::Independent : SamplerKind::Sobol;
-    settings.samples_per_pixel = adaptive ? 128 : 8;
-    settings.target_error = adaptive ? 0.15 : 0.0;
+    settings.sampler = mode == kPaddedSobol ? SamplerKind::PaddedSobol
+                       : mode == kSobol     ? SamplerKind::Sobol
+                                            : SamplerKind::Independent;
+    const bool adaptive = mode >= kTargetError;
+    settings.samples_per_pixel = mode == kBudget ? 48 : adaptive ? 128 : 8;
+    settings.target_error = mode == kTargetError ? 0.15 : 0.0;
+    settings.image_error = mode == kImageError ? 0.08 : 0.0;
+    settings.adaptive = mode == kBudget;
     const auto [one, two, naive] = render_three_ways(scene, settings);
-    EXPECT_TRUE(test::bit_identical(one.film, two.film)) << "adaptive " << adaptive;
-    EXPECT_TRUE(test::bit_identical(one.film, naive.film)) << "adaptive " << adaptive;
+    EXPECT_TRUE(test::bit_identical(one.film, two.film)) << "mode " << mode;
+    EXPECT_TRUE(test::bit_identical(one.film, naive.film)) << "mode " << mode;
     EXPECT_EQ(one.pixel_samples, two.pixel_samples);
     if (adaptive) {
       const auto [least, most] =
           std::minmax_element(one.pixel_samples.begin(), one.pixel_samples.end());
-      EXPECT_EQ(*least, 16u);
-      EXPECT_GT(*most, 16u) << "some pixel must need more than the minimum";
-      EXPECT_LE(*most, 128u);
+      EXPECT_GE(*least, 16u) << "mode " << mode;
+      EXPECT_GT(*most, *least) << "mode " << mode << ": pixels must get different counts";
+      if (mode != kBudget) {
+        EXPECT_LE(*most, 128u) << "mode " << mode;
+      }
     }
   }
 }

@@ -98,7 +98,7 @@ TEST(SampleStream, EveryKindIsAPureFunctionOfSeedPixelAndSample) {
 }
 
 // The layout is fixed: the camera takes 4 dimensions and every bounce 4, for every sampler,
-// and a bounce's numbers are the dimensions it starts at (1D, 2D, 1D), whatever is drawn
+// and a bounce's numbers are the dimensions it starts at (2D, 1D, 1D), whatever is drawn
 // before them.
 TEST(SampleStream, CameraAndBouncesTakeAFixedNumberOfDimensions) {
   for (const SamplerKind kind : kKinds) {
@@ -117,7 +117,7 @@ TEST(SampleStream, CameraAndBouncesTakeAFixedNumberOfDimensions) {
   // Independent: the bounce's numbers are the stream's next four, in layout order.
   SampleStream a(9, 1, 1, 4), b(9, 1, 1, 4);
   const BounceSample u = a.next_bounce();
-  EXPECT_EQ((std::vector<float>{u.lobe, u.direction[0], u.direction[1], u.radius}), draws(b, 4));
+  EXPECT_EQ((std::vector<float>{u.direction[0], u.direction[1], u.lobe, u.radius}), draws(b, 4));
 }
 
 // A bounce computed in part (the dimensions a material reads) has the same values there as
@@ -187,7 +187,7 @@ TEST(SampleStream, EveryGroupOfEveryBounceIsStratified) {
         EXPECT_TRUE(fills_strata(lobe, m)) << where;
         EXPECT_TRUE(fills_strata(radius, m)) << where;
         EXPECT_TRUE(is_zero_m_two_net(film, m)) << where;
-        // Sobol's joint dimensions 5 and 6 are not a (0,2)-sequence; later groups are.
+        // Sobol's joint dimensions 4 and 5 are not a (0,2)-sequence; later groups are.
         if (kind == SamplerKind::PaddedSobol || bounce > 0) {
           EXPECT_TRUE(is_zero_m_two_net(direction, m)) << where;
         }
@@ -221,9 +221,9 @@ TEST(SampleStream, NoTwoDimensionsAreCorrelatedAcrossPixels) {
         stream.next_camera();
         for (int d = kCameraDimensions; d < kDimensions; d += kBounceDimensions) {
           const BounceSample u = stream.next_bounce();
-          values[std::size_t(d)].push_back(u.lobe);
-          values[std::size_t(d + 1)].push_back(u.direction[0]);
-          values[std::size_t(d + 2)].push_back(u.direction[1]);
+          values[std::size_t(d)].push_back(u.direction[0]);
+          values[std::size_t(d + 1)].push_back(u.direction[1]);
+          values[std::size_t(d + 2)].push_back(u.lobe);
           values[std::size_t(d + 3)].push_back(u.radius);
         }
       }

@@ -1,72 +1,153 @@
 #pragma once
-// Adaptive sampling (--target-error): pixels stop once their estimated relative standard
-// error is below a target. The per-pixel spread itself is core/film/pixel_variance.h.
+// Adaptive sampling: pixels take different numbers of samples, decided in rounds. Decisions
+// are made for all pixels between rounds, from counts, sums and ray counts that do not
+// depend on timing, so the image is the same for any thread count (a time limit decides only
+// when the rounds end). Every pixel first takes the minimum; estimates are pooled from
+// neighbours (core/render/sample_allocation.h), which keeps each pixel's mean unbiased.
+// A stop request or the time limit ends the render mid-round; untouched pixels keep their
+// samples.
+//
+// - render_adaptive (--target-error): each pixel doubles until its own relative standard
+//   error is below the target.
+// - render_by_image_error (--image-error, --adaptive): samples go where they lower the
+//   image's mean relMSE most per ray, in proportion to sqrt(variance / cost).
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "core/render/render_loop.h"
+#include "core/render/sample_allocation.h"
 #include "core/render/stopwatch.h"
 
 namespace rtiow {
 
-// The relative variance per sample a pixel is judged by: the mean of its neighbours' in
-// the 3x3 window around it, itself left out. A rule that looked at the pixel's own samples
-// would stop more often after lucky ones (a bright sample lowers the relative error, a
-// missed rare path the variance) and bias the pixel; its neighbours' samples are
-// independent of its own, so its mean stays unbiased. A 1x1 image has no neighbours and
-// uses its own.
-std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
-                                                    const PixelAccumulators& pixels);
+// Asked before each group of pixels of a round: true once a stop is requested or the time
+// limit has passed, remembering which.
+class RoundDeadline {
+ public:
+  RoundDeadline(const RenderSettings& settings, RenderProgress* progress)
+      : settings_(settings), progress_(progress), start_(Clock::now()) {}
 
-// Adaptive sampling: every pixel takes the minimum, then each round doubles the samples of
-// the pixels whose estimated relative standard error is still above the target (up to the
-// maximum). Decisions are made for all pixels before a round renders, from counts and sums
-// that do not depend on timing, so the image is the same for any thread count. Few looks
-// (one per doubling) and the neighbour-based estimate keep the stopping rule's bias small.
-// A stop request or the time limit ends the render mid-round; untouched pixels keep their
-// samples.
+  bool operator()() {
+    if (progress_->stop_requested.load()) stop_requested_ = true;
+    if (settings_.time_limit_seconds > 0.0 && elapsed() >= settings_.time_limit_seconds) {
+      time_out_ = true;
+    }
+    return stop_requested_.load() || time_out_.load();
+  }
+
+  double elapsed() const { return seconds_since(start_); }
+  bool ended() const { return stop_requested_.load() || time_out_.load(); }
+
+  void report(RenderResult& result, const PixelAccumulators& pixels) const {
+    result.stopped = stop_requested_.load();
+    result.time_limited = time_out_.load() && !result.stopped;
+    result.samples_completed = int(*std::max_element(pixels.samples.begin(), pixels.samples.end()));
+  }
+
+ private:
+  const RenderSettings& settings_;
+  RenderProgress* progress_;
+  Clock::time_point start_;
+  std::atomic<bool> stop_requested_{false}, time_out_{false};
+};
+
+// Renders the pixels whose target is above their count. The first round is never cut
+// short: every pixel gets its minimum, so none is empty. Returns false if no pixel moved.
+template <typename Accel>
+bool render_round(const RenderContext<Accel>& ctx, const std::vector<std::uint32_t>& targets,
+                  bool first_round, RoundDeadline& deadline, PixelAccumulators& pixels,
+                  RenderProgress* progress, RenderResult& result) {
+  std::vector<std::size_t> list;
+  for (std::size_t p = 0; p < targets.size(); ++p) {
+    if (targets[p] > pixels.samples[p]) list.push_back(p);
+  }
+  if (list.empty()) return false;
+  const std::function<bool()> never = [] { return false; };
+  const std::function<bool()> may_skip = [&] { return deadline(); };
+  result.rays_traced +=
+      render_pixel_list(ctx, list, targets, pixels, progress, first_round ? never : may_skip);
+  return true;
+}
+
+// --target-error: every pixel takes the minimum, then each round doubles the samples of the
+// pixels whose estimated relative standard error is still above the target (up to the
+// maximum). Few looks (one per doubling) keep the stopping rule's bias small.
 template <typename Accel>
 void render_adaptive(const RenderContext<Accel>& ctx, RenderProgress* progress,
                      PixelAccumulators& pixels, RenderResult& result) {
   const RenderSettings& settings = ctx.settings;
-  const auto render_start = Clock::now();
+  RoundDeadline deadline(settings, progress);
   const auto most = std::uint32_t(settings.samples_per_pixel);
   const auto least = std::min(most, std::uint32_t(settings.min_samples));
   const double target_variance = settings.target_error * settings.target_error;
-  std::atomic<bool> stop_requested{false}, time_out{false};
-  const std::function<bool()> may_skip = [&] {
-    if (progress->stop_requested.load()) stop_requested = true;
-    if (settings.time_limit_seconds > 0.0 &&
-        seconds_since(render_start) >= settings.time_limit_seconds) {
-      time_out = true;
-    }
-    return stop_requested.load() || time_out.load();
-  };
   std::vector<std::uint32_t> targets(pixels.samples.size(), least);
-  std::vector<std::size_t> list(pixels.samples.size());
-  for (std::size_t p = 0; p < list.size(); ++p) list[p] = p;
-  // The first round is never cut short: every pixel gets its minimum, so none is empty.
-  const std::function<bool()> never = [] { return false; };
-  for (bool first_round = true; !list.empty(); first_round = false) {
-    result.rays_traced +=
-        render_pixel_list(ctx, list, targets, pixels, progress, first_round ? never : may_skip);
-    if (stop_requested || time_out) break;
+  for (bool first = true; render_round(ctx, targets, first, deadline, pixels, progress, result);
+       first = false) {
+    if (deadline.ended()) break;
     const std::vector<double> judged = neighbourhood_relative_variance(settings, pixels);
-    list.clear();
     for (std::size_t p = 0; p < targets.size(); ++p) {
       const std::uint32_t n = pixels.samples[p];
-      if (n >= most || judged[p] / double(n) <= target_variance) continue;
-      targets[p] = std::min(most, 2 * n);
-      list.push_back(p);
+      if (n < most && judged[p] / double(n) > target_variance) targets[p] = std::min(most, 2 * n);
     }
   }
-  result.stopped = stop_requested.load();
-  result.time_limited = time_out.load() && !result.stopped;
-  result.samples_completed = int(*std::max_element(pixels.samples.begin(), pixels.samples.end()));
+  deadline.report(result, pixels);
+}
+
+// The most samples a pixel takes when --spp is a budget rather than a cap.
+inline constexpr std::uint32_t kMostAdaptiveSamples = 1u << 24;
+
+// --image-error and --adaptive: after the minimum, each round allocates counts proportional to
+// sqrt(v / c) (sample_allocation.h). With an image error, until the estimated mean relMSE is
+// the error squared, each pixel at most doubling per round. With a budget (the cost of --spp
+// uniform samples, estimated from the pooled costs, and/or the time limit), rounds double the
+// cost spent so far, so the estimates are refined about log2(budget / first round) times.
+template <typename Accel>
+void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* progress,
+                           PixelAccumulators& pixels, RenderResult& result) {
+  const RenderSettings& settings = ctx.settings;
+  RoundDeadline deadline(settings, progress);
+  const bool by_error = settings.image_error > 0.0;
+  const bool open_ended = settings.samples_per_pixel == std::numeric_limits<int>::max();
+  const std::uint32_t most =
+      by_error ? std::uint32_t(settings.samples_per_pixel) : kMostAdaptiveSamples;
+  const auto least = std::min(
+      {most, std::uint32_t(settings.min_samples), std::uint32_t(settings.samples_per_pixel)});
+  std::vector<std::uint32_t> targets(pixels.samples.size(), least);
+  bool last_round = false;  // the round that spends what is left of the budget
+  for (bool first = true; render_round(ctx, targets, first, deadline, pixels, progress, result);
+       first = false) {
+    if (deadline.ended()) break;
+    const PixelEstimates e = pooled_estimates(settings, pixels);
+    if (by_error) {
+      const double goal = settings.image_error * settings.image_error;
+      if (estimated_rel_mse(e.variance, pixels.samples) <= goal) break;
+      targets = allocate_for_error(e, pixels.samples, goal, most);
+      for (std::size_t p = 0; p < targets.size(); ++p) {
+        targets[p] = std::min(targets[p], 2 * pixels.samples[p]);
+      }
+      continue;
+    }
+    const double spent = estimated_cost(e.cost, pixels.samples);
+    double budget = open_ended
+                        ? INFINITY
+                        : double(settings.samples_per_pixel) *
+                              estimated_cost(e.cost, std::vector<std::uint32_t>(e.cost.size(), 1u));
+    if (settings.time_limit_seconds > 0.0) {
+      // What the time left holds at the rate so far (timing decides only when rounds end).
+      const double rate = double(result.rays_traced) / std::max(deadline.elapsed(), 1e-9);
+      budget = std::min(budget, spent + rate * (settings.time_limit_seconds - deadline.elapsed()));
+    }
+    if (!(budget > spent) || last_round) break;
+    last_round = 2.0 * spent >= budget;
+    targets = allocate_budget(e, pixels.samples, std::min(budget, 2.0 * spent), most);
+  }
+  deadline.report(result, pixels);
 }
 
 }  // namespace rtiow

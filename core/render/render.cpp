@@ -24,8 +24,8 @@ namespace {
 // Beyond this many pixels indices overflow; a film costs this much per pixel (the float
 // image and the exact fixed-point sums).
 constexpr std::uint64_t kMaxPixels = 1ull << 31;
-constexpr std::uint64_t kBytesPerPixel =
-    sizeof(Color) + sizeof(PixelSum) + sizeof(PixelSquares) + sizeof(std::uint32_t);
+constexpr std::uint64_t kBytesPerPixel = sizeof(Color) + sizeof(PixelSum) + sizeof(PixelSquares) +
+                                         sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
 template <typename Accel>
 RenderResult render_with(const Scene& scene, const Camera& camera, const RenderSettings& settings,
@@ -42,6 +42,8 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   const auto render_start = Clock::now();
   if (settings.target_error > 0.0) {
     render_adaptive(ctx, progress, pixels, result);
+  } else if (settings.image_error > 0.0 || settings.adaptive) {
+    render_by_image_error(ctx, progress, pixels, result);
   } else {
     render_uniform(ctx, progress, pixels, result);
   }
@@ -95,6 +97,14 @@ void validate(const RenderSettings& s) {
   }
   if (!(s.target_error >= 0.0) || !std::isfinite(s.target_error)) {
     throw InvalidInput("target error must be a finite number >= 0 (0: off)");
+  }
+  if (!(s.image_error >= 0.0) || !std::isfinite(s.image_error)) {
+    throw InvalidInput("image error must be a finite number >= 0 (0: off)");
+  }
+  if (int(s.target_error > 0.0) + int(s.image_error > 0.0) + int(s.adaptive) > 1) {
+    throw InvalidInput(
+        "choose one adaptive mode: --target-error (per pixel), --image-error or --adaptive (a "
+        "budget)");
   }
   if (s.min_samples < 2) {
     throw InvalidInput("minimum samples must be >= 2 (a variance needs two), got " +

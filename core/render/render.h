@@ -36,7 +36,19 @@ struct RenderSettings {
   // this, after at least `min_samples` and at most `samples_per_pixel` samples.
   double target_error = 0.0;
   int min_samples = 16;
+  // Adaptive sampling by the image's error (core/render/sample_allocation.h): pixels get
+  // samples in proportion to sqrt(relative variance / rays per sample), which gives the
+  // lowest mean relMSE for the time. `adaptive`: spend the cost of `samples_per_pixel` uniform
+  // samples (or the time limit). `image_error` > 0: until the image's estimated relative RMS
+  // error is below it, at most `samples_per_pixel` per pixel.
+  bool adaptive = false;
+  double image_error = 0.0;
 };
+
+// Whether pixels get different sample counts (any adaptive mode).
+inline bool is_adaptive(const RenderSettings& s) {
+  return s.target_error > 0.0 || s.image_error > 0.0 || s.adaptive;
+}
 
 // Throws InvalidInput naming the setting: non-positive size or spp, negative depth,
 // an image too large to hold in memory, negative threads, a bad target error.

@@ -88,9 +88,10 @@ struct PixelAccumulators {
   std::vector<PixelSum> sums;
   std::vector<PixelSquares> squares;
   std::vector<std::uint32_t> samples;  // how many each pixel has, from the first sample
+  std::vector<std::uint64_t> rays;     // how many rays they traced (adaptive sampling's cost)
 
   explicit PixelAccumulators(std::size_t pixels)
-      : sums(pixels), squares(pixels), samples(pixels, 0) {}
+      : sums(pixels), squares(pixels), samples(pixels, 0), rays(pixels, 0) {}
 };
 
 // Runs `body` over `range` with tbb::parallel_for in an arena of the settings' thread
@@ -122,8 +123,10 @@ std::uint64_t advance_pixel(const RenderContext<Accel>& ctx, std::size_t p, std:
   if (wanted <= count) return 0;
   const RenderSettings& settings = ctx.settings;
   const int x = int(p % std::size_t(settings.width)), y = int(p / std::size_t(settings.width));
+  const std::uint64_t rays_before = rays;
   accumulate_pixel(ctx, x, y, settings.first_sample + count, settings.first_sample + wanted,
                    pixels.sums[p], pixels.squares[p], rays);
+  pixels.rays[p] += rays - rays_before;
   const std::uint64_t added = wanted - count;
   count = wanted;
   return added;

@@ -20,11 +20,13 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
                                       {key::kAccelerator, to_string(s.accel)},
                                       {key::kRaysTraced, std::int64_t(r.rays_traced)},
                                   });
-  if (s.target_error > 0) {
+  if (is_adaptive(s)) {
     // Each pixel has its own count: the range and the mean, not one "spp".
     const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
+    if (s.target_error > 0) metadata.emplace_back(key::kTargetError, s.target_error);
+    if (s.image_error > 0) metadata.emplace_back(key::kImageError, s.image_error);
+    if (s.adaptive) metadata.emplace_back(key::kAdaptive, std::string("sqrt(variance/cost)"));
     metadata.insert(metadata.end(), {
-                                        {key::kTargetError, s.target_error},
                                         {key::kSppMin, std::int64_t(*least)},
                                         {key::kSppMax, std::int64_t(*most)},
                                         {key::kSppMean, mean_samples(r)},
@@ -34,7 +36,7 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
     metadata.emplace_back(key::kSpp, std::int64_t(r.samples_completed));
   }
   if (r.stopped) {
-    if (s.target_error <= 0)
+    if (!is_adaptive(s))
       metadata.emplace_back(key::kSppRequested, std::int64_t(s.samples_per_pixel));
     metadata.emplace_back(key::kStopped, std::string("interrupted by a signal"));
   } else if (r.time_limited) {

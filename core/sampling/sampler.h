@@ -78,12 +78,12 @@ class SampleStream {
     if (kind_ == SamplerKind::Independent) uses = kUsesAll;
     const int d = dimension_;
     BounceSample b;
-    if (uses & kUsesLobe) b.lobe = next_1d();
-    dimension_ = d + 1;
     if (uses & kUsesDirection) {
       const auto direction = next_2d();
       b.direction[0] = direction[0], b.direction[1] = direction[1];
     }
+    dimension_ = d + 2;
+    if (uses & kUsesLobe) b.lobe = next_1d();
     dimension_ = d + 3;
     if (uses & kUsesRadius) b.radius = next_1d();
     dimension_ = d + kBounceDimensions;

@@ -20,6 +20,13 @@ namespace rtiow {
 
 inline constexpr int kSobolDimensions = 8;
 
+constexpr std::uint32_t reverse_bits(std::uint32_t x) {
+  x = __builtin_bswap32(x);
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  return ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+}
+
 namespace sobol_detail {
 
 struct PrimitivePolynomial {
@@ -68,9 +75,10 @@ constexpr std::array<Matrix, kSobolDimensions> make_matrices() {
 
 inline constexpr std::array<Matrix, kSobolDimensions> kMatrices = make_matrices();
 
-// The matrix product by bytes: entry [d][b][v] is the point's contribution from byte b of the
-// index having value v, so a point is four lookups instead of a loop over the index's bits
-// (a shuffled index has about 16 of them set).
+// The matrix product by bytes, bit-reversed: entry [d][b][v] is the reversed point's
+// contribution from byte b of the index having value v, so a point is four lookups instead of
+// a loop over the index's bits (a shuffled index has about 16 of them set), and the Owen
+// scramble, which works on the reversed bits, needs no reversal going in.
 using ByteTables = std::array<std::array<std::array<std::uint32_t, 256>, 4>, kSobolDimensions>;
 
 constexpr ByteTables make_byte_tables() {
@@ -82,7 +90,7 @@ constexpr ByteTables make_byte_tables() {
         for (int k = 0; k < 8; ++k) {
           if ((v >> k) & 1u) x ^= kMatrices[std::size_t(d)][std::size_t(8 * b + k)];
         }
-        t[std::size_t(d)][std::size_t(b)][v] = x;
+        t[std::size_t(d)][std::size_t(b)][v] = reverse_bits(x);
       }
     }
   }
@@ -93,19 +101,18 @@ inline constexpr ByteTables kByteTables = make_byte_tables();
 
 }  // namespace sobol_detail
 
-// The unscrambled Sobol point: index i's bits select columns of the dimension's matrix.
-// `dimension` must be below kSobolDimensions (the remainder only tells the compiler so).
-constexpr std::uint32_t sobol_bits(std::uint32_t index, int dimension) {
+// The unscrambled Sobol point with its bits reversed (the first bit is the lowest): index i's
+// bits select columns of the dimension's matrix. `dimension` must be below kSobolDimensions
+// (the remainder only tells the compiler so).
+constexpr std::uint32_t reversed_sobol_bits(std::uint32_t index, int dimension) {
   const auto& t = sobol_detail::kByteTables[std::size_t(dimension) % kSobolDimensions];
   return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^
          t[3][index >> 24];
 }
 
-constexpr std::uint32_t reverse_bits(std::uint32_t x) {
-  x = __builtin_bswap32(x);
-  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-  return ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+// The unscrambled Sobol point as a 32-bit fraction.
+constexpr std::uint32_t sobol_bits(std::uint32_t index, int dimension) {
+  return reverse_bits(reversed_sobol_bits(index, dimension));
 }
 
 // Laine and Karras's permutation: bit k of the result depends only on bits 0..k of `x`.
@@ -130,7 +137,7 @@ constexpr float to_unit_float(std::uint32_t x) {
 
 // In [0, 1) with 24 bits, like the independent sampler's floats.
 constexpr float scrambled_sobol(std::uint32_t index, int dimension, std::uint32_t seed) {
-  return to_unit_float(owen_scramble(sobol_bits(index, dimension), seed));
+  return to_unit_float(reverse_bits(laine_karras(reversed_sobol_bits(index, dimension), seed)));
 }
 
 // Padded sampling: an index shuffled by a nested scramble of its bits (Burley 2020), which

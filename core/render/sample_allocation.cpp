@@ -1,0 +1,138 @@
+#include "core/render/sample_allocation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/film/pixel_variance.h"
+
+namespace rtiow {
+
+std::vector<double> neighbourhood_mean(int width, int height, const std::vector<double>& own) {
+  std::vector<double> pooled(own.size());
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      double total = 0;
+      int count = 0;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+          total += own[std::size_t(ny) * std::size_t(width) + std::size_t(nx)];
+          ++count;
+        }
+      }
+      const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+      pooled[p] = count > 0 ? total / count : own[p];
+    }
+  }
+  return pooled;
+}
+
+std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
+                                                    const PixelAccumulators& pixels) {
+  std::vector<double> own(pixels.samples.size());
+  for (std::size_t p = 0; p < own.size(); ++p) {
+    own[p] = relative_sample_variance(pixels.sums[p], pixels.squares[p], pixels.samples[p]);
+  }
+  return neighbourhood_mean(settings.width, settings.height, own);
+}
+
+PixelEstimates pooled_estimates(const RenderSettings& settings, const PixelAccumulators& pixels) {
+  std::vector<double> cost(pixels.samples.size());
+  for (std::size_t p = 0; p < cost.size(); ++p) {
+    const std::uint32_t n = pixels.samples[p];
+    cost[p] = n > 0 ? double(pixels.rays[p]) / double(n) : 1.0;
+  }
+  PixelEstimates e{neighbourhood_relative_variance(settings, pixels),
+                   neighbourhood_mean(settings.width, settings.height, cost)};
+  // Every sample costs at least its set-up (a depth-0 or untraceable sample traces nothing).
+  for (double& c : e.cost) c = std::max(c, 1.0);
+  return e;
+}
+
+double estimated_rel_mse(const std::vector<double>& variance,
+                         const std::vector<std::uint32_t>& samples) {
+  double total = 0;
+  for (std::size_t p = 0; p < samples.size(); ++p) total += variance[p] / double(samples[p]);
+  return total / double(samples.size());
+}
+
+double estimated_cost(const std::vector<double>& cost, const std::vector<std::uint32_t>& samples) {
+  double total = 0;
+  for (std::size_t p = 0; p < samples.size(); ++p) total += double(samples[p]) * cost[p];
+  return total;
+}
+
+namespace {
+
+// Each pixel's sqrt(v / c): its count per unit of scale.
+std::vector<double> ratios(const PixelEstimates& e) {
+  std::vector<double> r(e.variance.size());
+  for (std::size_t p = 0; p < r.size(); ++p) r[p] = std::sqrt(e.variance[p] / e.cost[p]);
+  return r;
+}
+
+// The counts at scale k: round(k sqrt(v / c)), at least the current count, at most `most`.
+void counts_at(const std::vector<double>& ratio, const std::vector<std::uint32_t>& current,
+               double k, std::uint32_t most, std::vector<std::uint32_t>& out) {
+  for (std::size_t p = 0; p < current.size(); ++p) {
+    const double ideal = std::round(k * ratio[p]);
+    const std::uint32_t capped = ideal >= double(most) ? most : std::uint32_t(ideal);
+    out[p] = std::max(current[p], capped);
+  }
+}
+
+// The scales bracketing where `past` starts to hold, to within 1e-7 relative: `past` is false
+// at `below` (or `below` is the smallest scale, where no pixel moves) and true at `above` (or
+// `above` is the largest, where every pixel is at `most`). Bisection on log k.
+struct Bracket {
+  double below, above;
+};
+
+template <typename Past>
+Bracket bracket_scale(const std::vector<double>& ratio, const std::vector<std::uint32_t>& current,
+                      std::uint32_t most, const Past& past) {
+  double largest = 0, smallest = INFINITY;
+  for (const double r : ratio) {
+    if (r > 0 && std::isfinite(r)) largest = std::max(largest, r), smallest = std::min(smallest, r);
+  }
+  if (largest == 0) return {0, 0};  // no pixel has any variance: nothing to gain
+  double lo = std::log(0.4 / largest), hi = std::log(2.0 * double(most) / smallest);
+  std::vector<std::uint32_t> counts(current.size());
+  counts_at(ratio, current, std::exp(hi), most, counts);
+  if (!past(counts)) return {std::exp(hi), std::exp(hi)};
+  while (hi - lo > 1e-7) {
+    const double mid = 0.5 * (lo + hi);
+    counts_at(ratio, current, std::exp(mid), most, counts);
+    (past(counts) ? hi : lo) = mid;
+  }
+  return {std::exp(lo), std::exp(hi)};
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> allocate_budget(const PixelEstimates& estimates,
+                                           const std::vector<std::uint32_t>& current, double budget,
+                                           std::uint32_t most) {
+  const std::vector<double> ratio = ratios(estimates);
+  const Bracket k = bracket_scale(ratio, current, most, [&](const auto& n) {
+    return estimated_cost(estimates.cost, n) > budget;
+  });
+  std::vector<std::uint32_t> counts(current.size());
+  counts_at(ratio, current, k.below, most, counts);  // the largest scale that fits
+  return counts;
+}
+
+std::vector<std::uint32_t> allocate_for_error(const PixelEstimates& estimates,
+                                              const std::vector<std::uint32_t>& current,
+                                              double rel_mse, std::uint32_t most) {
+  const std::vector<double> ratio = ratios(estimates);
+  const Bracket k = bracket_scale(ratio, current, most, [&](const auto& n) {
+    return estimated_rel_mse(estimates.variance, n) <= rel_mse;
+  });
+  std::vector<std::uint32_t> counts(current.size());
+  counts_at(ratio, current, k.above, most, counts);  // the smallest scale that reaches it
+  return counts;
+}
+
+}  // namespace rtiow

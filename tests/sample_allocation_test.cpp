@@ -1,0 +1,101 @@
+// Where adaptive sampling puts samples: in proportion to sqrt(variance / cost), never below a
+// pixel's count, within the budget or just reaching the error asked for, and with a lower
+// estimated error for its cost than uniform counts or counts proportional to the variance.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/render/sample_allocation.h"
+#include "core/sampling/rng.h"
+
+namespace rtiow {
+namespace {
+
+double total_cost(const PixelEstimates& e, const std::vector<std::uint32_t>& n) {
+  return estimated_cost(e.cost, n);
+}
+
+TEST(SampleAllocation, CountsFollowTheSquareRootOfVarianceOverCost) {
+  // Variance 1, 4, 16 at cost 1, then variance 16 at cost 4: sqrt(v / c) = 1, 2, 4, 2.
+  const PixelEstimates e{{1, 4, 16, 16}, {1, 1, 1, 4}};
+  const std::vector<std::uint32_t> current(4, 2);
+  const std::vector<std::uint32_t> n = allocate_budget(e, current, 20000, 1u << 20);
+  EXPECT_LE(total_cost(e, n), 20000);
+  EXPECT_GT(total_cost(e, n), 19990) << "the budget is spent, up to rounding";
+  EXPECT_NEAR(double(n[1]) / n[0], 2.0, 0.01);
+  EXPECT_NEAR(double(n[2]) / n[0], 4.0, 0.01);
+  EXPECT_NEAR(double(n[3]) / n[0], 2.0, 0.01) << "four times the cost halves the share";
+}
+
+TEST(SampleAllocation, NeverTakesSamplesBackAndStopsAtTheCap) {
+  const PixelEstimates e{{1, 1, 100, 0}, {1, 1, 1, 1}};
+  const std::vector<std::uint32_t> current{500, 2, 2, 2};
+  const std::vector<std::uint32_t> n = allocate_budget(e, current, 1000, 300);
+  EXPECT_EQ(n[0], 500u) << "a pixel past its share keeps its samples";
+  EXPECT_EQ(n[2], 300u) << "the noisiest pixel stops at the cap";
+  EXPECT_EQ(n[3], 2u) << "a pixel without variance gains nothing";
+  EXPECT_GT(n[1], 2u);
+  // A budget smaller than what is spent moves nothing; a huge one puts every pixel that
+  // gains anything at the cap.
+  EXPECT_EQ(allocate_budget(e, current, 10, 300), current);
+  EXPECT_EQ(allocate_budget(e, current, 1e12, 300), (std::vector<std::uint32_t>{500, 300, 300, 2}));
+}
+
+TEST(SampleAllocation, ReachesTheErrorAskedForAtTheLeastScale) {
+  const PixelEstimates e{{0.5, 2, 8, 0.1, 30}, {1, 2, 3, 1, 5}};
+  const std::vector<std::uint32_t> current(5, 16);
+  for (const double goal : {1e-2, 1e-3, 1e-4}) {
+    const std::vector<std::uint32_t> n = allocate_for_error(e, current, goal, 1u << 24);
+    EXPECT_LE(estimated_rel_mse(e.variance, n), goal);
+    // One sample fewer on the pixel that gains most per ray would miss the goal, or be at the
+    // minimum: the counts are (up to rounding) the cheapest that reach it.
+    std::vector<std::uint32_t> fewer = n;
+    for (std::uint32_t& c : fewer) c = c > 16 ? std::uint32_t(std::floor(c * 0.99)) : c;
+    EXPECT_GT(estimated_rel_mse(e.variance, fewer), goal) << goal;
+  }
+}
+
+// The point of the rule: for the same estimated cost, sqrt(v / c) counts give a lower
+// estimated mean relMSE than uniform counts and than counts proportional to v (what a rule
+// that equalises every pixel's error does).
+TEST(SampleAllocation, BeatsUniformAndProportionalToVarianceAtEqualCost) {
+  Pcg32 rng(3, 4);
+  PixelEstimates e;
+  for (int p = 0; p < 1000; ++p) {
+    const double u = rng.next_double();
+    e.variance.push_back(std::exp(6 * u - 3));            // spread over e^-3..e^3
+    e.cost.push_back(1 + 4 * rng.next_double() + 2 * u);  // costlier where noisier
+  }
+  const std::vector<std::uint32_t> start(e.variance.size(), 1);
+  const std::vector<std::uint32_t> uniform(e.variance.size(), 64);
+  const double budget = total_cost(e, uniform);
+  const std::vector<std::uint32_t> best = allocate_budget(e, start, budget, 1u << 24);
+  std::vector<std::uint32_t> by_variance(e.variance.size());
+  double scale = 0;
+  for (std::size_t p = 0; p < e.variance.size(); ++p) scale += e.variance[p] * e.cost[p];
+  for (std::size_t p = 0; p < e.variance.size(); ++p) {
+    by_variance[p] = std::max(1u, std::uint32_t(std::lround(budget * e.variance[p] / scale)));
+  }
+  const double best_error = estimated_rel_mse(e.variance, best);
+  EXPECT_LE(total_cost(e, best), budget);
+  EXPECT_LT(best_error * 1.2, estimated_rel_mse(e.variance, uniform));
+  EXPECT_LT(best_error * 1.2,
+            estimated_rel_mse(e.variance, by_variance) * total_cost(e, by_variance) / budget);
+}
+
+TEST(SampleAllocation, NeighbourhoodMeanLeavesThePixelOut) {
+  // 3x3 with 9 at the centre: the centre sees only its neighbours (all 1); a corner sees its
+  // three neighbours, the centre among them: (1 + 1 + 9) / 3.
+  const std::vector<double> own{1, 1, 1, 1, 9, 1, 1, 1, 1};
+  const std::vector<double> pooled = neighbourhood_mean(3, 3, own);
+  EXPECT_DOUBLE_EQ(pooled[4], 1.0);
+  EXPECT_DOUBLE_EQ(pooled[0], 11.0 / 3.0);
+  EXPECT_DOUBLE_EQ(pooled[1], (1 + 1 + 1 + 1 + 9) / 5.0);
+  EXPECT_EQ(neighbourhood_mean(1, 1, {7}), std::vector<double>{7}) << "no neighbours: its own";
+}
+
+}  // namespace
+}  // namespace rtiow
