@@ -44,7 +44,9 @@ struct RenderOptions {
   std::string accel = "embree";
   std::string fresnel;  // empty: as the scene says
   double time_limit = 0.0;
-  std::string sampler = "independent";
+  // Sobol: at equal time 2.3-5.4x lower relMSE than independent sampling on every built-in
+  // scene (docs/accuracy.md); the book's sampler is --sampler independent.
+  std::string sampler = to_string(SamplerKind::Sobol);
   double target_error = 0.0;
   double image_error = 0.0;
   bool adaptive = false;
@@ -391,9 +393,10 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                   "the file holds the samples completed. With --spp, stop at that many")
       ->check(kFiniteNotNegative);
   cmd->add_option("--sampler", o.sampler,
-                  "Sampler: independent (the book's), sobol (one Owen-scrambled Sobol point for "
-                  "pixel, lens and first bounce, padded Sobol for later bounces) or padded-sobol "
-                  "(every 1D and 2D dimension its own scrambled Sobol sequence)")
+                  "Sampler: sobol (one Owen-scrambled Sobol point for pixel, lens and first "
+                  "bounce, padded Sobol for later bounces: 2.3-5.4x lower relMSE at equal time "
+                  "on the built-in scenes), independent (the book's) or padded-sobol (every 1D "
+                  "and 2D dimension its own scrambled Sobol sequence)")
       ->check(CLI::IsMember({to_string(SamplerKind::Independent), to_string(SamplerKind::Sobol),
                              to_string(SamplerKind::PaddedSobol)}))
       ->capture_default_str();
