@@ -139,26 +139,17 @@ std::vector<double> column(const json& rows, const std::string& key) {
 constexpr SamplerKind kSamplers[] = {SamplerKind::Independent, SamplerKind::Sobol,
                                      SamplerKind::PaddedSobol};
 
-json sweep_spp(const Experiment& x, const AccuracyOptions& o, SamplerKind sampler) {
+// Uniform sampling at spp 1, 2, 4, ... max_spp; or --adaptive on the budget of 32..max_spp
+// uniform samples (16 is the minimum every pixel takes).
+json sweep_spp(const Experiment& x, const AccuracyOptions& o, SamplerKind sampler,
+               bool adaptive = false) {
   json rows = json::array();
-  for (int spp = 1; spp <= o.max_spp; spp *= 2) {
+  for (int spp = adaptive ? 32 : 1; spp <= o.max_spp; spp *= 2) {
     RenderSettings s = x.settings();
     s.samples_per_pixel = spp;
     s.sampler = sampler;
-    rows.push_back(x.run("spp", to_string(sampler), spp, s).row);
-  }
-  return rows;
-}
-
-// --adaptive on the budget of 32..max_spp uniform samples (16 is the minimum every pixel takes).
-json sweep_budget(const Experiment& x, const AccuracyOptions& o, SamplerKind sampler) {
-  json rows = json::array();
-  for (int spp = 32; spp <= o.max_spp; spp *= 2) {
-    RenderSettings s = x.settings();
-    s.samples_per_pixel = spp;
-    s.sampler = sampler;
-    s.adaptive = true;
-    rows.push_back(x.run("budget", to_string(sampler), spp, s).row);
+    s.adaptive = adaptive;
+    rows.push_back(x.run(adaptive ? "budget" : "spp", to_string(sampler), spp, s).row);
   }
   return rows;
 }
@@ -321,21 +312,25 @@ void print_budget_table(const json& r) {
   }
 }
 
-void print_image_error_table(const json& r) {
-  const json& s = r["summary"];
-  std::printf("\nimage error (--image-error with %s, at most %d spp per pixel)\n",
-              r["image_error_sampler"].get<std::string>().c_str(), 4 * r["max_spp"].get<int>());
+// Rows of renders that stop at an error (--image-error, --target-error): what each reached,
+// its bias, and its relMSE against its baseline's at equal time.
+void print_error_rows(const json& rows, const json& factors, const char* factor_label) {
   std::printf("  %6s %9s %9s %10s %9s %20s %11s\n", "target", "mean spp", "seconds", "relMSE",
-              "achieved", "mean difference", "vs uniform");
-  for (std::size_t i = 0; i < r["image_error"].size(); ++i) {
-    const json& row = r["image_error"][i];
+              "achieved", "mean difference", factor_label);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const json& row = rows[i];
     std::printf("  %6.3f %9.1f %9.4f %10.3e %9.4f %+9.5f +- %7.5f %10.2fx\n",
                 row["parameter"].get<double>(), row["spp_mean"].get<double>(),
                 row["seconds"].get<double>(), row["rel_mse"].get<double>(),
                 row["achieved_error"].get<double>(), row["mean_difference"].get<double>(),
-                row["mean_difference_error"].get<double>(),
-                s["image_error_equal_time_factors"][i]["factor"].get<double>());
+                row["mean_difference_error"].get<double>(), factors[i]["factor"].get<double>());
   }
+}
+
+void print_image_error_table(const json& r) {
+  std::printf("\nimage error (--image-error with %s, at most %d spp per pixel)\n",
+              r["image_error_sampler"].get<std::string>().c_str(), 4 * r["max_spp"].get<int>());
+  print_error_rows(r["image_error"], r["summary"]["image_error_equal_time_factors"], "vs uniform");
 }
 
 void print_book_quality(const json& r) {
@@ -397,20 +392,9 @@ void print_choice_tables(const json& r) {
 }
 
 void print_adaptive_table(const json& r) {
-  const json& s = r["summary"];
   std::printf("\nadaptive sampling (--target-error, min 16 spp, at most %d)\n",
               4 * r["max_spp"].get<int>());
-  std::printf("  %6s %9s %9s %10s %9s %20s %12s\n", "target", "mean spp", "seconds", "relMSE",
-              "achieved", "mean difference", "equal-time");
-  for (std::size_t i = 0; i < r["adaptive"].size(); ++i) {
-    const json& row = r["adaptive"][i];
-    std::printf("  %6.3f %9.1f %9.4f %10.3e %9.4f %+9.5f +- %7.5f %11.2fx\n",
-                row["parameter"].get<double>(), row["spp_mean"].get<double>(),
-                row["seconds"].get<double>(), row["rel_mse"].get<double>(),
-                row["achieved_error"].get<double>(), row["mean_difference"].get<double>(),
-                row["mean_difference_error"].get<double>(),
-                s["adaptive_equal_time_factors"][i]["factor"].get<double>());
-  }
+  print_error_rows(r["adaptive"], r["summary"]["adaptive_equal_time_factors"], "equal-time");
   std::printf(
       "  (achieved = sqrt(relMSE); equal-time = independent's relMSE at the same time / "
       "adaptive's)\n");
@@ -615,7 +599,8 @@ int run_accuracy(const AccuracyOptions& o) {
             {"repeat", o.repeat},
             {"threads", o.threads}};
   for (const SamplerKind kind : kSamplers) r["spp"][to_string(kind)] = sweep_spp(x, o, kind);
-  for (const SamplerKind kind : kSamplers) r["budget"][to_string(kind)] = sweep_budget(x, o, kind);
+  for (const SamplerKind kind : kSamplers)
+    r["budget"][to_string(kind)] = sweep_spp(x, o, kind, true);
   r["image_error_sampler"] = to_string(SamplerKind::Sobol);
   r["image_error"] = sweep_image_error(x, o, SamplerKind::Sobol);
   r["depth_sweep"] = sweep_depth(x, o);
