@@ -97,6 +97,20 @@ TEST(SampleStream, EveryKindIsAPureFunctionOfSeedPixelAndSample) {
   }
 }
 
+// The render loop makes a pixel's shared hashes once (PixelSampler); its streams must draw
+// exactly what a stream made from (seed, pixel) alone draws, past the cached dimensions too.
+TEST(SampleStream, APixelsSharedHashesChangeNoValue) {
+  for (const SamplerKind kind : kKinds) {
+    const PixelSampler pixel(kind, 9, 31, 17);
+    for (std::uint64_t s = 0; s < 64; ++s) {
+      SampleStream a(pixel, s), b(kind, 9, 31, 17, s);
+      for (int d = 0; d < 3 * PixelSampler::kCachedDimensions; d += 2) {
+        ASSERT_EQ(a.next_2d(), b.next_2d()) << to_string(kind) << " sample " << s << " dim " << d;
+      }
+    }
+  }
+}
+
 // The layout is fixed: the camera takes 4 dimensions and every bounce 4, for every sampler,
 // and a bounce's numbers are the dimensions it starts at (2D, 1D, 1D), whatever is drawn
 // before them.

@@ -51,6 +51,7 @@ void accumulate_pixel(const RenderContext<Accel>& ctx, int x, int y, std::uint64
   // The camera rays of kRayPacketSize samples go to the accelerator together (coherent: one
   // pixel); each path then goes on alone. Every sample has its own stream, so the image is
   // the one sample-by-sample tracing gives.
+  const PixelSampler pixel(settings.sampler, settings.seed, std::uint32_t(x), std::uint32_t(y));
   std::array<std::optional<SampleStream>, kRayPacketSize> streams;
   std::array<Ray, kRayPacketSize> rays_out;
   std::array<std::optional<Hit>, kRayPacketSize> hits;
@@ -59,9 +60,7 @@ void accumulate_pixel(const RenderContext<Accel>& ctx, int x, int y, std::uint64
     int traced = 0;  // the packet holds the samples whose first ray is traced, in order
     std::array<int, kRayPacketSize> slot;
     for (int k = 0; k < count; ++k) {
-      SampleStream& rng =
-          streams[std::size_t(k)].emplace(settings.sampler, settings.seed, std::uint32_t(x),
-                                          std::uint32_t(y), i + std::uint64_t(k));
+      SampleStream& rng = streams[std::size_t(k)].emplace(pixel, i + std::uint64_t(k));
       const std::array<float, 4> u = rng.next_camera();  // a pinhole ignores the lens's two
       const float s = (float(x) + u[0]) * inv_w;
       const float t = (float(y) + u[1]) * inv_h;

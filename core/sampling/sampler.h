@@ -32,15 +32,48 @@ SamplerKind parse_sampler(const std::string& name);  // throws InvalidInput
 // The names parse_sampler knows, comma separated, for help texts and errors.
 const char* sampler_names();
 
+// A pixel's hash of (seed, pixel).
+constexpr std::uint64_t pixel_hash(std::uint64_t seed, std::uint32_t px, std::uint32_t py) {
+  return hash_combine(hash_combine(mix64(seed), px), py);
+}
+
+// Each dimension's scrambles (and shuffle) for a pixel: one finaliser of (pixel, dimension).
+constexpr std::uint64_t dimension_hash(std::uint64_t pixel_hash, int d) {
+  return mix64(pixel_hash + 0x9e3779b97f4a7c15ull * std::uint64_t(d + 1));
+}
+
+// What all samples of a pixel share: its hash and the hashes of its first dimensions, which
+// depend on the pixel and the dimension but not on the sample. Made once per pixel, they save
+// a sample some twenty 64-bit finalisers (about 8% of a Sobol sample's time on the cover).
+struct PixelSampler {
+  static constexpr int kCachedDimensions = 16;  // the camera and three bounces
+
+  SamplerKind kind;
+  std::uint64_t hash;
+  std::array<std::uint64_t, kCachedDimensions> dimension_hashes{};
+
+  constexpr PixelSampler(SamplerKind kind_, std::uint64_t seed, std::uint32_t px, std::uint32_t py)
+      : kind(kind_), hash(pixel_hash(seed, px, py)) {
+    if (kind == SamplerKind::Independent) return;  // it draws from its stream alone
+    for (int d = 0; d < kCachedDimensions; ++d) {
+      dimension_hashes[std::size_t(d)] = dimension_hash(hash, d);
+    }
+  }
+};
+
 class SampleStream {
  public:
   constexpr SampleStream(std::uint64_t seed, std::uint32_t px, std::uint32_t py,
                          std::uint64_t sample_index, SamplerKind kind = SamplerKind::Independent)
-      : SampleStream(hash_combine(hash_combine(mix64(seed), px), py), sample_index, kind) {}
+      : SampleStream(pixel_hash(seed, px, py), nullptr, sample_index, kind) {}
 
   constexpr SampleStream(SamplerKind kind, std::uint64_t seed, std::uint32_t px, std::uint32_t py,
                          std::uint64_t sample_index)
       : SampleStream(seed, px, py, sample_index, kind) {}
+
+  // Sample `sample_index` of the pixel; `pixel` must outlive the stream.
+  constexpr SampleStream(const PixelSampler& pixel, std::uint64_t sample_index)
+      : SampleStream(pixel.hash, pixel.dimension_hashes.data(), sample_index, pixel.kind) {}
 
   // The next dimension.
   constexpr float next_1d() {
@@ -94,23 +127,31 @@ class SampleStream {
   constexpr int dimension() const { return dimension_; }
 
  private:
-  constexpr SampleStream(std::uint64_t pixel_hash, std::uint64_t sample_index, SamplerKind kind)
-      : rng_(pixel_hash, hash_combine(pixel_hash, sample_index)),
-        pixel_hash_(pixel_hash),
+  constexpr SampleStream(std::uint64_t pixel_hash, const std::uint64_t* cached_hashes,
+                         std::uint64_t sample_index, SamplerKind kind)
+      : pixel_hash_(pixel_hash),
+        cached_hashes_(cached_hashes),
         index_(std::uint32_t(sample_index)),
         reversed_index_(reverse_bits(std::uint32_t(sample_index))),
-        kind_(kind) {}
+        kind_(kind) {
+    // Only the independent sampler reads the stream: the others skip its set-up.
+    if (kind == SamplerKind::Independent) {
+      rng_.set_sequence(pixel_hash, hash_combine(pixel_hash, sample_index));
+    }
+  }
 
   constexpr bool is_joint(int d) const {
     return kind_ == SamplerKind::Sobol && d < kSobolDimensions;
   }
-  // Each dimension's scrambles (and shuffle): one finaliser of (pixel, dimension).
   constexpr std::uint64_t dimension_hash(int d) const {
-    return mix64(pixel_hash_ + 0x9e3779b97f4a7c15ull * std::uint64_t(d + 1));
+    return cached_hashes_ && d < PixelSampler::kCachedDimensions
+               ? cached_hashes_[d]
+               : rtiow::dimension_hash(pixel_hash_, d);
   }
 
-  Pcg32 rng_;
+  Pcg32 rng_{};
   std::uint64_t pixel_hash_;
+  const std::uint64_t* cached_hashes_;
   std::uint32_t index_;
   std::uint32_t reversed_index_;
   SamplerKind kind_;
