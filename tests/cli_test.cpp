@@ -358,6 +358,23 @@ TEST(Cli, AdaptiveRenderWritesStatisticsChannelsAndItsSampleCounts) {
               1e-3);
 }
 
+// --adaptive's --spp is a budget: the file says so, and the pixels' counts spread around it.
+TEST(Cli, BudgetRenderRecordsItsBudgetAndSpreadsItsSamples) {
+  const fs::path out = output_path("budget.exr");
+  const CommandResult r =
+      run_rtiow("render --scene cover --width 32 --spp 64 --adaptive -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("adaptive)"), std::string::npos) << r.stderr_text;
+  auto in = OIIO::ImageInput::open(out.string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec spec = in->spec();
+  EXPECT_EQ(spec.get_string_attribute("rtiow:adaptive"), "sqrt(variance/cost)");
+  EXPECT_EQ(spec.get_int_attribute("rtiow:spp_budget"), 64);
+  EXPECT_EQ(spec.get_int_attribute("rtiow:spp_min"), 16);
+  EXPECT_GT(spec.get_int_attribute("rtiow:spp_max"), 64) << "the noisiest pixels get more";
+  EXPECT_EQ(spec.get_int_attribute("rtiow:spp_limit"), 1 << 24);
+}
+
 TEST(Cli, RefusesAdaptiveAndStatisticsOptionsWhereTheyCannotWork) {
   expect_refused("--scene cover --width 8 --spp 4 --sampler halton", "--sampler");
   expect_refused("--scene cover --width 8 --spp 4 --stats-channels", "must be .exr");

@@ -99,9 +99,6 @@ void render_adaptive(const RenderContext<Accel>& ctx, RenderProgress* progress,
   deadline.report(result, pixels);
 }
 
-// The most samples a pixel takes when --spp is a budget rather than a cap.
-inline constexpr std::uint32_t kMostAdaptiveSamples = 1u << 24;
-
 // --image-error and --adaptive: after the minimum, each round allocates counts proportional to
 // sqrt(v / c) (sample_allocation.h). With an image error, until the estimated mean relMSE is
 // the error squared, each pixel at most doubling per round. With a budget (the cost of --spp

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "core/film/render_statistics.h"
@@ -25,13 +26,21 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
     const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
     if (s.target_error > 0) metadata.emplace_back(key::kTargetError, s.target_error);
     if (s.image_error > 0) metadata.emplace_back(key::kImageError, s.image_error);
-    if (s.adaptive) metadata.emplace_back(key::kAdaptive, std::string("sqrt(variance/cost)"));
-    metadata.insert(metadata.end(), {
-                                        {key::kSppMin, std::int64_t(*least)},
-                                        {key::kSppMax, std::int64_t(*most)},
-                                        {key::kSppMean, mean_samples(r)},
-                                        {key::kSppLimit, std::int64_t(s.samples_per_pixel)},
-                                    });
+    if (s.adaptive) {
+      metadata.emplace_back(key::kAdaptive, std::string("sqrt(variance/cost)"));
+      if (s.samples_per_pixel != std::numeric_limits<int>::max()) {  // else the time limit's
+        metadata.emplace_back(key::kSppBudget, std::int64_t(s.samples_per_pixel));
+      }
+    }
+    metadata.insert(
+        metadata.end(),
+        {
+            {key::kSppMin, std::int64_t(*least)},
+            {key::kSppMax, std::int64_t(*most)},
+            {key::kSppMean, mean_samples(r)},
+            {key::kSppLimit,
+             std::int64_t(s.adaptive ? kMostAdaptiveSamples : std::uint32_t(s.samples_per_pixel))},
+        });
   } else {
     metadata.emplace_back(key::kSpp, std::int64_t(r.samples_completed));
   }
