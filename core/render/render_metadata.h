@@ -26,7 +26,7 @@ inline constexpr const char* kSppMax = "spp_max";
 inline constexpr const char* kSppMean = "spp_mean";
 inline constexpr const char* kSppLimit = "spp_limit";
 inline constexpr const char* kSppBudget = "spp_budget";  // --adaptive: the uniform spp it costs
-inline constexpr const char* kStopped = "stopped";               // why it ended early
+inline constexpr const char* kStopped = "stopped";       // why it ended early
 inline constexpr const char* kRenderSeconds = "render_seconds";  // left out if reproducible
 
 }  // namespace rtiow::metadata_key
