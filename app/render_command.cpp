@@ -337,8 +337,15 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
   if (mpi.distributed() && !gather_ranks(mpi, job, result)) return 0;
   write_result(o, job, result);
   if (result.stopped) {
-    std::fprintf(stderr, "rtiow: interrupted: wrote %s (of %d asked) to %s\n",
-                 describe_samples(job.settings, result).c_str(), job.settings.samples_per_pixel,
+    // What was asked: a count, a budget (--adaptive), or nothing but a time limit.
+    const RenderSettings& s = job.settings;
+    std::string asked;
+    if (s.samples_per_pixel != std::numeric_limits<int>::max()) {
+      asked = (s.adaptive ? " (of a budget of " : " (of ") + std::to_string(s.samples_per_pixel) +
+              (s.adaptive ? " spp)" : " asked)");
+    }
+    std::fprintf(stderr, "rtiow: interrupted: wrote %s%s to %s\n",
+                 describe_samples(s, result).c_str(), asked.c_str(),
                  std::filesystem::absolute(job.output).c_str());
     return 128 + InterruptGuard::signal_received();
   }
