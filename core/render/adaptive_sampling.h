@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <vector>
 
 #include "core/render/render_loop.h"
@@ -131,10 +132,10 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
       continue;
     }
     const double spent = estimated_cost(e.cost, pixels.samples);
-    double budget = open_ended
-                        ? INFINITY
-                        : double(settings.samples_per_pixel) *
-                              estimated_cost(e.cost, std::vector<std::uint32_t>(e.cost.size(), 1u));
+    // The budget: what every pixel at samples_per_pixel would cost.
+    double budget = open_ended ? INFINITY
+                               : double(settings.samples_per_pixel) *
+                                     std::accumulate(e.cost.begin(), e.cost.end(), 0.0);
     if (settings.time_limit_seconds > 0.0) {
       // What the time left holds at the rate so far (timing decides only when rounds end).
       const double rate = double(result.rays_traced) / std::max(deadline.elapsed(), 1e-9);

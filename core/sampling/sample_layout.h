@@ -2,17 +2,19 @@
 // The fixed layout of a pixel sample's dimensions, owned by the integrator rather than the
 // materials: the camera takes the first kCameraDimensions (film position 2D, lens 2D, drawn
 // even by a pinhole camera), then every bounce takes the same kBounceDimensions whatever it
-// hits (direction 2D, lobe 1D, radius 1D), used or not. The direction comes first: with the
-// Sobol sampler the first bounce's direction is then dimensions 4 and 5, whose joint
-// stratification with the pixel gave 15% lower relMSE on the cover than dimensions 5 and 6. So
-// dimension d always drives the same decision, which is what lets a low-discrepancy sampler
-// stratify it (pbrt-v4 hands `Sample_f` a 1D and a 2D value the same way; Mitsuba 3's
-// `BSDF::sample` takes sample1 and sample2).
+// hits (direction 2D, lobe 1D, radius 1D), used or not. So dimension d always drives the same
+// decision, which is what lets a low-discrepancy sampler stratify it (pbrt-v4 hands
+// `Sample_f` a 1D and a 2D value the same way; Mitsuba 3's `BSDF::sample` takes sample1 and
+// sample2). The direction comes first: with the Sobol sampler the first bounce's direction is
+// then dimensions 4 and 5, whose joint stratification with the pixel gave 15% lower relMSE on
+// the cover than dimensions 5 and 6.
 
 namespace rtiow {
 
 inline constexpr int kCameraDimensions = 4;
 inline constexpr int kBounceDimensions = 4;
+// Where each of a bounce's numbers sits within its four.
+inline constexpr int kDirectionOffset = 0, kLobeOffset = 2, kRadiusOffset = 3;
 
 // The uniforms in [0, 1) a material gets for one scattering decision.
 struct BounceSample {

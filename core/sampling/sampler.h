@@ -79,7 +79,7 @@ class SampleStream {
   constexpr float next_1d() {
     const int d = dimension_++;
     if (kind_ == SamplerKind::Independent) return rng_.next_float();
-    const std::uint64_t h = dimension_hash(d);
+    const std::uint64_t h = hash_of(d);
     if (is_joint(d)) return scrambled_sobol(index_, d, std::uint32_t(h >> 32));
     return scrambled_van_der_corput(shuffled_index(reversed_index_, std::uint32_t(h)),
                                     std::uint32_t(h >> 32));
@@ -93,7 +93,7 @@ class SampleStream {
       return {u, next_1d()};
     }
     dimension_ += 2;
-    const std::uint64_t h = dimension_hash(d);
+    const std::uint64_t h = hash_of(d);
     const std::uint32_t i = shuffled_index(reversed_index_, std::uint32_t(h));
     return {scrambled_van_der_corput(i, std::uint32_t(h >> 32)),
             scrambled_sobol(i, 1, std::uint32_t((h * 0xd1342543de82ef95ull) >> 32))};
@@ -111,13 +111,14 @@ class SampleStream {
     if (kind_ == SamplerKind::Independent) uses = kUsesAll;
     const int d = dimension_;
     BounceSample b;
+    dimension_ = d + kDirectionOffset;
     if (uses & kUsesDirection) {
       const auto direction = next_2d();
       b.direction[0] = direction[0], b.direction[1] = direction[1];
     }
-    dimension_ = d + 2;
+    dimension_ = d + kLobeOffset;
     if (uses & kUsesLobe) b.lobe = next_1d();
-    dimension_ = d + 3;
+    dimension_ = d + kRadiusOffset;
     if (uses & kUsesRadius) b.radius = next_1d();
     dimension_ = d + kBounceDimensions;
     return b;
@@ -143,10 +144,9 @@ class SampleStream {
   constexpr bool is_joint(int d) const {
     return kind_ == SamplerKind::Sobol && d < kSobolDimensions;
   }
-  constexpr std::uint64_t dimension_hash(int d) const {
-    return cached_hashes_ && d < PixelSampler::kCachedDimensions
-               ? cached_hashes_[d]
-               : rtiow::dimension_hash(pixel_hash_, d);
+  constexpr std::uint64_t hash_of(int d) const {
+    return cached_hashes_ && d < PixelSampler::kCachedDimensions ? cached_hashes_[d]
+                                                                 : dimension_hash(pixel_hash_, d);
   }
 
   Pcg32 rng_{};
