@@ -38,10 +38,13 @@ inline SurfaceHit make_surface_hit(const SphereSet& spheres, const Ray& ray, con
   const double radius = spheres.radius[hit.sphere];
   // In double, then rounded once: the point relative to a far-away centre (a huge ground
   // sphere) keeps its precision. Re-projection removes the error t carries along the ray.
-  Vec3d offset = Vec3d(ray.origin) + double(hit.t) * Vec3d(ray.direction) - center;
+  const Vec3d offset = Vec3d(ray.origin) + double(hit.t) * Vec3d(ray.direction) - center;
   const double dist = length(offset);
-  if (dist > 0.0) offset *= std::abs(radius) / dist;
-  const Vec3d point = center + offset;
+  // One division (the sqrt and it are the longest chain of a bounce): the unit outward
+  // direction, whose sign follows the radius's (hollow spheres), and the point at |radius|.
+  const double inv_dist = dist > 0.0 ? 1.0 / dist : 0.0;
+  const Vec3d unit_offset = offset * inv_dist;
+  const Vec3d point = dist > 0.0 ? center + std::abs(radius) * unit_offset : center + offset;
   SurfaceHit s;
   s.point = Vec3(point);
   // |stored - exact|: the rounding to float (half an ulp of the point) plus the double
@@ -49,7 +52,7 @@ inline SurfaceHit make_surface_hit(const SphereSet& spheres, const Ray& ray, con
   s.point_error =
       float_error_gamma(1) * abs(s.point) +
       Vec3(1e-14 * (abs(center) + Vec3d(std::abs(radius), std::abs(radius), std::abs(radius))));
-  const Vec3 outward(offset / radius);  // negative radius flips it: hollow spheres
+  const Vec3 outward(radius < 0.0 ? -unit_offset : unit_offset);
   s.front_face = dot(ray.direction, outward) < 0.0f;
   s.normal = s.front_face ? outward : -outward;
   s.material = spheres.material[hit.sphere];

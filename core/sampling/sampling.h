@@ -3,9 +3,9 @@
 // closed-form (no rejection loop), so every sample uses a fixed number of dimensions.
 
 #include <cmath>
-#include <numbers>
 
 #include "core/geometry/vec3.h"
+#include "core/sampling/unit_circle.h"
 
 namespace rtiow {
 
@@ -13,8 +13,8 @@ namespace rtiow {
 inline Vec3 sample_unit_vector(float u1, float u2) {
   const float z = 1.0f - 2.0f * u1;
   const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-  const float phi = 2.0f * std::numbers::pi_v<float> * u2;
-  return {r * std::cos(phi), r * std::sin(phi), z};
+  const CirclePoint azimuth = circle_point(u2);
+  return {r * azimuth.cos, r * azimuth.sin, z};
 }
 
 // Uniform point inside the unit ball: a uniform direction at radius u^(1/3).
@@ -27,16 +27,17 @@ inline Vec3 sample_in_unit_sphere(float u1, float u2, float u3) {
 inline Vec3 sample_in_unit_disk(float u1, float u2) {
   const float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
   if (a == 0.0f && b == 0.0f) return {0.0f, 0.0f, 0.0f};
-  constexpr float kQuarterPi = std::numbers::pi_v<float> / 4.0f;
-  float r, theta;
+  // The angle in turns: pi/4 (b/a) or pi/2 - pi/4 (a/b) radians.
+  float r, turns;
   if (std::abs(a) > std::abs(b)) {
     r = a;
-    theta = kQuarterPi * (b / a);
+    turns = 0.125f * (b / a);
   } else {
     r = b;
-    theta = 2.0f * kQuarterPi - kQuarterPi * (a / b);
+    turns = 0.25f - 0.125f * (a / b);
   }
-  return {r * std::cos(theta), r * std::sin(theta), 0.0f};
+  const CirclePoint angle = circle_point(turns);
+  return {r * angle.cos, r * angle.sin, 0.0f};
 }
 
 }  // namespace rtiow

@@ -1,0 +1,38 @@
+#pragma once
+// The point of the unit circle at a fraction of a turn, for the warps of sampling.h: a
+// direction's azimuth, a lens sample's angle. Inline and without a library call, it costs
+// about a third of sincosf on the per-bounce path (where sincosf was 4-5% of a render), and
+// it is accurate to a few float ulps (tested against double over the whole turn).
+
+#include <cmath>
+#include <numbers>
+
+namespace rtiow {
+
+struct CirclePoint {
+  float cos;
+  float sin;
+};
+
+// cos and sin of 2 pi * turns, for |turns| <= 2^20 (the warps pass [-1, 1]).
+inline CirclePoint circle_point(float turns) {
+  // The nearest quarter turn, then a remainder in [-pi/4, pi/4] where the Taylor
+  // polynomials below are exact to float precision (their first omitted terms are below
+  // 3e-8 there). `quarters - nearest` is exact.
+  const float quarters = 4.0f * turns;
+  const float nearest = std::floor(quarters + 0.5f);
+  const float x = (quarters - nearest) * (std::numbers::pi_v<float> / 2.0f);
+  const float x2 = x * x;
+  const float s =
+      x * (1.0f + x2 * (-1.0f / 6.0f +
+                        x2 * (1.0f / 120.0f + x2 * (-1.0f / 5040.0f + x2 * (1.0f / 362880.0f)))));
+  const float c =
+      1.0f + x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f))));
+  // Turn (c, s) by the quarter turns: k = 1 gives (-s, c), 2 (-c, -s), 3 (s, -c).
+  const int k = int(nearest) & 3;
+  const float a = (k & 1) ? s : c;
+  const float b = (k & 1) ? c : s;
+  return {(k == 1 || k == 2) ? -a : a, (k & 2) ? -b : b};
+}
+
+}  // namespace rtiow
