@@ -120,9 +120,7 @@ TEST(Render, SobolAndAdaptiveRendersAreDeterministic) {
 // stop between the minimum and the maximum, so the check is not vacuous.
 TEST(Render, TargetErrorStopsEveryPixelAtItsTarget) {
   const Scene scene = make_builtin_scene("cover", 1);
-  RenderSettings s;
-  s.width = 48;
-  s.height = 27;
+  RenderSettings s = tiny(scene);  // 48x27
   s.samples_per_pixel = 1024;
   s.max_depth = 50;
   s.target_error = 0.15;
