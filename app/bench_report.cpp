@@ -40,8 +40,12 @@ void print_bench_table(const json& r) {
               c["embree_1_thread"]["render_seconds"].get<double>(), one);
   std::printf("  %-28s %9s %9.2f   (%.2fM rays the render traced)\n", "raw rtcIntersect1", "",
               trace, c["trace"]["rays"].get<double>() * 1e-6);
+  const double traversal = c["traversal"]["mrays_per_second"];
+  std::printf("  %-28s %9s %9.2f   (the same rays, callback returns at once)\n",
+              "embree traversal alone", "", traversal);
   std::printf("  embree / naive:            %.2fx\n", embree / naive);
   std::printf("  render / raw trace rate:   %.0f%%\n", 100.0 * embree / trace);
+  std::printf("  render / traversal alone:  %.0f%%\n", 100.0 * embree / traversal);
   std::printf("  thread scaling 1 -> %d:     %.2fx\n", r["threads"].get<int>(), embree / one);
 
   const json& s = r["scaling_settings"];

@@ -45,8 +45,9 @@ std::vector<Ray> record_traced_rays(const Scene& scene, const RenderSettings& se
   return rays;
 }
 
-TraceRate measure_trace_rate(const Scene& scene, const std::vector<Ray>& rays, int threads) {
-  const EmbreeAccel embree(scene.spheres);
+TraceRate measure_trace_rate(const Scene& scene, const std::vector<Ray>& rays, int threads,
+                             EmbreeCallback callback) {
+  const EmbreeAccel embree(scene.spheres, callback);
   std::atomic<std::uint64_t> hits{0};
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   const auto start = std::chrono::steady_clock::now();

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/accel/embree_accel.h"
 #include "core/geometry/ray.h"
 #include "core/render/render.h"
 #include "core/scene/scene.h"
@@ -22,7 +23,9 @@ struct TraceRate {
   double mrays_per_second() const { return seconds > 0 ? double(rays) / seconds * 1e-6 : 0.0; }
 };
 
-// Traces `rays` through Embree on `threads` threads (0: all cores), nothing else.
-TraceRate measure_trace_rate(const Scene& scene, const std::vector<Ray>& rays, int threads);
+// Traces `rays` through Embree on `threads` threads (0: all cores), nothing else. With
+// EmbreeCallback::Nothing, the sphere test is left out too: Embree's traversal alone.
+TraceRate measure_trace_rate(const Scene& scene, const std::vector<Ray>& rays, int threads,
+                             EmbreeCallback callback = EmbreeCallback::SphereTest);
 
 }  // namespace rtiow

@@ -315,9 +315,10 @@ TEST(Cli, BenchWritesFiguresAndPlot) {
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text << r.stdout_text;
   EXPECT_NE(r.stdout_text.find("embree / naive"), std::string::npos) << r.stdout_text;
   EXPECT_NE(r.stdout_text.find("render / raw trace rate"), std::string::npos);
+  EXPECT_NE(r.stdout_text.find("embree traversal alone"), std::string::npos);
   const std::string figures = slurp(json_path);
-  for (const char* key : {"\"cover\"", "\"scaling\"", "\"trace\"", "\"embree_1_thread\"",
-                          "\"peak_rss_mb\"", "\"build_seconds\""}) {
+  for (const char* key : {"\"cover\"", "\"scaling\"", "\"trace\"", "\"traversal\"",
+                          "\"embree_1_thread\"", "\"peak_rss_mb\"", "\"build_seconds\""}) {
     EXPECT_NE(figures.find(key), std::string::npos) << key;
   }
   EXPECT_TRUE(fs::exists(plot)) << r.stdout_text;

@@ -87,9 +87,12 @@ void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
   }
 }
 
+// The traversal-only callback (EmbreeCallback::Nothing).
+void no_intersection(const RTCIntersectFunctionNArguments*) {}
+
 }  // namespace
 
-EmbreeAccel::EmbreeAccel(const SphereSet& spheres) {
+EmbreeAccel::EmbreeAccel(const SphereSet& spheres, EmbreeCallback callback) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("embree: cannot create a device");
   try {
@@ -103,7 +106,8 @@ EmbreeAccel::EmbreeAccel(const SphereSet& spheres) {
     rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(spheres.size()));
     rtcSetGeometryUserData(geometry, const_cast<SphereSet*>(&spheres));
     rtcSetGeometryBoundsFunction(geometry, sphere_bounds, nullptr);
-    rtcSetGeometryIntersectFunction(geometry, sphere_intersect);
+    rtcSetGeometryIntersectFunction(
+        geometry, callback == EmbreeCallback::Nothing ? no_intersection : sphere_intersect);
     rtcCommitGeometry(geometry);
     tsan_release(&spheres);
     rtcAttachGeometry(scene_, geometry);

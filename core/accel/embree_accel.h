@@ -13,10 +13,15 @@
 
 namespace rtiow {
 
+// What the intersect callback does. `Nothing` returns at once, so no hit is ever found: it
+// measures Embree's traversal and call alone (`rtiow bench`), a ceiling for the renderer.
+enum class EmbreeCallback { SphereTest, Nothing };
+
 class EmbreeAccel {
  public:
   // Builds and commits the BVH. The spheres must outlive the accelerator.
-  explicit EmbreeAccel(const SphereSet& spheres);
+  explicit EmbreeAccel(const SphereSet& spheres,
+                       EmbreeCallback callback = EmbreeCallback::SphereTest);
   ~EmbreeAccel();
   EmbreeAccel(const EmbreeAccel&) = delete;
   EmbreeAccel& operator=(const EmbreeAccel&) = delete;
