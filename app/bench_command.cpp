@@ -248,7 +248,8 @@ std::function<int()> add_bench_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "bench",
       "Measure Embree against the naive loop: cover scene, scaling to 1M spheres, raw "
-      "rtcIntersect1 rate, thread scaling; prints a table, writes JSON and a PNG plot");
+      "rtcIntersect1 rate and traversal alone, thread scaling; prints a table, writes JSON and a "
+      "PNG plot");
   cmd->add_option("--width", o.width, "Cover scene width")->capture_default_str();
   cmd->add_option("--height", o.height, "Cover scene height")->capture_default_str();
   cmd->add_option("--spp", o.spp, "Cover scene samples per pixel")->capture_default_str();
