@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "core/geometry/ray_offset.h"
@@ -135,6 +136,8 @@ TEST(PinnedWarps, CirclePointIsCosAndSinOfTheTurn) {
     EXPECT_EQ(p.cos, q == 0 ? 1.0f : q == 2 ? -1.0f : 0.0f) << k;
     EXPECT_EQ(p.sin, q == 1 ? 1.0f : q == 3 ? -1.0f : 0.0f) << k;
   }
+  const CirclePoint nowhere = circle_point(std::numeric_limits<float>::quiet_NaN());
+  EXPECT_TRUE(std::isnan(nowhere.cos) && std::isnan(nowhere.sin));
 }
 
 // The lens is a disk of diameter `aperture` around lookfrom: a sample at the disk's edge

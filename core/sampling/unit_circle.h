@@ -28,11 +28,14 @@ inline CirclePoint circle_point(float turns) {
                         x2 * (1.0f / 120.0f + x2 * (-1.0f / 5040.0f + x2 * (1.0f / 362880.0f)))));
   const float c =
       1.0f + x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f))));
-  // Turn (c, s) by the quarter turns: k = 1 gives (-s, c), 2 (-c, -s), 3 (s, -c).
-  const int k = int(nearest) & 3;
-  const float a = (k & 1) ? s : c;
-  const float b = (k & 1) ? c : s;
-  return {(k == 1 || k == 2) ? -a : a, (k & 2) ? -b : b};
+  // Turn (c, s) by the quarter turns: 1 gives (-s, c), 2 (-c, -s), 3 (s, -c). The count mod 4
+  // stays a float (exact here), so a NaN turns into a NaN point rather than an undefined
+  // float-to-int conversion.
+  const float quadrant = nearest - 4.0f * std::floor(0.25f * nearest);
+  const bool odd = quadrant == 1.0f || quadrant == 3.0f;
+  const float a = odd ? s : c;
+  const float b = odd ? c : s;
+  return {(quadrant == 1.0f || quadrant == 2.0f) ? -a : a, quadrant >= 2.0f ? -b : b};
 }
 
 }  // namespace rtiow
