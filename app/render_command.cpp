@@ -110,7 +110,7 @@ void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& setti
   // only a time limit, samples are added until the time is spent.
   const bool capped_adaptive = o.target_error > 0 || o.image_error > 0;
   settings.samples_per_pixel = o.spp.value_or(capped_adaptive    ? kDefaultAdaptiveMaxSpp
-                                              : o.time_limit > 0 ? std::numeric_limits<int>::max()
+                                              : o.time_limit > 0 ? kSamplesUntilTimeLimit
                                                                  : image.samples_per_pixel);
   settings.time_limit_seconds = o.time_limit;
   settings.sampler = parse_sampler(o.sampler);
@@ -265,8 +265,7 @@ RenderResult render_with_progress(const RenderOptions& o, const Job& job, const 
   if (!o.quiet && mpi.rank() == 0) {
     // Adaptive sampling and an open-ended time limit have no total to show progress against.
     const RenderSettings& s = job.settings;
-    const bool open_ended =
-        is_adaptive(s) || s.samples_per_pixel == std::numeric_limits<int>::max();
+    const bool open_ended = is_adaptive(s) || !asks_sample_count(s);
     display = std::make_unique<ProgressDisplay>(
         progress, open_ended ? 0
                              : std::uint64_t(s.width) * std::uint64_t(s.height) *
@@ -340,7 +339,7 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
     // What was asked: a count, a budget (--adaptive), or nothing but a time limit.
     const RenderSettings& s = job.settings;
     std::string asked;
-    if (s.samples_per_pixel != std::numeric_limits<int>::max()) {
+    if (asks_sample_count(s)) {
       asked = (s.adaptive ? " (of a budget of " : " (of ") + std::to_string(s.samples_per_pixel) +
               (s.adaptive ? " spp)" : " asked)");
     }

@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
-#include <limits>
 #include <numeric>
 #include <vector>
 
@@ -111,7 +110,7 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
   const RenderSettings& settings = ctx.settings;
   RoundDeadline deadline(settings, progress);
   const bool by_error = settings.image_error > 0.0;
-  const bool open_ended = settings.samples_per_pixel == std::numeric_limits<int>::max();
+  const bool open_ended = !asks_sample_count(settings);
   const std::uint32_t most =
       by_error ? std::uint32_t(settings.samples_per_pixel) : kMostAdaptiveSamples;
   const auto least = std::min(

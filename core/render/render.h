@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,14 @@ struct RenderSettings {
   bool adaptive = false;
   double image_error = 0.0;
 };
+
+// samples_per_pixel when no count was asked and only the time limit ends the render.
+inline constexpr int kSamplesUntilTimeLimit = std::numeric_limits<int>::max();
+
+// Whether the settings ask for a sample count (or, with `adaptive`, a budget of one).
+inline bool asks_sample_count(const RenderSettings& s) {
+  return s.samples_per_pixel != kSamplesUntilTimeLimit;
+}
 
 // The most samples a pixel takes with `adaptive`, whose samples_per_pixel is a budget.
 inline constexpr std::uint32_t kMostAdaptiveSamples = 1u << 24;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <limits>
 #include <string>
 
 #include "core/film/render_statistics.h"
@@ -28,7 +27,7 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
     if (s.image_error > 0) metadata.emplace_back(key::kImageError, s.image_error);
     if (s.adaptive) {
       metadata.emplace_back(key::kAdaptive, std::string("sqrt(variance/cost)"));
-      if (s.samples_per_pixel != std::numeric_limits<int>::max()) {  // else the time limit's
+      if (asks_sample_count(s)) {  // else the time limit's
         metadata.emplace_back(key::kSppBudget, std::int64_t(s.samples_per_pixel));
       }
     }
