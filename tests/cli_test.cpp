@@ -302,6 +302,22 @@ TEST(Cli, ReproducibleFilesAreByteIdenticalAcrossThreadCounts) {
   EXPECT_EQ(a, b) << "files differ between 1 and 2 threads";
 }
 
+// EXR and TIFF writers stamp the time of writing unless told otherwise: a file that carried it
+// would differ from the same job's file written a second later.
+TEST(Cli, FilesCarryNoWallClockDate) {
+  const std::string common = "render -q --reproducible --scene cover --width 16 --spp 2 ";
+  for (const std::string name : {"dated.exr", "dated.tif", "dated-part.exr"}) {
+    const fs::path path = output_path(name);
+    const std::string part = name == "dated-part.exr" ? "--part 0/2 " : "";
+    ASSERT_EQ(run_rtiow(common + part + "-o " + path.string()).exit_code, 0) << name;
+    auto in = OIIO::ImageInput::open(path.string());
+    ASSERT_TRUE(in) << name;
+    const OIIO::ParamValue* date = in->spec().find_attribute("DateTime");
+    EXPECT_TRUE(date == nullptr || date->get_string().empty())
+        << name << " carries DateTime " << date->get_string();
+  }
+}
+
 }  // namespace
 
 namespace {

@@ -108,6 +108,11 @@ OIIO::ImageSpec to_spec(const ImageHeader& header) {
     for (const PixelType t : header.channel_types) spec.channelformats.push_back(to_oiio(t));
   }
   spec.format = to_oiio(header.channel_types.front());
+  // OpenImageIO stamps EXR and TIFF files with the time of writing unless given a DateTime;
+  // an empty one writes none. rtiow's files carry no wall-clock date (the render's time is
+  // rtiow:render_seconds, left out by --reproducible), so one job gives one file, byte for
+  // byte, in every format.
+  spec.attribute("DateTime", std::string());
   for (const ImageAttribute& a : header.attributes) {
     if (const auto* i = std::get_if<int>(&a.value)) {
       spec.attribute(a.name, *i);
