@@ -17,6 +17,7 @@
 #include "core/render/render_loop.h"
 #include "core/render/sample_allocation.h"
 #include "core/scene/builtin_scenes.h"
+#include "core/scene/camera.h"
 #include "tests/film_equality.h"
 
 namespace rtiow {
@@ -180,6 +181,33 @@ TEST(Render, SharesOfTheSamplesAddUpToTheWholeRender) {
       merged.at(x, y) = sums[std::size_t(y * whole.width + x)].mean(9);
   }
   EXPECT_TRUE(test::bit_identical(merged, all.film));
+}
+
+// A pass sends the camera rays of a row's pixels to the accelerator in packets that, below
+// eight samples per pixel, hold several pixels: every pixel must still get its own samples,
+// exactly what rendering it alone gives.
+TEST(Render, PacketsOfSeveralPixelsGiveEachPixelItsOwnSamples) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  RenderSettings settings = tiny(scene);
+  settings.samples_per_pixel = 3;  // a packet of 8: two pixels and a part of a third
+  settings.accel = AccelKind::Naive;
+  const RenderResult whole = render(scene, settings);
+  const Camera camera(scene.camera, settings.width, settings.height);
+  const NaiveAccel accel(scene.spheres);
+  const RenderContext<NaiveAccel> ctx{scene, camera, accel, settings};
+  std::uint64_t rays = 0;
+  for (int y = 0; y < settings.height; ++y) {
+    for (int x = 0; x < settings.width; ++x) {
+      PixelSum sum;
+      PixelSquares squares;
+      std::uint64_t pixel_rays = 0;
+      rays += accumulate_run(ctx, PixelRun{x, y, 1, 0, 3}, {&sum, &squares, &pixel_rays});
+      const std::size_t p = std::size_t(y * settings.width + x);
+      ASSERT_TRUE(sum == whole.sums[p]) << "pixel " << x << "," << y;
+      ASSERT_EQ(squares.sum, whole.squares[p].sum) << "pixel " << x << "," << y;
+    }
+  }
+  EXPECT_EQ(rays, whole.rays_traced);
 }
 
 TEST(PixelSum, RoundsEachSampleOnceAndClampsTheAbsurd) {

@@ -39,47 +39,78 @@ struct RenderContext {
   const RenderSettings& settings;
 };
 
-// Adds samples [first, last) of pixel (x, y) to `sum` and `squares`. The sum is exact
-// (PixelSum), so it is the same whatever thread runs it and however the samples are split.
+// A run of pixels of one row that all go from the same count to the same count: the unit
+// the sample loop works on. One pixel is a run; a pass makes runs of a tile's rows.
+struct PixelRun {
+  int x, y;                   // the first pixel
+  int length;                 // pixels, at most kTileSize
+  std::uint64_t first, last;  // the samples each pixel takes, [first, last)
+};
+
+// The per-pixel state a run adds to, at the run's first pixel.
+struct RunAccumulators {
+  PixelSum* sums;
+  PixelSquares* squares;
+  std::uint64_t* rays;  // rays traced per pixel
+};
+
+// Adds the run's samples to its pixels. The camera rays go to the accelerator
+// kRayPacketSize at a time, pixel by pixel in sample order: a packet holds consecutive
+// samples of one pixel or, when a pass gives each pixel fewer than a packet (a large image
+// renders in passes of a few samples), of neighbouring pixels, so packets stay full whatever
+// the pass size (a half-empty rtcIntersect8 costs a full one). Each path then goes on alone.
+// Every sample has its own stream and each pixel's sum takes its samples in order, so the
+// image is the one sample-by-sample tracing gives; the sum is exact (PixelSum), so it is the
+// same whatever thread runs it and however the samples are split.
+// Returns the rays traced.
 template <typename Accel>
-void accumulate_pixel(const RenderContext<Accel>& ctx, int x, int y, std::uint64_t first,
-                      std::uint64_t last, PixelSum& sum, PixelSquares& squares,
-                      std::uint64_t& rays) {
+std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& run,
+                             RunAccumulators out) {
   const RenderSettings& settings = ctx.settings;
   const Camera& camera = ctx.camera;
   const float inv_w = 1.0f / float(settings.width), inv_h = 1.0f / float(settings.height);
-  // The camera rays of kRayPacketSize samples go to the accelerator together (coherent: one
-  // pixel); each path then goes on alone. Every sample has its own stream, so the image is
-  // the one sample-by-sample tracing gives.
-  const PixelSampler pixel(settings.sampler, settings.seed, std::uint32_t(x), std::uint32_t(y));
+  std::array<std::optional<PixelSampler>, kTileSize> samplers;
+  for (int j = 0; j < run.length; ++j) {
+    samplers[std::size_t(j)].emplace(settings.sampler, settings.seed, std::uint32_t(run.x + j),
+                                     std::uint32_t(run.y));
+  }
   std::array<std::optional<SampleStream>, kRayPacketSize> streams;
+  std::array<int, kRayPacketSize> owner;  // the pixel of the run each sample belongs to
+  std::array<int, kRayPacketSize> slot;   // its camera ray's place in the packet, or -1
   std::array<Ray, kRayPacketSize> rays_out;
   std::array<std::optional<Hit>, kRayPacketSize> hits;
-  for (std::uint64_t i = first; i < last; i += kRayPacketSize) {
-    const int count = int(std::min<std::uint64_t>(kRayPacketSize, last - i));
-    int traced = 0;  // the packet holds the samples whose first ray is traced, in order
-    std::array<int, kRayPacketSize> slot;
-    for (int k = 0; k < count; ++k) {
-      SampleStream& rng = streams[std::size_t(k)].emplace(pixel, i + std::uint64_t(k));
+  std::uint64_t total_rays = 0;
+  int pixel = run.first < run.last ? 0 : run.length;  // where the next packet starts ...
+  std::uint64_t i = run.first;                        // ... and at which sample
+  while (pixel < run.length) {
+    int count = 0, traced = 0;  // the packet holds the samples whose first ray is traced
+    for (; count < kRayPacketSize && pixel < run.length; ++count) {
+      SampleStream& rng = streams[std::size_t(count)].emplace(*samplers[std::size_t(pixel)], i);
       const std::array<float, 4> u = rng.next_camera();  // a pinhole ignores the lens's two
-      const float s = (float(x) + u[0]) * inv_w;
-      const float t = (float(y) + u[1]) * inv_h;
+      const float s = (float(run.x + pixel) + u[0]) * inv_w;
+      const float t = (float(run.y) + u[1]) * inv_h;
       const Ray ray = camera.generate_ray(s, t, u[2], u[3]);
-      slot[std::size_t(k)] = starts_path(ray, settings.max_depth) ? traced : -1;
-      if (slot[std::size_t(k)] >= 0) rays_out[std::size_t(traced++)] = ray;
+      owner[std::size_t(count)] = pixel;
+      slot[std::size_t(count)] = starts_path(ray, settings.max_depth) ? traced : -1;
+      if (slot[std::size_t(count)] >= 0) rays_out[std::size_t(traced++)] = ray;
+      if (++i == run.last) i = run.first, ++pixel;
     }
     intersect_packet(ctx.accel, rays_out.data(), traced, hits.data());
-    rays += std::uint64_t(traced);
     for (int k = 0; k < count; ++k) {
       const int j = slot[std::size_t(k)];
+      const auto o = std::size_t(owner[std::size_t(k)]);
+      std::uint64_t path_rays = j < 0 ? 0 : 1;
       const Color value = j < 0 ? Color{}
                                 : continue_path(ctx.scene, ctx.accel, rays_out[std::size_t(j)],
                                                 hits[std::size_t(j)], settings.max_depth,
-                                                *streams[std::size_t(k)], rays);
-      sum.add(value);
-      squares.add(value);
+                                                *streams[std::size_t(k)], path_rays);
+      out.sums[o].add(value);
+      out.squares[o].add(value);
+      out.rays[o] += path_rays;
+      total_rays += path_rays;
     }
   }
+  return total_rays;
 }
 
 // The per-pixel state of a render in progress (row major, film-sized).
@@ -114,20 +145,33 @@ void parallel_over(const RenderSettings& settings, const Range& range, const Bod
   tsan_acquire(&join);
 }
 
-// Brings pixel p from its current count to `wanted` samples; returns the samples added.
-template <typename Accel>
-std::uint64_t advance_pixel(const RenderContext<Accel>& ctx, std::size_t p, std::uint32_t wanted,
-                            PixelAccumulators& pixels, std::uint64_t& rays) {
-  std::uint32_t& count = pixels.samples[p];
-  if (wanted <= count) return 0;
-  const RenderSettings& settings = ctx.settings;
-  const int x = int(p % std::size_t(settings.width)), y = int(p / std::size_t(settings.width));
-  const std::uint64_t rays_before = rays;
-  accumulate_pixel(ctx, x, y, settings.first_sample + count, settings.first_sample + wanted,
-                   pixels.sums[p], pixels.squares[p], rays);
-  pixels.rays[p] += rays - rays_before;
-  const std::uint64_t added = wanted - count;
-  count = wanted;
+// Brings the n pixels pixel_at(0..n-1) (raster order) to target_of(pixel) samples each,
+// consecutive pixels of one row with the same count and target as one run. Adds the rays
+// traced to `rays`; returns the samples added.
+template <typename Accel, typename PixelAt, typename TargetOf>
+std::uint64_t advance_pixels(const RenderContext<Accel>& ctx, std::size_t n,
+                             const PixelAt& pixel_at, const TargetOf& target_of,
+                             PixelAccumulators& pixels, std::uint64_t& rays) {
+  const auto width = std::size_t(ctx.settings.width);
+  const std::uint64_t base = ctx.settings.first_sample;
+  std::uint64_t added = 0;
+  for (std::size_t k = 0; k < n;) {
+    const std::size_t p = pixel_at(k);
+    const std::uint32_t from = pixels.samples[p], to = target_of(p);
+    std::size_t length = 1;
+    for (; k + length < n && length < std::size_t(kTileSize); ++length) {
+      const std::size_t q = pixel_at(k + length);
+      if (q != p + length || q % width == 0 || pixels.samples[q] != from || target_of(q) != to) {
+        break;
+      }
+    }
+    k += length;
+    if (to <= from) continue;
+    const PixelRun run{int(p % width), int(p / width), int(length), base + from, base + to};
+    rays += accumulate_run(ctx, run, {&pixels.sums[p], &pixels.squares[p], &pixels.rays[p]});
+    std::fill_n(pixels.samples.begin() + std::ptrdiff_t(p), length, to);
+    added += std::uint64_t(length) * (to - from);
+  }
   return added;
 }
 
@@ -153,11 +197,12 @@ std::uint64_t render_pass(const RenderContext<Accel>& ctx, std::uint32_t samples
       tbb::blocked_range2d<int>(0, settings.height, kTileSize, 0, settings.width, kTileSize),
       [&](const tbb::blocked_range2d<int>& tile) {
         std::uint64_t tile_rays = 0, tile_samples = 0;
+        const auto x0 = std::size_t(tile.cols().begin());
         for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
-          for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-            const std::size_t p = std::size_t(y) * std::size_t(settings.width) + std::size_t(x);
-            tile_samples += advance_pixel(ctx, p, samples, pixels, tile_rays);
-          }
+          const std::size_t row = std::size_t(y) * std::size_t(settings.width) + x0;
+          tile_samples += advance_pixels(
+              ctx, tile.cols().size(), [&](std::size_t k) { return row + k; },
+              [&](std::size_t) { return samples; }, pixels, tile_rays);
         }
         count_work(tile_rays, tile_samples, rays, progress);
       });
@@ -179,11 +224,10 @@ std::uint64_t render_pixel_list(const RenderContext<Accel>& ctx,
   parallel_over(ctx.settings, tbb::blocked_range<std::size_t>(0, list.size(), kPixelsPerTask),
                 [&](const tbb::blocked_range<std::size_t>& part) {
                   if (may_skip()) return;
-                  std::uint64_t part_rays = 0, part_samples = 0;
-                  for (std::size_t i = part.begin(); i < part.end(); ++i) {
-                    const std::size_t p = list[i];
-                    part_samples += advance_pixel(ctx, p, targets[p], pixels, part_rays);
-                  }
+                  std::uint64_t part_rays = 0;
+                  const std::uint64_t part_samples = advance_pixels(
+                      ctx, part.size(), [&](std::size_t k) { return list[part.begin() + k]; },
+                      [&](std::size_t p) { return targets[p]; }, pixels, part_rays);
                   count_work(part_rays, part_samples, rays, progress);
                 });
   return rays.load();
