@@ -223,17 +223,22 @@ json sweep_adaptive(const Experiment& x, const AccuracyOptions& o) {
   return rows;
 }
 
-// The log-log fit of relMSE against seconds over a sweep's rows with spp >= min_spp (below
-// 4 the times are too short to trust).
-std::pair<double, double> error_time_fit(const json& rows, double min_spp = 4) {
-  std::vector<double> t, e;
+// The log-log fit of relMSE against a cost ("seconds", or "rays", which unlike seconds is a
+// pure function of the settings) over a sweep's rows with spp >= min_spp (below 4 the times
+// are too short to trust).
+std::pair<double, double> error_cost_fit(const json& rows, const char* cost, double min_spp) {
+  std::vector<double> c, e;
   for (const json& r : rows) {
     if (r["parameter"].get<double>() >= min_spp) {
-      t.push_back(r["seconds"].get<double>());
+      c.push_back(r[cost].get<double>());
       e.push_back(r["rel_mse"].get<double>());
     }
   }
-  return log_log_fit(t, e);
+  return log_log_fit(c, e);
+}
+
+std::pair<double, double> error_time_fit(const json& rows, double min_spp = 4) {
+  return error_cost_fit(rows, "seconds", min_spp);
 }
 
 // How much lower a method's relMSE is than a baseline's (independent sampling's, or uniform
@@ -340,9 +345,10 @@ void print_book_quality(const json& r) {
       "independent takes %.3f s)\n",
       q["book_spp"].get<int>(), q["rel_mse"].get<double>(), q["independent_seconds"].get<double>());
   for (const json& m : q["methods"]) {
-    std::printf("  %-9s %-12s %9.3f s  %6.2fx less time\n", m["mode"].get<std::string>().c_str(),
-                m["sampler"].get<std::string>().c_str(), m["seconds"].get<double>(),
-                m["speedup"].get<double>());
+    std::printf("  %-9s %-12s %9.3f s  %6.2fx less time  %6.2fx fewer rays\n",
+                m["mode"].get<std::string>().c_str(), m["sampler"].get<std::string>().c_str(),
+                m["seconds"].get<double>(), m["speedup"].get<double>(),
+                m["ray_factor"].get<double>());
   }
 }
 
@@ -485,10 +491,10 @@ RenderSettings base_settings(const AccuracyOptions& o, const Scene& scene) {
   return base;
 }
 
-// The seconds a sweep needs to reach `rel_mse`, from its fit (spp >= 16: the regime of the
-// goal, where every sampler's slope has settled).
-double seconds_to_reach(const json& rows, double rel_mse) {
-  const auto [slope, intercept] = error_time_fit(rows, 16);
+// The seconds (or rays) a sweep needs to reach `rel_mse`, from its fit (spp >= 16: the
+// regime of the goal, where every sampler's slope has settled).
+double cost_to_reach(const json& rows, const char* cost, double rel_mse) {
+  const auto [slope, intercept] = error_cost_fit(rows, cost, 16);
   return std::exp((std::log(rel_mse) - intercept) / slope);
 }
 
@@ -505,7 +511,8 @@ json book_quality(const json& r, int book_spp) {
   }
   const auto [slope, intercept] = log_log_fit(spp, e);
   const double goal = std::exp(intercept + slope * std::log(double(book_spp)));
-  const double baseline = seconds_to_reach(independent, goal);
+  const double baseline = cost_to_reach(independent, "seconds", goal);
+  const double baseline_rays = cost_to_reach(independent, "rays", goal);
   json q = {{"book_spp", book_spp}, {"rel_mse", goal}, {"independent_seconds", baseline}};
   json methods = json::array();
   for (const auto& [group, label] :
@@ -513,11 +520,13 @@ json book_quality(const json& r, int book_spp) {
     for (const SamplerKind kind : kSamplers) {
       const std::string name = to_string(kind);
       if (!r[group].contains(name)) continue;
-      const double seconds = seconds_to_reach(r[group][name], goal);
-      methods.push_back({{"sampler", name},
-                         {"mode", label},
-                         {"seconds", seconds},
-                         {"speedup", baseline / seconds}});
+      const double seconds = cost_to_reach(r[group][name], "seconds", goal);
+      methods.push_back(
+          {{"sampler", name},
+           {"mode", label},
+           {"seconds", seconds},
+           {"speedup", baseline / seconds},
+           {"ray_factor", baseline_rays / cost_to_reach(r[group][name], "rays", goal)}});
     }
   }
   q["methods"] = methods;

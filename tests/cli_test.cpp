@@ -439,6 +439,8 @@ TEST(Cli, AccuracyMeasuresWritesFiguresAndReusesItsReference) {
   // intersectors, two Fresnel models, one target error.
   EXPECT_EQ(count_lines(csv), 1 + 3 * 7 + 3 * 2 + 1 + 3 + 2 + 2 + 1) << csv;
   EXPECT_NE(first.stdout_text.find("time to the book's quality"), std::string::npos);
+  EXPECT_NE(first.stdout_text.find("fewer rays"), std::string::npos) << first.stdout_text;
+  EXPECT_NE(figures.find("\"ray_factor\""), std::string::npos);
   EXPECT_TRUE(fs::exists(dir / "accuracy.png")) << first.stdout_text;
 
   const CommandResult second = run_rtiow(args);
