@@ -93,7 +93,10 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
       owner[std::size_t(count)] = pixel;
       slot[std::size_t(count)] = starts_path(ray, settings.max_depth) ? traced : -1;
       if (slot[std::size_t(count)] >= 0) rays_out[std::size_t(traced++)] = ray;
-      if (++i == run.last) i = run.first, ++pixel;
+      if (++i == run.last) {  // the pixel is done: the next one from its first sample
+        i = run.first;
+        ++pixel;
+      }
     }
     intersect_packet(ctx.accel, rays_out.data(), traced, hits.data());
     for (int k = 0; k < count; ++k) {
