@@ -129,7 +129,7 @@ TEST(Render, TargetErrorStopsEveryPixelAtItsTarget) {
   const RenderResult r = render(scene, s);
   PixelAccumulators pixels(r.pixel_samples.size());
   pixels.sums = r.sums;
-  pixels.squares = r.squares;
+  pixels.spreads = r.spreads;
   pixels.samples = r.pixel_samples;
   const std::vector<double> judged = neighbourhood_relative_variance(s, pixels);
   const double target_variance = s.target_error * s.target_error;
@@ -199,12 +199,13 @@ TEST(Render, PacketsOfSeveralPixelsGiveEachPixelItsOwnSamples) {
   for (int y = 0; y < settings.height; ++y) {
     for (int x = 0; x < settings.width; ++x) {
       PixelSum sum;
-      PixelSquares squares;
+      PixelSpread spread;
       std::uint64_t pixel_rays = 0;
-      rays += accumulate_run(ctx, PixelRun{x, y, 1, 0, 3}, {&sum, &squares, &pixel_rays});
+      rays += accumulate_run(ctx, PixelRun{x, y, 1, 0, 3}, {&sum, &spread, &pixel_rays});
       const std::size_t p = std::size_t(y * settings.width + x);
       ASSERT_TRUE(sum == whole.sums[p]) << "pixel " << x << "," << y;
-      ASSERT_EQ(squares.sum, whole.squares[p].sum) << "pixel " << x << "," << y;
+      ASSERT_EQ(spread.squares, whole.spreads[p].squares);
+      ASSERT_TRUE(spread.odd == whole.spreads[p].odd) << "pixel " << x << "," << y;
     }
   }
   EXPECT_EQ(rays, whole.rays_traced);

@@ -180,33 +180,45 @@ bool is_zero_m_two_net(const std::vector<std::array<float, 2>>& points, int m) {
 // padded-sobol, every group) is a shuffled, scrambled (0,2)-sequence of its own: the first
 // 2^m samples of a pixel form a (0,m,2)-net in each 2D group and fill the strata of each 1D
 // dimension, at every power of two.
-TEST(SampleStream, EveryGroupOfEveryBounceIsStratified) {
+// Each replicate (the even samples, the odd ones) is one stratified sequence.
+TEST(SampleStream, EveryGroupOfEveryBounceIsStratifiedInEachReplicate) {
   for (const SamplerKind kind : {SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
     for (const int bounce : {0, 1, 7, 40}) {
-      std::vector<std::array<float, 2>> film, direction;
-      std::vector<float> lobe, radius;
-      for (std::uint64_t s = 0; s < 256; ++s) {
-        SampleStream stream(kind, 5, 10, 20, s);
-        const auto camera = stream.next_camera();
-        film.push_back({camera[0], camera[1]});
-        BounceSample u;
-        for (int b = 0; b <= bounce; ++b) u = stream.next_bounce();
-        direction.push_back({u.direction[0], u.direction[1]});
-        lobe.push_back(u.lobe);
-        radius.push_back(u.radius);
-      }
-      for (int m = 0; m <= 8; ++m) {
-        const std::string where =
-            to_string(kind) + " bounce " + std::to_string(bounce) + " m " + std::to_string(m);
-        EXPECT_TRUE(fills_strata(lobe, m)) << where;
-        EXPECT_TRUE(fills_strata(radius, m)) << where;
-        EXPECT_TRUE(is_zero_m_two_net(film, m)) << where;
-        // Sobol's joint dimensions 4 and 5 are not a (0,2)-sequence; later groups are.
-        if (kind == SamplerKind::PaddedSobol || bounce > 0) {
-          EXPECT_TRUE(is_zero_m_two_net(direction, m)) << where;
+      for (std::uint64_t replicate = 0; replicate < kReplicates; ++replicate) {
+        std::vector<std::array<float, 2>> film, direction;
+        std::vector<float> lobe, radius;
+        for (std::uint64_t k = 0; k < 256; ++k) {
+          SampleStream stream(kind, 5, 10, 20, kReplicates * k + replicate);
+          const auto camera = stream.next_camera();
+          film.push_back({camera[0], camera[1]});
+          BounceSample u;
+          for (int b = 0; b <= bounce; ++b) u = stream.next_bounce();
+          direction.push_back({u.direction[0], u.direction[1]});
+          lobe.push_back(u.lobe);
+          radius.push_back(u.radius);
+        }
+        for (int m = 0; m <= 8; ++m) {
+          const std::string where = to_string(kind) + " bounce " + std::to_string(bounce) +
+                                    " replicate " + std::to_string(replicate) + " m " +
+                                    std::to_string(m);
+          EXPECT_TRUE(fills_strata(lobe, m)) << where;
+          EXPECT_TRUE(fills_strata(radius, m)) << where;
+          EXPECT_TRUE(is_zero_m_two_net(film, m)) << where;
+          // Sobol's joint dimensions 4 and 5 are not a (0,2)-sequence; later groups are.
+          if (kind == SamplerKind::PaddedSobol || bounce > 0) {
+            EXPECT_TRUE(is_zero_m_two_net(direction, m)) << where;
+          }
         }
       }
     }
+  }
+}
+
+// The two replicates are scrambled independently: their first points differ.
+TEST(SampleStream, TheReplicatesHaveTheirOwnScrambles) {
+  for (const SamplerKind kind : {SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
+    EXPECT_NE(draws(SampleStream(7, 3, 4, 0, kind), 40), draws(SampleStream(7, 3, 4, 1, kind), 40))
+        << to_string(kind);
   }
 }
 

@@ -112,17 +112,31 @@ TEST(AdaptiveOnABudget, AgreesInTheMeanAndBeatsUniformSamplingPerRay) {
   }
 }
 
-TEST(ImageError, AgreesInTheMeanAndReachesTheErrorAskedFor) {
+// The error asked for is the error delivered: with honest variances (core/film/
+// replicate_variance.h) the render stops where its true relative RMS error reaches the target
+// (it stopped at 0.54-0.70 of it while the sample variance stood for the Sobol mean's).
+// The bias check takes the sample variance's standard error, an upper bound for a Sobol
+// render's: on this 48x32 image an adaptive render's honest image-mean error is itself noisy
+// (the z-scores of eight seeds spread 2.4 where 1 is honest; docs/accuracy.md).
+TEST(ImageError, AgreesInTheMeanAndDeliversTheErrorAskedFor) {
   for (const double target : {0.1, 0.05}) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       RenderSettings s = settings(cover(), 4096, seed);
       s.sampler = SamplerKind::Sobol;
       s.image_error = target;
-      const ImageError e = error_of(s);
+      const RenderResult r = render(cover(), s);
+      ImageEstimate bounded = to_estimate(r);
+      for (std::size_t p = 0; p < bounded.variance.size(); ++p) {
+        bounded.variance[p] = variance_of_mean(r.sums[p], r.spreads[p], r.pixel_samples[p]);
+      }
+      const ImageError e = measure_error(bounded, reference());
+      const double delivered = std::sqrt(measure_error(to_estimate(r), reference()).rel_mse);
+      std::printf("target %.2f seed %llu: delivered %.3f of it\n", target,
+                  static_cast<unsigned long long>(seed), delivered / target);
       EXPECT_LT(std::abs(e.mean_difference), kMaxZ * e.mean_difference_error)
           << "target " << target << " seed " << seed;
-      EXPECT_LT(std::sqrt(e.rel_mse), 1.15 * target) << "target " << target << " seed " << seed;
-      EXPECT_GT(std::sqrt(e.rel_mse), 0.5 * target) << "not wastefully below it";
+      EXPECT_LT(delivered, 1.15 * target) << "target " << target << " seed " << seed;
+      EXPECT_GT(delivered, 0.8 * target) << "not wastefully below it";
     }
   }
 }

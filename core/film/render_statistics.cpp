@@ -2,19 +2,16 @@
 
 #include <filesystem>
 
+#include "core/film/replicate_variance.h"
+
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
 
 namespace rtiow {
 
 std::vector<Vec3d> pixel_mean_variances(const RenderResult& result) {
-  std::vector<Vec3d> variances;
-  variances.reserve(result.sums.size());
-  for (std::size_t p = 0; p < result.sums.size(); ++p) {
-    variances.push_back(
-        variance_of_mean(result.sums[p], result.squares[p], result.pixel_samples[p]));
-  }
-  return variances;
+  return honest_variances(result.film.width(), result.film.height(), result.sums, result.spreads,
+                          result.pixel_samples, result.first_sample, result.sampler);
 }
 
 ImageEstimate to_estimate(const RenderResult& result) {

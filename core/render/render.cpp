@@ -24,7 +24,7 @@ namespace {
 // Beyond this many pixels indices overflow; a film costs this much per pixel (the float
 // image and the exact fixed-point sums).
 constexpr std::uint64_t kMaxPixels = 1ull << 31;
-constexpr std::uint64_t kBytesPerPixel = sizeof(Color) + sizeof(PixelSum) + sizeof(PixelSquares) +
+constexpr std::uint64_t kBytesPerPixel = sizeof(Color) + sizeof(PixelSum) + sizeof(PixelSpread) +
                                          sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
 template <typename Accel>
@@ -51,8 +51,10 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   result.film = Film(settings.width, settings.height);
   resolve(pixels.sums, pixels.samples, result.film);
   result.sums = std::move(pixels.sums);
-  result.squares = std::move(pixels.squares);
+  result.spreads = std::move(pixels.spreads);
   result.pixel_samples = std::move(pixels.samples);
+  result.first_sample = settings.first_sample;
+  result.sampler = settings.sampler;
   return result;
 }
 

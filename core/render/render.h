@@ -77,13 +77,15 @@ struct RenderProgress {
 struct RenderResult {
   Film film;                                 // the mean of the samples completed
   std::vector<PixelSum> sums;                // their exact sums, for merging shares of a render
-  std::vector<PixelSquares> squares;         // for each pixel's variance
+  std::vector<PixelSpread> spreads;          // for each pixel's variance
   std::vector<std::uint32_t> pixel_samples;  // each pixel's sample count
-  int samples_completed = 0;                 // per pixel (the most any pixel took when adaptive)
-  bool stopped = false;                      // a stop request ended the render early
-  bool time_limited = false;                 // the time limit ended it (with the samples completed)
-  double build_seconds = 0.0;                // accelerator construction
-  double render_seconds = 0.0;               // the sample loop
+  std::uint64_t first_sample = 0;            // each pixel's samples start at this index
+  SamplerKind sampler = SamplerKind::Independent;  // what drew them
+  int samples_completed = 0;    // per pixel (the most any pixel took when adaptive)
+  bool stopped = false;         // a stop request ended the render early
+  bool time_limited = false;    // the time limit ended it (with the samples completed)
+  double build_seconds = 0.0;   // accelerator construction
+  double render_seconds = 0.0;  // the sample loop
   std::uint64_t rays_traced = 0;
 };
 

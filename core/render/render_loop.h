@@ -50,7 +50,7 @@ struct PixelRun {
 // The per-pixel state a run adds to, at the run's first pixel.
 struct RunAccumulators {
   PixelSum* sums;
-  PixelSquares* squares;
+  PixelSpread* spreads;
   std::uint64_t* rays;  // rays traced per pixel
 };
 
@@ -75,8 +75,9 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
                                      std::uint32_t(run.y));
   }
   std::array<std::optional<SampleStream>, kRayPacketSize> streams;
-  std::array<int, kRayPacketSize> owner;  // the pixel of the run each sample belongs to
-  std::array<int, kRayPacketSize> slot;   // its camera ray's place in the packet, or -1
+  std::array<int, kRayPacketSize> owner;            // the pixel of the run each sample belongs to
+  std::array<std::uint64_t, kRayPacketSize> index;  // and its sample index
+  std::array<int, kRayPacketSize> slot;             // its camera ray's place in the packet, or -1
   std::array<Ray, kRayPacketSize> rays_out;
   std::array<std::optional<Hit>, kRayPacketSize> hits;
   std::uint64_t total_rays = 0;
@@ -91,6 +92,7 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
       const float t = (float(run.y) + u[1]) * inv_h;
       const Ray ray = camera.generate_ray(s, t, u[2], u[3]);
       owner[std::size_t(count)] = pixel;
+      index[std::size_t(count)] = i;
       slot[std::size_t(count)] = starts_path(ray, settings.max_depth) ? traced : -1;
       if (slot[std::size_t(count)] >= 0) rays_out[std::size_t(traced++)] = ray;
       if (++i == run.last) {  // the pixel is done: the next one from its first sample
@@ -108,7 +110,7 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
                                                 hits[std::size_t(j)], settings.max_depth,
                                                 *streams[std::size_t(k)], path_rays);
       out.sums[o].add(value);
-      out.squares[o].add(value);
+      out.spreads[o].add(value, index[std::size_t(k)]);
       out.rays[o] += path_rays;
       total_rays += path_rays;
     }
@@ -119,12 +121,12 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
 // The per-pixel state of a render in progress (row major, film-sized).
 struct PixelAccumulators {
   std::vector<PixelSum> sums;
-  std::vector<PixelSquares> squares;
+  std::vector<PixelSpread> spreads;
   std::vector<std::uint32_t> samples;  // how many each pixel has, from the first sample
   std::vector<std::uint64_t> rays;     // how many rays they traced (adaptive sampling's cost)
 
   explicit PixelAccumulators(std::size_t pixels)
-      : sums(pixels), squares(pixels), samples(pixels, 0), rays(pixels, 0) {}
+      : sums(pixels), spreads(pixels), samples(pixels, 0), rays(pixels, 0) {}
 };
 
 // Runs `body` over `range` with tbb::parallel_for in an arena of the settings' thread
@@ -171,7 +173,7 @@ std::uint64_t advance_pixels(const RenderContext<Accel>& ctx, std::size_t n,
     k += length;
     if (to <= from) continue;
     const PixelRun run{int(p % width), int(p / width), int(length), base + from, base + to};
-    rays += accumulate_run(ctx, run, {&pixels.sums[p], &pixels.squares[p], &pixels.rays[p]});
+    rays += accumulate_run(ctx, run, {&pixels.sums[p], &pixels.spreads[p], &pixels.rays[p]});
     std::fill_n(pixels.samples.begin() + std::ptrdiff_t(p), length, to);
     added += std::uint64_t(length) * (to - from);
   }

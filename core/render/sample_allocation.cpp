@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/film/pixel_variance.h"
+#include "core/film/replicate_variance.h"
 
 namespace rtiow {
 
@@ -30,9 +31,15 @@ std::vector<double> neighbourhood_mean(int width, int height, const std::vector<
 
 std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
                                                     const PixelAccumulators& pixels) {
+  // Each pixel's relative variance per sample scaled to what its mean really has: the
+  // sampler's gain over independent samples, from its neighbours' replicates.
+  const std::vector<double> ratio =
+      replicate_ratios(settings.width, settings.height, pixels.sums, pixels.spreads, pixels.samples,
+                       settings.first_sample, settings.sampler);
   std::vector<double> own(pixels.samples.size());
   for (std::size_t p = 0; p < own.size(); ++p) {
-    own[p] = relative_sample_variance(pixels.sums[p], pixels.squares[p], pixels.samples[p]);
+    own[p] =
+        relative_sample_variance(pixels.sums[p], pixels.spreads[p], pixels.samples[p]) * ratio[p];
   }
   return neighbourhood_mean(settings.width, settings.height, own);
 }

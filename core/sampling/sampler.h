@@ -14,6 +14,13 @@
 //   which is again a (0,m,2)-net.
 // All are pure functions of (seed, pixel, sample index, dimension): nothing depends on how
 // many samples a render takes or how they are split between threads, passes or processes.
+//
+// Replicates: a pixel's samples alternate between two independently scrambled sequences
+// (even sample indices draw point i/2 of the first, odd ones point i/2 of the second). The
+// mean of a scrambled Sobol sequence converges faster than 1/n, so a pixel's own sample
+// variance overstates its error; the spread of two independent replicates' means does not
+// (core/film/replicate_variance.h). The independent sampler's samples are replicates as
+// they are.
 
 #include <array>
 #include <cstdint>
@@ -37,26 +44,47 @@ constexpr std::uint64_t pixel_hash(std::uint64_t seed, std::uint32_t px, std::ui
   return hash_combine(hash_combine(mix64(seed), px), py);
 }
 
+// How many independent replicates a pixel's samples alternate between, and which one and
+// which point of it sample `i` is.
+inline constexpr int kReplicates = 2;
+constexpr int replicate_of(std::uint64_t sample_index) {
+  return int(sample_index & 1u);
+}
+constexpr std::uint64_t point_in_replicate(std::uint64_t sample_index) {
+  return sample_index >> 1;
+}
+
+// The second replicate's scrambles come from its own hash of the pixel.
+constexpr std::uint64_t replicate_hash(std::uint64_t pixel_hash, int replicate) {
+  return replicate == 0 ? pixel_hash : mix64(pixel_hash ^ 0xa0761d6478bd642full);
+}
+
 // Each dimension's scrambles (and shuffle) for a pixel: one finaliser of (pixel, dimension).
 constexpr std::uint64_t dimension_hash(std::uint64_t pixel_hash, int d) {
   return mix64(pixel_hash + 0x9e3779b97f4a7c15ull * std::uint64_t(d + 1));
 }
 
-// What all samples of a pixel share: its hash and the hashes of its first dimensions, which
-// depend on the pixel and the dimension but not on the sample. Made once per pixel, they save
-// a sample some twenty 64-bit finalisers (about 8% of a Sobol sample's time on the cover).
+// What all samples of a pixel share: its hash and, per replicate, the hashes of its first
+// dimensions, which depend on the pixel and the dimension but not on the sample. Made once per
+// pixel, they save a sample some twenty 64-bit finalisers (about 8% of a Sobol sample's time
+// on the cover).
 struct PixelSampler {
   static constexpr int kCachedDimensions = 16;  // the camera and three bounces
 
   SamplerKind kind;
   std::uint64_t hash;
-  std::array<std::uint64_t, kCachedDimensions> dimension_hashes{};
+  std::array<std::uint64_t, kReplicates> replicate_hashes{};
+  std::array<std::array<std::uint64_t, kCachedDimensions>, kReplicates> dimension_hashes{};
 
   constexpr PixelSampler(SamplerKind kind_, std::uint64_t seed, std::uint32_t px, std::uint32_t py)
       : kind(kind_), hash(pixel_hash(seed, px, py)) {
     if (kind == SamplerKind::Independent) return;  // it draws from its stream alone
-    for (int d = 0; d < kCachedDimensions; ++d) {
-      dimension_hashes[std::size_t(d)] = dimension_hash(hash, d);
+    for (int r = 0; r < kReplicates; ++r) {
+      replicate_hashes[std::size_t(r)] = replicate_hash(hash, r);
+      for (int d = 0; d < kCachedDimensions; ++d) {
+        dimension_hashes[std::size_t(r)][std::size_t(d)] =
+            dimension_hash(replicate_hashes[std::size_t(r)], d);
+      }
     }
   }
 };
@@ -65,7 +93,7 @@ class SampleStream {
  public:
   constexpr SampleStream(std::uint64_t seed, std::uint32_t px, std::uint32_t py,
                          std::uint64_t sample_index, SamplerKind kind = SamplerKind::Independent)
-      : SampleStream(pixel_hash(seed, px, py), nullptr, sample_index, kind) {}
+      : SampleStream(pixel_hash(seed, px, py), nullptr, nullptr, sample_index, kind) {}
 
   constexpr SampleStream(SamplerKind kind, std::uint64_t seed, std::uint32_t px, std::uint32_t py,
                          std::uint64_t sample_index)
@@ -73,7 +101,9 @@ class SampleStream {
 
   // Sample `sample_index` of the pixel; `pixel` must outlive the stream.
   constexpr SampleStream(const PixelSampler& pixel, std::uint64_t sample_index)
-      : SampleStream(pixel.hash, pixel.dimension_hashes.data(), sample_index, pixel.kind) {}
+      : SampleStream(pixel.hash, &pixel.replicate_hashes[std::size_t(replicate_of(sample_index))],
+                     pixel.dimension_hashes[std::size_t(replicate_of(sample_index))].data(),
+                     sample_index, pixel.kind) {}
 
   // The next dimension.
   constexpr float next_1d() {
@@ -128,16 +158,21 @@ class SampleStream {
   constexpr int dimension() const { return dimension_; }
 
  private:
-  constexpr SampleStream(std::uint64_t pixel_hash, const std::uint64_t* cached_hashes,
-                         std::uint64_t sample_index, SamplerKind kind)
+  // `cached_replicate_hash` and `cached_hashes`, when given, are the sample's replicate's.
+  constexpr SampleStream(std::uint64_t pixel_hash, const std::uint64_t* cached_replicate_hash,
+                         const std::uint64_t* cached_hashes, std::uint64_t sample_index,
+                         SamplerKind kind)
       : pixel_hash_(pixel_hash),
         cached_hashes_(cached_hashes),
-        index_(std::uint32_t(sample_index)),
-        reversed_index_(reverse_bits(std::uint32_t(sample_index))),
+        index_(std::uint32_t(point_in_replicate(sample_index))),
+        reversed_index_(reverse_bits(index_)),
         kind_(kind) {
     // Only the independent sampler reads the stream: the others skip its set-up.
     if (kind == SamplerKind::Independent) {
       rng_.set_sequence(pixel_hash, hash_combine(pixel_hash, sample_index));
+    } else {
+      pixel_hash_ = cached_replicate_hash ? *cached_replicate_hash
+                                          : replicate_hash(pixel_hash, replicate_of(sample_index));
     }
   }
 
@@ -150,7 +185,7 @@ class SampleStream {
   }
 
   Pcg32 rng_{};
-  std::uint64_t pixel_hash_;
+  std::uint64_t pixel_hash_;  // the replicate's, for the Sobol samplers
   const std::uint64_t* cached_hashes_;
   std::uint32_t index_;
   std::uint32_t reversed_index_;

@@ -1,0 +1,148 @@
+#include "core/film/replicate_variance.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace rtiow {
+
+Vec3d replicate_estimate(const PixelSum& sum, const PixelSpread& spread, std::uint64_t first,
+                         std::uint64_t n) {
+  const std::uint64_t odd = odd_samples(first, n), even = n - odd;
+  if (odd == 0 || even == 0) return {0, 0, 0};
+  const double weight = double(even) * double(odd) / (double(n) * double(n));
+  double v[3];
+  for (int c = 0; c < 3; ++c) {
+    const double odd_sum = double(spread.odd.channel(c)) / PixelSum::kScale;
+    const double even_sum = double(sum.channel(c) - spread.odd.channel(c)) / PixelSum::kScale;
+    const double difference = even_sum / double(even) - odd_sum / double(odd);
+    v[c] = weight * difference * difference;
+  }
+  return {v[0], v[1], v[2]};
+}
+
+namespace {
+
+// Sums of `values` (row major) over every (2r + 1)^2 window, clipped to the image, through a
+// summed-area table.
+std::vector<double> window_sums(int width, int height, const std::vector<double>& values, int r) {
+  const auto w = std::size_t(width), h = std::size_t(height);
+  std::vector<double> table((w + 1) * (h + 1), 0.0);
+  for (std::size_t y = 0; y < h; ++y) {
+    double row = 0;
+    for (std::size_t x = 0; x < w; ++x) {
+      row += values[y * w + x];
+      table[(y + 1) * (w + 1) + x + 1] = table[y * (w + 1) + x + 1] + row;
+    }
+  }
+  std::vector<double> sums(values.size());
+  for (int y = 0; y < height; ++y) {
+    const auto y0 = std::size_t(std::max(0, y - r)), y1 = std::size_t(std::min(height, y + r + 1));
+    for (int x = 0; x < width; ++x) {
+      const auto x0 = std::size_t(std::max(0, x - r)), x1 = std::size_t(std::min(width, x + r + 1));
+      sums[std::size_t(y) * w + std::size_t(x)] =
+          table[y1 * (w + 1) + x1] - table[y0 * (w + 1) + x1] - table[y1 * (w + 1) + x0] +
+          table[y0 * (w + 1) + x0];
+    }
+  }
+  return sums;
+}
+
+double channel_total(const Vec3d& v) {
+  return v.x + v.y + v.z;
+}
+
+}  // namespace
+
+namespace {
+
+// A pixel's count class: the sampler's gain grows with the count, so an adaptive render's
+// pixels borrow the ratio only from neighbours of about their own count (within 2x).
+int count_class(std::uint32_t n) {
+  return n < 2 ? -1 : std::bit_width(n) - 1;
+}
+
+// The window sums of one count class (or of every class, `only` < 0): replicate and sample
+// estimates and how many pixels gave them, the pixel itself left out.
+struct WindowTotals {
+  std::vector<double> replicate, sample, pixels;
+};
+
+WindowTotals class_windows(int width, int height, const std::vector<double>& replicate,
+                           const std::vector<double>& sample, const std::vector<int>& classes,
+                           int only) {
+  std::vector<double> r(replicate.size(), 0.0), s(replicate.size(), 0.0), n(replicate.size(), 0.0);
+  for (std::size_t p = 0; p < r.size(); ++p) {
+    if (classes[p] < 0 || (only >= 0 && classes[p] != only)) continue;
+    r[p] = replicate[p], s[p] = sample[p], n[p] = 1.0;
+  }
+  WindowTotals t{window_sums(width, height, r, kReplicateWindowRadius),
+                 window_sums(width, height, s, kReplicateWindowRadius),
+                 window_sums(width, height, n, kReplicateWindowRadius)};
+  for (std::size_t p = 0; p < r.size(); ++p) {
+    t.replicate[p] -= r[p], t.sample[p] -= s[p], t.pixels[p] -= n[p];
+  }
+  return t;
+}
+
+// Rounding of the windows' sums can leave a tiny negative remainder; a window with no spread
+// at all says nothing, and the sample variance stands.
+double ratio_of(double replicate, double sample) {
+  return sample > 0.0 ? std::max(0.0, replicate) / sample : 1.0;
+}
+
+}  // namespace
+
+std::vector<double> replicate_ratios(int width, int height, const std::vector<PixelSum>& sums,
+                                     const std::vector<PixelSpread>& spreads,
+                                     const std::vector<std::uint32_t>& samples, std::uint64_t first,
+                                     SamplerKind sampler) {
+  if (sampler == SamplerKind::Independent) return std::vector<double>(sums.size(), 1.0);
+  std::vector<double> replicate(sums.size(), 0.0), sample(sums.size(), 0.0);
+  std::vector<int> classes(sums.size(), -1);
+  int most = -1;
+  for (std::size_t p = 0; p < sums.size(); ++p) {
+    if (samples[p] < 2) continue;  // no estimate of either kind
+    const double own = channel_total(variance_of_mean(sums[p], spreads[p], samples[p]));
+    if (!std::isfinite(own)) continue;
+    sample[p] = own;
+    replicate[p] = channel_total(replicate_estimate(sums[p], spreads[p], first, samples[p]));
+    classes[p] = count_class(samples[p]);
+    most = std::max(most, classes[p]);
+  }
+  // Each pixel's ratio from the neighbours of its own count class where there are enough of
+  // them, else from the neighbours of every count.
+  const WindowTotals all = class_windows(width, height, replicate, sample, classes, -1);
+  std::vector<double> ratios(sums.size(), 1.0);
+  for (std::size_t p = 0; p < sums.size(); ++p)
+    ratios[p] = ratio_of(all.replicate[p], all.sample[p]);
+  const bool uniform_counts =
+      std::all_of(classes.begin(), classes.end(), [&](int c) { return c == most || c < 0; });
+  if (uniform_counts) return ratios;
+  for (int c = 0; c <= most; ++c) {
+    if (std::find(classes.begin(), classes.end(), c) == classes.end()) continue;
+    const WindowTotals own = class_windows(width, height, replicate, sample, classes, c);
+    for (std::size_t p = 0; p < sums.size(); ++p) {
+      if (classes[p] == c && own.pixels[p] >= kReplicateMinNeighbours) {
+        ratios[p] = ratio_of(own.replicate[p], own.sample[p]);
+      }
+    }
+  }
+  return ratios;
+}
+
+std::vector<Vec3d> honest_variances(int width, int height, const std::vector<PixelSum>& sums,
+                                    const std::vector<PixelSpread>& spreads,
+                                    const std::vector<std::uint32_t>& samples, std::uint64_t first,
+                                    SamplerKind sampler) {
+  const std::vector<double> ratios =
+      replicate_ratios(width, height, sums, spreads, samples, first, sampler);
+  std::vector<Vec3d> variances(sums.size());
+  for (std::size_t p = 0; p < sums.size(); ++p) {
+    const Vec3d own = variance_of_mean(sums[p], spreads[p], samples[p]);
+    variances[p] = samples[p] < 2 ? own : own * ratios[p];  // below two: infinite, unknown
+  }
+  return variances;
+}
+
+}  // namespace rtiow
