@@ -136,12 +136,25 @@ int list_scenes() {
 
 // "64 spp", or for adaptive sampling the range and mean of the pixels' counts.
 std::string describe_samples(const RenderSettings& s, const RenderResult& r) {
-  char text[96];
+  char text[192];
   if (is_adaptive(s)) {
     const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
-    char goal[48] = "adaptive";
-    if (s.target_error > 0) std::snprintf(goal, sizeof goal, "target error %g", s.target_error);
-    if (s.image_error > 0) std::snprintf(goal, sizeof goal, "image error %g", s.image_error);
+    char goal[128] = "adaptive";
+    // An error-driven render that stopped at its cap says so, and how far it got.
+    if (s.target_error > 0 && r.pixels_above_target > 0) {
+      std::snprintf(goal, sizeof goal, "target error %g not reached by %llu pixels at %d spp",
+                    s.target_error, static_cast<unsigned long long>(r.pixels_above_target),
+                    s.samples_per_pixel);
+    } else if (s.target_error > 0) {
+      std::snprintf(goal, sizeof goal, "target error %g", s.target_error);
+    }
+    if (s.image_error > 0 && r.estimated_image_error > s.image_error && !r.stopped &&
+        !r.time_limited) {
+      std::snprintf(goal, sizeof goal, "image error %g not reached: %.3g at %d spp", s.image_error,
+                    r.estimated_image_error, s.samples_per_pixel);
+    } else if (s.image_error > 0) {
+      std::snprintf(goal, sizeof goal, "image error %g", s.image_error);
+    }
     std::snprintf(text, sizeof text, "%u-%u spp (mean %.1f, %s)", *least, *most, mean_samples(r),
                   goal);
   } else {

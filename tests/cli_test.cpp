@@ -392,6 +392,35 @@ TEST(Cli, BudgetRenderRecordsItsBudgetAndSpreadsItsSamples) {
   EXPECT_EQ(spec.get_int_attribute("rtiow:spp_limit"), 1 << 24);
 }
 
+// An error-driven render that stops at its --spp cap says that it did not reach its target,
+// and how far it got, in the summary and in the file.
+TEST(Cli, ErrorTargetsMissedAtTheCapAreReported) {
+  const fs::path out = output_path("capped.exr");
+  const CommandResult image =
+      run_rtiow("render --scene cover --width 32 --spp 16 --image-error 0.001 -o " + out.string());
+  ASSERT_EQ(image.exit_code, 0) << image.stderr_text;
+  EXPECT_NE(image.stderr_text.find("image error 0.001 not reached"), std::string::npos)
+      << image.stderr_text;
+  auto in = OIIO::ImageInput::open(out.string());
+  ASSERT_TRUE(in);
+  EXPECT_GT(in->spec().get_float_attribute("rtiow:estimated_image_error"), 0.001f);
+  in.reset();
+  const CommandResult pixels =
+      run_rtiow("render --scene cover --width 32 --spp 32 --target-error 0.001 -o " + out.string());
+  ASSERT_EQ(pixels.exit_code, 0) << pixels.stderr_text;
+  EXPECT_NE(pixels.stderr_text.find("target error 0.001 not reached by"), std::string::npos)
+      << pixels.stderr_text;
+  in = OIIO::ImageInput::open(out.string());
+  ASSERT_TRUE(in);
+  EXPECT_GT(in->spec().get_int_attribute("rtiow:pixels_above_target"), 0);
+  in.reset();
+  // Reached: no such words.
+  const CommandResult reached =
+      run_rtiow("render --scene cover --width 32 --spp 4096 --image-error 0.1 -o " + out.string());
+  ASSERT_EQ(reached.exit_code, 0) << reached.stderr_text;
+  EXPECT_EQ(reached.stderr_text.find("not reached"), std::string::npos) << reached.stderr_text;
+}
+
 TEST(Cli, RefusesAdaptiveAndStatisticsOptionsWhereTheyCannotWork) {
   expect_refused("--scene cover --width 8 --spp 4 --sampler halton", "--sampler");
   expect_refused("--scene cover --width 8 --spp 4 --stats-channels", "must be .exr");
@@ -400,6 +429,8 @@ TEST(Cli, RefusesAdaptiveAndStatisticsOptionsWhereTheyCannotWork) {
   expect_refused("--scene cover --width 8 --spp 4 --image-error nan", "--image-error");
   expect_refused("--scene cover --width 8 --spp 4 --adaptive --image-error 0.1",
                  "choose one adaptive mode");
+  // A budget at or below the minimum would silently render uniformly.
+  expect_refused("--scene cover --width 8 --spp 16 --adaptive", "leaves nothing to allocate");
   const fs::path part = output_path("part.exr");
   const CommandResult r = run_rtiow(
       "render -q --scene cover --width 8 --spp 4 --target-error 0.1 "
@@ -408,7 +439,7 @@ TEST(Cli, RefusesAdaptiveAndStatisticsOptionsWhereTheyCannotWork) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.stderr_text.find("--target-error"), std::string::npos) << r.stderr_text;
   const CommandResult budget = run_rtiow(
-      "render -q --scene cover --width 8 --spp 4 --adaptive --part 0/2 -o " + part.string());
+      "render -q --scene cover --width 8 --spp 64 --adaptive --part 0/2 -o " + part.string());
   EXPECT_EQ(budget.exit_code, 2);
   EXPECT_NE(budget.stderr_text.find("--adaptive needs all of a pixel's samples"), std::string::npos)
       << budget.stderr_text;

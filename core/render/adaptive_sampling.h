@@ -91,9 +91,14 @@ void render_adaptive(const RenderContext<Accel>& ctx, RenderProgress* progress,
        first = false) {
     if (deadline.ended()) break;
     const std::vector<double> judged = neighbourhood_relative_variance(settings, pixels);
+    result.pixels_above_target = 0;
     for (std::size_t p = 0; p < targets.size(); ++p) {
       const std::uint32_t n = pixels.samples[p];
-      if (n < most && judged[p] / double(n) > target_variance) targets[p] = std::min(most, 2 * n);
+      if (judged[p] / double(n) <= target_variance) continue;
+      if (n < most)
+        targets[p] = std::min(most, 2 * n);
+      else
+        ++result.pixels_above_target;  // at the cap, short of the target
     }
   }
   deadline.report(result, pixels);
@@ -123,7 +128,9 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
     const PixelEstimates e = pooled_estimates(settings, pixels);
     if (by_error) {
       const double goal = settings.image_error * settings.image_error;
-      if (estimated_rel_mse(e.variance, pixels.samples) <= goal) break;
+      const double estimate = estimated_rel_mse(e.variance, pixels.samples);
+      result.estimated_image_error = std::sqrt(estimate);
+      if (estimate <= goal) break;
       targets = allocate_for_error(e, pixels.samples, goal, most);
       for (std::size_t p = 0; p < targets.size(); ++p) {
         targets[p] = std::min(targets[p], 2 * pixels.samples[p]);

@@ -112,6 +112,15 @@ void validate(const RenderSettings& s) {
     throw InvalidInput("minimum samples must be >= 2 (a variance needs two), got " +
                        std::to_string(s.min_samples));
   }
+  // A budget no larger than the minimum leaves nothing to allocate: the render would be
+  // uniform while its metadata says adaptive.
+  if (s.adaptive && asks_sample_count(s) && s.samples_per_pixel <= s.min_samples) {
+    throw InvalidInput("--adaptive: a budget of " + std::to_string(s.samples_per_pixel) +
+                       " spp leaves nothing to allocate after every pixel's minimum of " +
+                       std::to_string(s.min_samples) +
+                       " (--min-spp); give --spp above it, or leave out --adaptive for a "
+                       "uniform render");
+  }
   const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
   if (pixels > kMaxPixels) {
     throw InvalidInput("image " + std::to_string(s.width) + "x" + std::to_string(s.height) +

@@ -87,6 +87,10 @@ struct RenderResult {
   double build_seconds = 0.0;   // accelerator construction
   double render_seconds = 0.0;  // the sample loop
   std::uint64_t rays_traced = 0;
+  // Where the error-driven modes ended: --image-error's estimated relative RMS error of the
+  // image, and --target-error's count of pixels still above the target at the --spp cap.
+  double estimated_image_error = 0.0;
+  std::uint64_t pixels_above_target = 0;
 };
 
 // Everything a render checks before any work: the settings, the scene, and that the camera

@@ -23,8 +23,14 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
   if (is_adaptive(s)) {
     // Each pixel has its own count: the range and the mean, not one "spp".
     const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
-    if (s.target_error > 0) metadata.emplace_back(key::kTargetError, s.target_error);
-    if (s.image_error > 0) metadata.emplace_back(key::kImageError, s.image_error);
+    if (s.target_error > 0) {
+      metadata.emplace_back(key::kTargetError, s.target_error);
+      metadata.emplace_back(key::kPixelsAboveTarget, std::int64_t(r.pixels_above_target));
+    }
+    if (s.image_error > 0) {
+      metadata.emplace_back(key::kImageError, s.image_error);
+      metadata.emplace_back(key::kEstimatedImageError, r.estimated_image_error);
+    }
     if (s.adaptive) {
       metadata.emplace_back(key::kAdaptive, std::string("sqrt(variance/cost)"));
       if (asks_sample_count(s)) {  // else the time limit's

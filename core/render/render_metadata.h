@@ -20,6 +20,10 @@ inline constexpr const char* kSpp = "spp";                     // uniform sampli
 inline constexpr const char* kSppRequested = "spp_requested";  // when stopped early
 inline constexpr const char* kTargetError = "target_error";    // adaptive sampling...
 inline constexpr const char* kImageError = "image_error";
+// ...where they ended: the image's estimated relative RMS error, the pixels left above the
+// target at the cap.
+inline constexpr const char* kEstimatedImageError = "estimated_image_error";
+inline constexpr const char* kPixelsAboveTarget = "pixels_above_target";
 inline constexpr const char* kAdaptive = "adaptive";  // the budget mode: "sqrt(variance/cost)"
 inline constexpr const char* kSppMin = "spp_min";
 inline constexpr const char* kSppMax = "spp_max";
