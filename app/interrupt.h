@@ -1,9 +1,13 @@
 #pragma once
-// Ctrl-C and SIGTERM during a render: the first asks the render to stop at the end of the
-// current pass (so the samples completed are written, not lost); the second aborts at once.
+// A signal that would end the process during a render (Ctrl-C, SIGTERM, a hang-up from a
+// closed terminal or SSH session, SIGQUIT, a batch system's CPU-time limit SIGXCPU): the
+// first asks the render to stop at the end of the current pass (so the samples completed are
+// written, not lost); the second aborts at once. A signal ignored when rtiow started (a
+// background job of a script, nohup) stays ignored.
 
 #include <atomic>
 #include <csignal>
+#include <iterator>
 
 namespace rtiow {
 
@@ -19,8 +23,8 @@ class InterruptGuard {
   static int signal_received();
 
  private:
-  struct sigaction previous_int_ {};
-  struct sigaction previous_term_ {};
+  static constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGXCPU};
+  struct sigaction previous_[std::size(kSignals)]{};
 };
 
 }  // namespace rtiow

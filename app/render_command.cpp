@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/checkpoint_session.h"
 #include "app/cli_checks.h"
 #include "app/interrupt.h"
 #include "app/mpi_session.h"
@@ -54,6 +55,8 @@ struct RenderOptions {
   bool stats_channels = false;
   bool quiet = false;
   bool reproducible = false;
+  double checkpoint_seconds = 60.0;  // 0: none
+  bool resume = false;
   std::string sample_range;  // "A:B": render a share of the samples into a part file
   std::string part;          // "i/n": the i-th of n equal shares
   std::vector<double> lookfrom, lookat, vup;
@@ -271,7 +274,8 @@ Job prepare_job(const RenderOptions& o, bool scene_option_given, bool output_giv
 
 // Renders with Ctrl-C handling and, unless quiet, a progress display (under MPI on rank 0,
 // which shows its own share: it moves with the others').
-RenderResult render_with_progress(const RenderOptions& o, const Job& job, const MpiSession& mpi) {
+RenderResult render_with_progress(const RenderOptions& o, const Job& job, const MpiSession& mpi,
+                                  const Checkpointing* checkpointing) {
   RenderProgress progress;
   const InterruptGuard interrupt(progress.stop_requested);
   std::unique_ptr<ProgressDisplay> display;
@@ -284,7 +288,7 @@ RenderResult render_with_progress(const RenderOptions& o, const Job& job, const 
                              : std::uint64_t(s.width) * std::uint64_t(s.height) *
                                    std::uint64_t(s.samples_per_pixel));
   }
-  return render(job.scene, job.settings, &progress);
+  return render(job.scene, job.settings, &progress, checkpointing);
 }
 
 // Under MPI, rank 0 adds every rank's exact sums into the image of one process with all the
@@ -336,18 +340,63 @@ void print_summary(const Job& job, const RenderResult& result, const MpiSession&
                rays / result.render_seconds * 1e-6, std::filesystem::absolute(job.output).c_str());
 }
 
+// The checkpoint of this process's render: none under mpirun (each rank holds only its
+// share), where --resume is refused.
+std::unique_ptr<CheckpointSession> open_checkpoint(const RenderOptions& o, const Job& job,
+                                                   const MpiSession& mpi) {
+  if (mpi.distributed()) {
+    if (o.resume) throw InvalidInput("--resume is for a render in one process, not under mpirun");
+    return nullptr;
+  }
+  auto session = std::make_unique<CheckpointSession>(job.output, job.scene, job.settings,
+                                                     o.checkpoint_seconds, o.resume, o.quiet);
+  if (session->resumed_from() && !o.quiet) {
+    std::fprintf(stderr, "rtiow: resuming from %s (%u spp done)\n",
+                 quote_value(session->path()).c_str(), *session->resumed_from());
+  }
+  return session;
+}
+
+// Writes the image; if that fails after the render, says where the pixels are kept.
+void write_or_keep(const RenderOptions& o, const Job& job, RenderResult& result,
+                   const CheckpointSession* checkpoint) {
+  try {
+    write_result(o, job, result);
+  } catch (const InvalidInput&) {
+    throw;
+  } catch (const std::exception& e) {
+    if (!checkpoint) throw;
+    if (!checkpoint->holds_the_render()) {
+      throw std::runtime_error(std::string(e.what()) + "; and no checkpoint was kept (" +
+                               checkpoint->failure() + ")");
+    }
+    throw std::runtime_error(std::string(e.what()) + "; the render is kept in " +
+                             quote_value(checkpoint->path()) +
+                             ": run the same command with --resume to write it");
+  }
+}
+
+// A render whose image was written but whose last checkpoint was not: it cannot be refined.
+void warn_if_not_kept(const CheckpointSession* checkpoint, bool quiet) {
+  if (!checkpoint || quiet || checkpoint->failure().empty()) return;
+  std::fprintf(stderr, "rtiow: warning: %s (the image is written; --resume cannot continue it)\n",
+               one_line(checkpoint->failure()).c_str());
+}
+
 int run_render(const RenderOptions& o, bool scene_option_given, bool output_given,
                const MpiSession& mpi) {
   if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
   Job job = prepare_job(o, scene_option_given, output_given, mpi);
+  const std::unique_ptr<CheckpointSession> checkpoint = open_checkpoint(o, job, mpi);
   // The image writer loads on a second thread while the render runs (rank 0 writes).
   if (mpi.rank() == 0) {
     start_parallel_runtime();
     preload_image_backend();
   }
-  RenderResult result = render_with_progress(o, job, mpi);
+  RenderResult result =
+      render_with_progress(o, job, mpi, checkpoint ? checkpoint->checkpointing() : nullptr);
   if (mpi.distributed() && !gather_ranks(mpi, job, result)) return 0;
-  write_result(o, job, result);
+  write_or_keep(o, job, result, checkpoint.get());
   if (result.stopped) {
     // What was asked: a count, a budget (--adaptive), or nothing but a time limit.
     const RenderSettings& s = job.settings;
@@ -356,12 +405,16 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
       asked = (s.adaptive ? " (of a budget of " : " (of ") + std::to_string(s.samples_per_pixel) +
               (s.adaptive ? " spp)" : " asked)");
     }
-    std::fprintf(stderr, "rtiow: interrupted: wrote %s%s to %s\n",
+    const std::string kept = checkpoint && checkpoint->holds_the_render()
+                                 ? "; --resume continues it from " + quote_value(checkpoint->path())
+                                 : "";
+    std::fprintf(stderr, "rtiow: interrupted: wrote %s%s to %s%s\n",
                  describe_samples(s, result).c_str(), asked.c_str(),
-                 std::filesystem::absolute(job.output).c_str());
+                 std::filesystem::absolute(job.output).c_str(), kept.c_str());
     return 128 + InterruptGuard::signal_received();
   }
   if (!o.quiet) print_summary(job, result, mpi);
+  warn_if_not_kept(checkpoint.get(), o.quiet);
   return 0;
 }
 
@@ -454,6 +507,14 @@ void add_run_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--part", o.part,
                   "Render the i-th of n equal shares of the samples (i/n, from 0) into a part "
                   "file (.exr)");
+  cmd->add_option("--checkpoint", o.checkpoint_seconds,
+                  "Keep the render's state in <output>.rtiow-checkpoint, saved every this many "
+                  "seconds, when a signal stops it and when it ends (0: no checkpoint)")
+      ->check(kFiniteNotNegative)
+      ->capture_default_str();
+  cmd->add_flag("--resume", o.resume,
+                "Continue the render of the same request from its checkpoint (to more samples "
+                "with a larger --spp); without a checkpoint, render from the start");
   cmd->add_flag("--reproducible", o.reproducible,
                 "Leave wall-clock metadata (render time) out of the file, so the same scene, "
                 "settings and seed give a byte-identical file");

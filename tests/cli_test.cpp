@@ -12,6 +12,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -19,11 +20,14 @@
 #include <thread>
 #include <vector>
 
+#include "tests/background_render.h"
 #include "tests/test_files.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+
+using rtiow::test::BackgroundRender;
 
 struct CommandResult {
   int exit_code;
@@ -502,74 +506,15 @@ TEST(Cli, SphereFieldScenesRenderAndRefuseBadCounts) {
 
 namespace {
 
-// A render started in the background, for the signal tests.
-class BackgroundRender {
- public:
-  explicit BackgroundRender(const std::vector<std::string>& args) {
-    std::vector<char*> argv;
-    std::string binary = RTIOW_BINARY;
-    argv.push_back(binary.data());
-    args_ = args;
-    for (std::string& a : args_) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    stderr_path_ = (fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + ".stderr")).string();
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 2, stderr_path_.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    EXPECT_EQ(posix_spawn(&pid_, binary.c_str(), &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
-  }
-
-  void signal(int sig) const { ::kill(pid_, sig); }
-
-  // Waits (up to 20 s) until the render catches SIGINT, i.e. has installed its handler: a
-  // signal before that would just kill it, as it should, but would test nothing.
-  bool wait_until_catching_sigint() const {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-    const std::string status_path = "/proc/" + std::to_string(pid_) + "/status";
-    while (std::chrono::steady_clock::now() < deadline) {
-      std::ifstream status(status_path);
-      std::string line;
-      while (std::getline(status, line)) {
-        if (line.rfind("SigCgt:", 0) == 0) {
-          const unsigned long long caught = std::stoull(line.substr(7), nullptr, 16);
-          if (caught & (1ull << (SIGINT - 1))) return true;
-        }
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return false;
-  }
-
-  // The exit code, or -1 if it did not end within `seconds` (then it is killed).
-  int wait(double seconds) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    int status = 0;
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (waitpid(pid_, &status, WNOHANG) == pid_)
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -2;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    ::kill(pid_, SIGKILL);
-    waitpid(pid_, &status, 0);
-    return -1;
-  }
-
-  std::string stderr_text() const { return slurp(stderr_path_); }
-
- private:
-  std::vector<std::string> args_;
-  std::string stderr_path_;
-  pid_t pid_ = -1;
-};
-
 std::vector<std::string> long_render(const fs::path& out) {
   return {"render", "--scene", "cover", "--width", "160", "--spp", "1000000", "-o", out.string()};
 }
 
+// Every signal that ends a process by default keeps the work: Ctrl-C, kill, a closed
+// terminal or SSH session (HUP), SIGQUIT and a batch system's CPU-time limit (XCPU).
 TEST(Cli, InterruptWritesTheSamplesCompleted) {
-  for (int sig : {SIGINT, SIGTERM}) {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGXCPU}) {
+    SCOPED_TRACE(strsignal(sig));
     const fs::path out = output_path("interrupted.exr");
     BackgroundRender r(long_render(out));
     ASSERT_TRUE(r.wait_until_catching_sigint());
@@ -595,6 +540,20 @@ TEST(Cli, InterruptWritesTheSamplesCompleted) {
     }
     EXPECT_GT(sum / double(pixels.size()), 0.1) << "the partial image is not black";
   }
+}
+
+// A signal ignored when rtiow starts (nohup, a script's background job) stays ignored.
+TEST(Cli, InheritedIgnoredSignalStaysIgnored) {
+  const fs::path out = output_path("nohup.exr");
+  BackgroundRender r(long_render(out), {SIGHUP});
+  ASSERT_TRUE(r.wait_until_catching_sigint());
+  r.signal(SIGHUP);
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  int status = 0;
+  EXPECT_EQ(waitpid(r.pid(), &status, WNOHANG), 0) << "SIGHUP ended a render that ignores it";
+  EXPECT_EQ(r.stderr_text().find("stopping"), std::string::npos) << r.stderr_text();
+  r.signal(SIGINT);
+  EXPECT_EQ(r.wait(20.0), 128 + SIGINT) << r.stderr_text();
 }
 
 TEST(Cli, SecondInterruptAbortsAndLeavesTheOldFileAlone) {

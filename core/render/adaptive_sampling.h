@@ -21,17 +21,19 @@
 #include <vector>
 
 #include "core/render/render_loop.h"
+#include "core/render/render_state.h"
 #include "core/render/sample_allocation.h"
 #include "core/render/stopwatch.h"
 
 namespace rtiow {
 
 // Asked before each group of pixels of a round: true once a stop is requested or the time
-// limit has passed, remembering which.
+// limit has passed (counting the time spent before a resume), remembering which.
 class RoundDeadline {
  public:
-  RoundDeadline(const RenderSettings& settings, RenderProgress* progress)
-      : settings_(settings), progress_(progress), start_(Clock::now()) {}
+  RoundDeadline(const RenderSettings& settings, RenderProgress* progress,
+                const RenderJournal& journal)
+      : settings_(settings), progress_(progress), journal_(journal) {}
 
   bool operator()() {
     if (progress_->stop_requested.load()) stop_requested_ = true;
@@ -41,7 +43,7 @@ class RoundDeadline {
     return stop_requested_.load() || time_out_.load();
   }
 
-  double elapsed() const { return seconds_since(start_); }
+  double elapsed() const { return journal_.elapsed(); }
   bool ended() const { return stop_requested_.load() || time_out_.load(); }
 
   void report(RenderResult& result, const PixelAccumulators& pixels) const {
@@ -53,26 +55,47 @@ class RoundDeadline {
  private:
   const RenderSettings& settings_;
   RenderProgress* progress_;
-  Clock::time_point start_;
+  const RenderJournal& journal_;
   std::atomic<bool> stop_requested_{false}, time_out_{false};
 };
 
-// Renders the pixels whose target is above their count. The first round is never cut
-// short: every pixel gets its minimum, so none is empty. Returns false if no pixel moved.
+// Renders the pixels whose target (the state's) is above their count. The first round is
+// never cut short by the deadline: every pixel gets its minimum, so none is empty. A save
+// that falls due pauses the round, saves it with its targets and goes on. Returns false if
+// no pixel moved.
 template <typename Accel>
-bool render_round(const RenderContext<Accel>& ctx, const std::vector<std::uint32_t>& targets,
-                  bool first_round, RoundDeadline& deadline, PixelAccumulators& pixels,
-                  RenderProgress* progress, RenderResult& result) {
-  std::vector<std::size_t> list;
-  for (std::size_t p = 0; p < targets.size(); ++p) {
-    if (targets[p] > pixels.samples[p]) list.push_back(p);
+bool render_round(const RenderContext<Accel>& ctx, bool first_round, RoundDeadline& deadline,
+                  RenderJournal& journal, RenderProgress* progress, RenderResult& result) {
+  RenderState& state = journal.state();
+  bool moved = false;
+  for (;;) {
+    std::vector<std::size_t> list;
+    for (std::size_t p = 0; p < state.targets.size(); ++p) {
+      if (state.targets[p] > state.pixels.samples[p]) list.push_back(p);
+    }
+    if (list.empty()) return moved;
+    moved = true;
+    // A save falls due only after a group has run, so the round moves however short the
+    // interval.
+    std::atomic<bool> moved_since_save{false};
+    const std::function<bool()> may_skip = [&] {
+      if ((moved_since_save.load() && journal.due()) || (!first_round && deadline())) return true;
+      moved_since_save = true;
+      return false;
+    };
+    result.rays_traced +=
+        render_pixel_list(ctx, list, state.targets, state.pixels, progress, may_skip);
+    if (deadline.ended() || !journal.due()) return true;
+    journal.save(result);
   }
-  if (list.empty()) return false;
-  const std::function<bool()> never = [] { return false; };
-  const std::function<bool()> may_skip = [&] { return deadline(); };
-  result.rays_traced +=
-      render_pixel_list(ctx, list, targets, pixels, progress, first_round ? never : may_skip);
-  return true;
+}
+
+// The targets a render starts from: the state's round under way, or every pixel at the
+// minimum. Returns whether that is the first round (some pixel is below the minimum).
+inline bool start_rounds(RenderState& state, std::uint32_t least) {
+  if (state.targets.empty()) state.targets.assign(state.pixels.samples.size(), least);
+  return std::any_of(state.pixels.samples.begin(), state.pixels.samples.end(),
+                     [&](std::uint32_t n) { return n < least; });
 }
 
 // --target-error: every pixel takes the minimum, then each round doubles the samples of the
@@ -80,15 +103,17 @@ bool render_round(const RenderContext<Accel>& ctx, const std::vector<std::uint32
 // maximum). Few looks (one per doubling) keep the stopping rule's bias small.
 template <typename Accel>
 void render_adaptive(const RenderContext<Accel>& ctx, RenderProgress* progress,
-                     PixelAccumulators& pixels, RenderResult& result) {
+                     RenderJournal& journal, RenderResult& result) {
   const RenderSettings& settings = ctx.settings;
-  RoundDeadline deadline(settings, progress);
+  RenderState& state = journal.state();
+  PixelAccumulators& pixels = state.pixels;
+  RoundDeadline deadline(settings, progress, journal);
   const auto most = std::uint32_t(settings.samples_per_pixel);
   const auto least = std::min(most, std::uint32_t(settings.min_samples));
   const double target_variance = settings.target_error * settings.target_error;
-  std::vector<std::uint32_t> targets(pixels.samples.size(), least);
-  for (bool first = true; render_round(ctx, targets, first, deadline, pixels, progress, result);
-       first = false) {
+  std::vector<std::uint32_t>& targets = state.targets;
+  for (bool first = start_rounds(state, least);
+       render_round(ctx, first, deadline, journal, progress, result); first = false) {
     if (deadline.ended()) break;
     const std::vector<double> judged = neighbourhood_relative_variance(settings, pixels);
     result.pixels_above_target = 0;
@@ -111,19 +136,19 @@ void render_adaptive(const RenderContext<Accel>& ctx, RenderProgress* progress,
 // cost spent so far, so the estimates are refined about log2(budget / first round) times.
 template <typename Accel>
 void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* progress,
-                           PixelAccumulators& pixels, RenderResult& result) {
+                           RenderJournal& journal, RenderResult& result) {
   const RenderSettings& settings = ctx.settings;
-  RoundDeadline deadline(settings, progress);
+  RenderState& state = journal.state();
+  PixelAccumulators& pixels = state.pixels;
+  RoundDeadline deadline(settings, progress, journal);
   const bool by_error = settings.image_error > 0.0;
   const bool open_ended = !asks_sample_count(settings);
   const std::uint32_t most =
       by_error ? std::uint32_t(settings.samples_per_pixel) : kMostAdaptiveSamples;
   const auto least = std::min(
       {most, std::uint32_t(settings.min_samples), std::uint32_t(settings.samples_per_pixel)});
-  std::vector<std::uint32_t> targets(pixels.samples.size(), least);
-  bool last_round = false;  // the round that spends what is left of the budget
-  for (bool first = true; render_round(ctx, targets, first, deadline, pixels, progress, result);
-       first = false) {
+  for (bool first = start_rounds(state, least);
+       render_round(ctx, first, deadline, journal, progress, result); first = false) {
     if (deadline.ended()) break;
     const PixelEstimates e = pooled_estimates(settings, pixels);
     if (by_error) {
@@ -131,9 +156,9 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
       const double estimate = estimated_rel_mse(e.variance, pixels.samples);
       result.estimated_image_error = std::sqrt(estimate);
       if (estimate <= goal) break;
-      targets = allocate_for_error(e, pixels.samples, goal, most);
-      for (std::size_t p = 0; p < targets.size(); ++p) {
-        targets[p] = std::min(targets[p], 2 * pixels.samples[p]);
+      state.targets = allocate_for_error(e, pixels.samples, goal, most);
+      for (std::size_t p = 0; p < state.targets.size(); ++p) {
+        state.targets[p] = std::min(state.targets[p], 2 * pixels.samples[p]);
       }
       continue;
     }
@@ -147,9 +172,9 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
       const double rate = double(result.rays_traced) / std::max(deadline.elapsed(), 1e-9);
       budget = std::min(budget, spent + rate * (settings.time_limit_seconds - deadline.elapsed()));
     }
-    if (!(budget > spent) || last_round) break;
-    last_round = 2.0 * spent >= budget;
-    targets = allocate_budget(e, pixels.samples, std::min(budget, 2.0 * spent), most);
+    if (!(budget > spent) || state.last_round) break;
+    state.last_round = 2.0 * spent >= budget;
+    state.targets = allocate_budget(e, pixels.samples, std::min(budget, 2.0 * spent), most);
   }
   deadline.report(result, pixels);
 }

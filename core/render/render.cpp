@@ -14,6 +14,7 @@
 #include "core/io/input_limits.h"
 #include "core/render/adaptive_sampling.h"
 #include "core/render/render_loop.h"
+#include "core/render/render_state.h"
 #include "core/render/stopwatch.h"
 #include "core/render/uniform_passes.h"
 #include "core/scene/camera.h"
@@ -27,9 +28,29 @@ constexpr std::uint64_t kMaxPixels = 1ull << 31;
 constexpr std::uint64_t kBytesPerPixel = sizeof(Color) + sizeof(PixelSum) + sizeof(PixelSpread) +
                                          sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
+// A resumed state must be of this render's size and, for uniform sampling, hold one count
+// no larger than the one asked (the checkpoint's identity was checked by whoever read it).
+void check_resumable(const RenderState& state, const RenderSettings& settings) {
+  const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
+  const PixelAccumulators& p = state.pixels;
+  if (p.sums.size() != pixels || p.spreads.size() != pixels || p.samples.size() != pixels ||
+      p.rays.size() != pixels || (!state.targets.empty() && state.targets.size() != pixels)) {
+    throw InvalidInput("the state to resume is not of a " + std::to_string(settings.width) + "x" +
+                       std::to_string(settings.height) + " image");
+  }
+  if (is_adaptive(settings)) return;
+  const auto [least, most] = std::minmax_element(p.samples.begin(), p.samples.end());
+  if (*least != *most) throw InvalidInput("the state to resume is not of a uniform render");
+  if (asks_sample_count(settings) && *most > std::uint32_t(settings.samples_per_pixel)) {
+    throw InvalidInput("the render to resume already has " + std::to_string(*most) +
+                       " spp, more than the " + std::to_string(settings.samples_per_pixel) +
+                       " asked: give --spp " + std::to_string(*most) + " or more");
+  }
+}
+
 template <typename Accel>
 RenderResult render_with(const Scene& scene, const Camera& camera, const RenderSettings& settings,
-                         RenderProgress* progress) {
+                         RenderProgress* progress, const Checkpointing* checkpointing) {
   RenderProgress unobserved;
   if (!progress) progress = &unobserved;
   RenderResult result;
@@ -38,16 +59,24 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   result.build_seconds = seconds_since(build_start);
   const RenderContext<Accel> ctx{scene, camera, accel, settings};
 
-  PixelAccumulators pixels(std::size_t(settings.width) * std::size_t(settings.height));
-  const auto render_start = Clock::now();
+  const std::size_t n = std::size_t(settings.width) * std::size_t(settings.height);
+  RenderState state =
+      checkpointing && checkpointing->resume ? std::move(*checkpointing->resume) : RenderState(n);
+  result.rays_traced = state.rays_traced;
+  result.estimated_image_error = state.estimated_image_error;
+  result.pixels_above_target = state.pixels_above_target;
+  for (const std::uint32_t s : state.pixels.samples) progress->samples_done += s;
+  RenderJournal journal(state, checkpointing);
   if (settings.target_error > 0.0) {
-    render_adaptive(ctx, progress, pixels, result);
+    render_adaptive(ctx, progress, journal, result);
   } else if (settings.image_error > 0.0 || settings.adaptive) {
-    render_by_image_error(ctx, progress, pixels, result);
+    render_by_image_error(ctx, progress, journal, result);
   } else {
-    render_uniform(ctx, progress, pixels, result);
+    render_uniform(ctx, progress, journal, result);
   }
-  result.render_seconds = seconds_since(render_start);
+  result.render_seconds = journal.elapsed();
+  journal.save(result, true);  // finished or stopped: kept, to resume or refine
+  PixelAccumulators& pixels = state.pixels;
   result.film = Film(settings.width, settings.height);
   resolve(pixels.sums, pixels.samples, result.film);
   result.sums = std::move(pixels.sums);
@@ -143,14 +172,16 @@ void validate(const Scene& scene, const RenderSettings& settings) {
   validate(scene.camera, settings.width, settings.height);
 }
 
-RenderResult render(const Scene& scene, const RenderSettings& settings, RenderProgress* progress) {
+RenderResult render(const Scene& scene, const RenderSettings& settings, RenderProgress* progress,
+                    const Checkpointing* checkpointing) {
   validate(scene, settings);
+  if (checkpointing && checkpointing->resume) check_resumable(*checkpointing->resume, settings);
   const Camera camera(scene.camera, settings.width, settings.height);
   switch (settings.accel) {
     case AccelKind::Embree:
-      return render_with<EmbreeAccel>(scene, camera, settings, progress);
+      return render_with<EmbreeAccel>(scene, camera, settings, progress, checkpointing);
     case AccelKind::Naive:
-      return render_with<NaiveAccel>(scene, camera, settings, progress);
+      return render_with<NaiveAccel>(scene, camera, settings, progress, checkpointing);
   }
   throw InvalidInput("unknown accelerator");
 }

@@ -97,12 +97,16 @@ struct RenderResult {
 // rays of this image size are traceable. Throws InvalidInput.
 void validate(const Scene& scene, const RenderSettings& settings);
 
+struct Checkpointing;  // core/render/render_state.h
+
 // Validates the scene's camera and the settings (throwing InvalidInput before any work),
 // builds the accelerator and renders in passes: each pass adds a few samples to every
 // pixel, and the pixel sums continue across passes in sample order, so the image does not
-// depend on how samples were grouped into passes.
+// depend on how samples were grouped into passes. With `checkpointing`, the render starts
+// from a saved state and saves its own as it goes: continued, it gives the same bits.
 RenderResult render(const Scene& scene, const RenderSettings& settings,
-                    RenderProgress* progress = nullptr);
+                    RenderProgress* progress = nullptr,
+                    const Checkpointing* checkpointing = nullptr);
 
 // Starts oneTBB now rather than at the render's first pass. oneTBB dlopens its allocator on
 // first use, and a dlopen waits for any other under way: a program that loads a library on

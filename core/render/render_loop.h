@@ -21,6 +21,7 @@
 #include "core/film/pixel_variance.h"
 #include "core/film/sample_sum.h"
 #include "core/render/integrator.h"
+#include "core/render/pixel_accumulators.h"
 #include "core/render/render.h"
 #include "core/render/thread_sanitizer.h"
 #include "core/scene/camera.h"
@@ -117,17 +118,6 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
   }
   return total_rays;
 }
-
-// The per-pixel state of a render in progress (row major, film-sized).
-struct PixelAccumulators {
-  std::vector<PixelSum> sums;
-  std::vector<PixelSpread> spreads;
-  std::vector<std::uint32_t> samples;  // how many each pixel has, from the first sample
-  std::vector<std::uint64_t> rays;     // how many rays they traced (adaptive sampling's cost)
-
-  explicit PixelAccumulators(std::size_t pixels)
-      : sums(pixels), spreads(pixels), samples(pixels, 0), rays(pixels, 0) {}
-};
 
 // Runs `body` over `range` with tbb::parallel_for in an arena of the settings' thread
 // count. The fork and the join are annotated for TSan, which does not see TBB's own.

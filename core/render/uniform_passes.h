@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/render/render_loop.h"
+#include "core/render/render_state.h"
 #include "core/render/stopwatch.h"
 
 namespace rtiow {
@@ -20,29 +21,36 @@ inline std::uint64_t next_pass_samples(std::uint64_t last_pass, double last_seco
   return std::min(remaining, std::uint64_t(n));
 }
 
-// Every pixel gets the same samples, in passes of about a second.
+// Every pixel gets the same samples, in passes of about a second, continuing from the
+// journal's state (all its pixels have the same count) and saving it between passes when due.
 template <typename Accel>
 void render_uniform(const RenderContext<Accel>& ctx, RenderProgress* progress,
-                    PixelAccumulators& pixels, RenderResult& result) {
+                    RenderJournal& journal, RenderResult& result) {
   const RenderSettings& settings = ctx.settings;
-  const auto render_start = Clock::now();
+  PixelAccumulators& pixels = journal.state().pixels;
   const auto total = std::uint64_t(settings.samples_per_pixel);
-  std::uint64_t done = 0, pass = 1;
+  const double limit = settings.time_limit_seconds;
+  std::uint64_t done = pixels.samples.empty() ? 0 : pixels.samples[0], pass = 1;
   while (done < total) {
     if (done > 0 && progress->stop_requested.load()) {
       result.stopped = true;
+      break;
+    }
+    if (done > 0 && limit > 0.0 && journal.elapsed() >= limit) {  // spent before a resume
+      result.time_limited = true;
       break;
     }
     const auto pass_start = Clock::now();
     result.rays_traced += render_pass(ctx, std::uint32_t(done + pass), pixels, progress);
     done += pass;
     const double pass_seconds = seconds_since(pass_start);
+    if (journal.due()) journal.save(result);
     const double seconds_per_sample = pass_seconds / double(pass);
     pass = next_pass_samples(pass, pass_seconds, total - done);
-    if (settings.time_limit_seconds > 0.0 && done < total) {
+    if (limit > 0.0 && done < total) {
       // End within one pass of the limit: stop once it is reached, and size the next pass to
       // what the remaining time holds at the rate just measured.
-      const double left = settings.time_limit_seconds - seconds_since(render_start);
+      const double left = limit - journal.elapsed();
       if (left <= 0.0) {
         result.time_limited = true;
         break;

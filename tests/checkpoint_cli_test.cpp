@@ -1,0 +1,199 @@
+// Nothing lost: renders killed with SIGKILL at random moments (in the middle of a pass, of a
+// checkpoint write, of the final image write) and resumed end with the file an uninterrupted
+// render writes, byte for byte, in every sampling mode; a finished render refines to more
+// samples; a final write that fails keeps the render; a checkpoint of another request is
+// refused in one line.
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/background_render.h"
+#include "tests/test_files.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using rtiow::test::BackgroundRender;
+using rtiow::test::current_test_name;
+using rtiow::test::slurp;
+
+struct CommandResult {
+  int exit_code;
+  std::string stderr_text;
+};
+
+CommandResult run_rtiow(const std::vector<std::string>& args) {
+  const fs::path err = fs::path(RTIOW_TEST_OUTPUT_DIR) / (current_test_name() + ".run.stderr");
+  std::string command = RTIOW_BINARY;
+  for (const std::string& a : args) command += " '" + a + "'";
+  command += " 2> " + err.string();
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(err)};
+}
+
+fs::path fresh_dir() {
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / (current_test_name() + ".dir");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+// Whether a file whose name starts with `prefix` is in `dir` (a temporary being written).
+bool has_file_starting(const fs::path& dir, const std::string& prefix) {
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(dir, error)) {
+    if (entry.path().filename().string().rfind(prefix, 0) == 0) return true;
+  }
+  return false;
+}
+
+// Kills the render when `moment` says: after a delay, or as soon as a temporary of the
+// checkpoint or of the image appears (the middle of that write). Returns whether it was
+// killed at that moment (not after it had ended).
+enum class Moment { Delay, CheckpointWrite, ImageWrite };
+
+bool kill_at(BackgroundRender& r, Moment moment, double delay_seconds, const fs::path& dir,
+             const std::string& output_name) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  const std::string checkpoint_temp = "." + output_name + ".rtiow-checkpoint.tmp-";
+  const std::string image_temp = "." + fs::path(output_name).stem().string() + ".tmp-";
+  if (moment == Moment::Delay) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(delay_seconds));
+  } else {
+    const std::string& prefix = moment == Moment::CheckpointWrite ? checkpoint_temp : image_temp;
+    while (std::chrono::steady_clock::now() < deadline && !has_file_starting(dir, prefix)) {
+      int status = 0;
+      if (waitpid(r.pid(), &status, WNOHANG) == r.pid()) return false;  // ended before
+    }
+  }
+  r.signal(SIGKILL);
+  return r.wait(20.0) == -2;  // killed, not exited
+}
+
+TEST(Checkpoint, RendersKilledAtRandomMomentsResumeToTheSameFile) {
+  const fs::path dir = fresh_dir();
+  const std::vector<std::string> base = {"render", "--scene",        "cover", "--width",
+                                         "160",    "--reproducible", "-q",    "--stats-channels"};
+  // Each mode's request, and its uninterrupted file.
+  const std::vector<std::vector<std::string>> modes = {
+      {"--spp", "96"},
+      {"--spp", "64", "--sampler", "independent"},
+      {"--spp", "96", "--adaptive"},
+      {"--spp", "512", "--image-error", "0.04"},
+      {"--spp", "256", "--target-error", "0.06"},
+  };
+  std::vector<std::string> references;
+  for (std::size_t m = 0; m < modes.size(); ++m) {
+    const std::string ref = (dir / ("reference" + std::to_string(m) + ".exr")).string();
+    ASSERT_EQ(run_rtiow(with(with(base, modes[m]), {"--checkpoint", "0", "-o", ref})).exit_code, 0);
+    references.push_back(slurp(ref));
+  }
+  const unsigned seed = std::random_device{}();
+  std::mt19937 random(seed);
+  SCOPED_TRACE("kill moments from seed " + std::to_string(seed));
+  constexpr int kTrials = 24;
+  int killed_in[3] = {0, 0, 0};
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const std::size_t m = std::size_t(trial) % modes.size();
+    const Moment moment = trial % 4 == 1   ? Moment::CheckpointWrite
+                          : trial % 4 == 3 ? Moment::ImageWrite
+                                           : Moment::Delay;
+    const double delay = std::uniform_real_distribution<double>(0.05, 0.6)(random);
+    const std::string name = "killed" + std::to_string(trial) + ".exr";
+    const std::string out = (dir / name).string();
+    const std::vector<std::string> request = with(base, modes[m]);
+    BackgroundRender r(with(request, {"--checkpoint", "0.03", "-o", out}));
+    killed_in[int(moment)] += kill_at(r, moment, delay, dir, name);
+    // Resumed (possibly more than once: a kill before the first checkpoint leaves nothing).
+    const CommandResult resumed = run_rtiow(with(request, {"--resume", "-o", out}));
+    ASSERT_EQ(resumed.exit_code, 0) << "trial " << trial << ": " << resumed.stderr_text;
+    EXPECT_TRUE(slurp(out) == references[m])
+        << "trial " << trial << " (mode " << m << ", moment " << int(moment) << ", delay " << delay
+        << "): the resumed file differs from the uninterrupted one";
+  }
+  // The test tests what it says: kills landed mid-render, mid-checkpoint and mid-image-write.
+  EXPECT_GE(killed_in[int(Moment::Delay)], 3);
+  EXPECT_GE(killed_in[int(Moment::CheckpointWrite)], 2);
+  EXPECT_GE(killed_in[int(Moment::ImageWrite)], 2);
+  std::printf("killed during a pass %d, a checkpoint write %d, the image write %d times\n",
+              killed_in[0], killed_in[1], killed_in[2]);
+}
+
+TEST(Checkpoint, FinishedRenderRefinesToTheFileOfTheLargerCount) {
+  const fs::path dir = fresh_dir();
+  const std::vector<std::string> base = {"render", "--scene",        "cover", "--width",
+                                         "120",    "--reproducible", "-q"};
+  const std::string direct = (dir / "direct.png").string(),
+                    refined = (dir / "refined.png").string();
+  ASSERT_EQ(run_rtiow(with(base, {"--spp", "40", "-o", direct})).exit_code, 0);
+  ASSERT_EQ(run_rtiow(with(base, {"--spp", "10", "-o", refined})).exit_code, 0);
+  const CommandResult r = run_rtiow(with(base, {"--spp", "40", "--resume", "-o", refined}));
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_TRUE(slurp(direct) == slurp(refined)) << "10 then 40 spp is not the 40-spp file";
+  // Back to fewer samples than the checkpoint holds: refused, naming the count.
+  const CommandResult fewer = run_rtiow(with(base, {"--spp", "20", "--resume", "-o", refined}));
+  EXPECT_EQ(fewer.exit_code, 2);
+  EXPECT_NE(fewer.stderr_text.find("already has 40 spp"), std::string::npos) << fewer.stderr_text;
+}
+
+TEST(Checkpoint, ResumeRefusesTheCheckpointOfAnotherRequest) {
+  const fs::path dir = fresh_dir();
+  const std::string out = (dir / "c.png").string();
+  ASSERT_EQ(run_rtiow({"render", "-q", "--width", "60", "--spp", "4", "-o", out}).exit_code, 0);
+  const std::string before = slurp(out);
+  const CommandResult r = run_rtiow(
+      {"render", "-q", "--width", "60", "--spp", "4", "--seed", "9", "--resume", "-o", out});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("seed: the checkpoint's '1', this render's '9'"), std::string::npos)
+      << r.stderr_text;
+  EXPECT_EQ(std::count(r.stderr_text.begin(), r.stderr_text.end(), '\n'), 1) << r.stderr_text;
+  EXPECT_TRUE(slurp(out) == before) << "the refused render touched the image";
+  // With no checkpoint at all, --resume renders from the start and says so.
+  const std::string other = (dir / "other.png").string();
+  const CommandResult fresh =
+      run_rtiow({"render", "--width", "60", "--spp", "4", "--resume", "-o", other});
+  EXPECT_EQ(fresh.exit_code, 0) << fresh.stderr_text;
+  EXPECT_NE(fresh.stderr_text.find("rendering from the start"), std::string::npos);
+}
+
+TEST(Checkpoint, FailedFinalWriteKeepsTheRenderToWriteLater) {
+  const fs::path dir = fresh_dir();
+  const std::vector<std::string> request = {"render", "--scene", "cover", "--width",
+                                            "160",    "--spp",   "600",   "--reproducible"};
+  const fs::path out = dir / "blocked.png";
+  BackgroundRender r(with(request, {"-o", out.string()}));
+  ASSERT_TRUE(r.wait_until_catching_sigint());
+  // The target becomes a directory with something in it: no rename can replace it.
+  fs::create_directories(out / "in-the-way");
+  const int code = r.wait(120.0);
+  const std::string err = r.stderr_text();
+  EXPECT_EQ(code, 1) << err;
+  EXPECT_NE(err.find("the render is kept in"), std::string::npos) << err;
+  EXPECT_NE(err.find("--resume"), std::string::npos) << err;
+  EXPECT_EQ(err.find(".tmp-"), std::string::npos) << "names an internal temporary: " << err;
+  fs::remove_all(out);
+  const CommandResult resumed = run_rtiow(with(request, {"-q", "--resume", "-o", out.string()}));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.stderr_text;
+  const fs::path direct = dir / "direct.png";
+  ASSERT_EQ(run_rtiow(with(request, {"-q", "--checkpoint", "0", "-o", direct.string()})).exit_code,
+            0);
+  EXPECT_TRUE(slurp(out) == slurp(direct)) << "the kept render is not the render";
+}
+
+}  // namespace

@@ -1,0 +1,220 @@
+// Checkpoints: a render continued from any state it saved ends with the sums, counts and rays
+// of the uninterrupted render, in every sampling mode; the file keeps a state bit for bit,
+// and a damaged file or one of another request is refused with a line that says why.
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/io/error.h"
+#include "core/render/checkpoint_file.h"
+#include "core/render/render.h"
+#include "core/render/render_state.h"
+#include "core/scene/builtin_scenes.h"
+#include "tests/test_files.h"
+
+namespace rtiow {
+namespace {
+
+namespace fs = std::filesystem;
+
+RenderSettings small(SamplerKind sampler) {
+  RenderSettings s;
+  s.width = 40;
+  s.height = 27;
+  s.samples_per_pixel = 48;
+  s.max_depth = 10;
+  s.seed = 5;
+  s.sampler = sampler;
+  s.min_samples = 4;
+  return s;
+}
+
+void expect_same_render(const RenderResult& a, const RenderResult& b, const std::string& what) {
+  ASSERT_EQ(a.sums.size(), b.sums.size()) << what;
+  EXPECT_TRUE(a.sums == b.sums) << what << ": the exact sums differ";
+  EXPECT_EQ(a.pixel_samples, b.pixel_samples) << what;
+  EXPECT_EQ(a.rays_traced, b.rays_traced) << what;
+  EXPECT_EQ(a.samples_completed, b.samples_completed) << what;
+  EXPECT_EQ(a.estimated_image_error, b.estimated_image_error) << what;
+  EXPECT_EQ(a.pixels_above_target, b.pixels_above_target) << what;
+  bool spreads_equal = true;
+  for (std::size_t p = 0; p < a.spreads.size(); ++p) {
+    const PixelSpread &x = a.spreads[p], &y = b.spreads[p];
+    spreads_equal = spreads_equal && x.odd == y.odd && x.squares.x == y.squares.x &&
+                    x.squares.y == y.squares.y && x.squares.z == y.squares.z;
+  }
+  EXPECT_TRUE(spreads_equal) << what << ": the spreads (variances) differ";
+}
+
+// Renders with a save at every chance, keeping a spread of the states saved; then continues
+// from each and expects the uninterrupted render.
+void expect_resumes_exactly(const RenderSettings& settings, const std::string& what) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  const RenderResult whole = render(scene, settings);
+  std::vector<RenderState> kept;
+  int saves = 0;
+  Checkpointing checkpointing;
+  checkpointing.interval_seconds = 1e-9;  // every pass, every group of an adaptive round
+  checkpointing.save = [&](const RenderState& state, bool) {
+    ++saves;
+    if ((saves & (saves - 1)) == 0 || saves % 37 == 0) kept.push_back(state);
+  };
+  expect_same_render(whole, render(scene, settings, nullptr, &checkpointing),
+                     what + " (saving as it goes)");
+  ASSERT_GE(kept.size(), 3u) << what << ": too few states saved to test (" << saves << " saves)";
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    Checkpointing resume;
+    resume.resume = &kept[k];
+    expect_same_render(whole, render(scene, settings, nullptr, &resume),
+                       what + ", resumed from state " + std::to_string(k));
+  }
+}
+
+TEST(Checkpoint, UniformResumesToTheSameBits) {
+  for (SamplerKind sampler : {SamplerKind::Independent, SamplerKind::Sobol}) {
+    expect_resumes_exactly(small(sampler), "uniform " + to_string(sampler));
+  }
+}
+
+TEST(Checkpoint, AdaptiveModesResumeToTheSameBits) {
+  RenderSettings s = small(SamplerKind::Sobol);
+  s.adaptive = true;
+  expect_resumes_exactly(s, "--adaptive");
+  s.adaptive = false;
+  s.image_error = 0.05;
+  s.samples_per_pixel = 512;
+  expect_resumes_exactly(s, "--image-error");
+  s.image_error = 0.0;
+  s.target_error = 0.08;
+  expect_resumes_exactly(s, "--target-error");
+}
+
+TEST(Checkpoint, FinishedRenderRefinesToTheLargerCount) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  RenderSettings s = small(SamplerKind::Sobol);
+  RenderState finished{0};
+  Checkpointing keep;
+  keep.save = [&](const RenderState& state, bool) { finished = state; };
+  s.samples_per_pixel = 12;
+  render(scene, s, nullptr, &keep);
+  s.samples_per_pixel = 40;
+  const RenderResult direct = render(scene, s);
+  RenderState again = finished;  // the render takes the state it resumes
+  Checkpointing resume;
+  resume.resume = &finished;
+  expect_same_render(direct, render(scene, s, nullptr, &resume), "12 then 40 spp");
+  // Fewer than the state holds is refused, naming the count.
+  s.samples_per_pixel = 8;
+  resume.resume = &again;
+  try {
+    render(scene, s, nullptr, &resume);
+    ADD_FAILURE() << "a state of 12 spp continued to 8";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("already has 12 spp"), std::string::npos) << e.what();
+  }
+}
+
+class CheckpointFile : public ::testing::Test {
+ protected:
+  fs::path path_ = fs::path(::testing::TempDir()) /
+                   (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                    ".rtiow-checkpoint");
+  Scene scene_ = make_builtin_scene("cover", 1);
+  RenderSettings settings_ = small(SamplerKind::Sobol);
+
+  RenderState saved_state() {
+    RenderState saved{0};
+    Checkpointing keep;
+    keep.save = [&](const RenderState& state, bool) { saved = state; };
+    RenderSettings s = settings_;
+    s.adaptive = true;
+    settings_ = s;
+    render(scene_, s, nullptr, &keep);
+    return saved;
+  }
+
+  std::string refusal(const CheckpointIdentity& identity) {
+    try {
+      read_checkpoint(path_.string(), identity);
+    } catch (const InvalidInput& e) {
+      return e.what();
+    }
+    return "";
+  }
+};
+
+TEST_F(CheckpointFile, KeepsTheStateBitForBit) {
+  const RenderState state = saved_state();
+  const CheckpointIdentity id = checkpoint_identity(scene_, settings_);
+  write_checkpoint(path_.string(), id, state);
+  const std::optional<RenderState> read = read_checkpoint(path_.string(), id);
+  ASSERT_TRUE(read);
+  EXPECT_TRUE(read->pixels.sums == state.pixels.sums);
+  EXPECT_EQ(read->pixels.samples, state.pixels.samples);
+  EXPECT_EQ(read->pixels.rays, state.pixels.rays);
+  EXPECT_EQ(read->targets, state.targets);
+  EXPECT_EQ(read->last_round, state.last_round);
+  EXPECT_EQ(read->rays_traced, state.rays_traced);
+  EXPECT_EQ(read->render_seconds, state.render_seconds);
+  for (std::size_t p = 0; p < state.pixels.spreads.size(); ++p) {
+    ASSERT_EQ(read->pixels.spreads[p].squares.y, state.pixels.spreads[p].squares.y);
+    ASSERT_TRUE(read->pixels.spreads[p].odd == state.pixels.spreads[p].odd);
+  }
+  EXPECT_FALSE(read_checkpoint((path_.string() + ".none"), id)) << "no file: nothing to resume";
+}
+
+TEST_F(CheckpointFile, RefusesAnotherRequestNamingWhatDiffers) {
+  const RenderState state = saved_state();
+  write_checkpoint(path_.string(), checkpoint_identity(scene_, settings_), state);
+  RenderSettings other = settings_;
+  other.seed = 6;
+  std::string why = refusal(checkpoint_identity(scene_, other));
+  EXPECT_NE(why.find("seed: the checkpoint's '5', this render's '6'"), std::string::npos) << why;
+  other = settings_;
+  other.width = 41;
+  why = refusal(checkpoint_identity(scene_, other));
+  EXPECT_NE(why.find("image size"), std::string::npos) << why;
+  other = settings_;
+  other.sampler = SamplerKind::Independent;
+  why = refusal(checkpoint_identity(scene_, other));
+  EXPECT_NE(why.find("sampler"), std::string::npos) << why;
+  other = settings_;
+  other.max_depth = 3;
+  why = refusal(checkpoint_identity(scene_, other));
+  EXPECT_NE(why.find("depth"), std::string::npos) << why;
+  other = settings_;
+  other.samples_per_pixel = 96;  // an adaptive budget is part of the request
+  why = refusal(checkpoint_identity(scene_, other));
+  EXPECT_NE(why.find("sampling"), std::string::npos) << why;
+  const Scene materials = make_builtin_scene("materials", 1);
+  why = refusal(checkpoint_identity(materials, settings_));
+  EXPECT_NE(why.find("scene"), std::string::npos) << why;
+}
+
+TEST_F(CheckpointFile, RefusesDamagedFiles) {
+  const RenderState state = saved_state();
+  const CheckpointIdentity id = checkpoint_identity(scene_, settings_);
+  write_checkpoint(path_.string(), id, state);
+  const std::string good = test::slurp(path_);
+  const auto refused_with = [&](const std::string& content, const std::string& expected) {
+    test::write_file(path_, content);
+    const std::string why = refusal(id);
+    EXPECT_NE(why.find(expected), std::string::npos) << "got: " << why;
+  };
+  refused_with(good.substr(0, good.size() / 2), "ends before its pixels do");
+  refused_with(good.substr(0, good.size() - 3), "ends before its pixels do");
+  std::string flipped = good;
+  flipped[good.size() / 2] = char(flipped[good.size() / 2] ^ 0x10);
+  refused_with(flipped, "checksum");
+  refused_with(good + "x", "checksum");
+  refused_with("", "no checkpoint header");
+  refused_with("rtiow-checkpoint 1\nversion 0.1.0\n", "the header does not end");
+}
+
+}  // namespace
+}  // namespace rtiow
