@@ -29,6 +29,7 @@ class CheckpointSession {
   }
 
   const std::string& path() const { return path_; }
+  bool enabled() const { return enabled_; }
   // Whether the last save succeeded, so the checkpoint holds where the render ended.
   bool holds_the_render() const { return enabled_ && last_save_ok_; }
   // Why the last save failed (empty if it did not).

@@ -3,9 +3,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <functional>
 #include <iostream>
@@ -90,9 +95,38 @@ int run_parsed_command(const std::vector<std::function<int()>>& commands,
   return 0;
 }
 
+// A launcher may start rtiow with descriptors 0-2 closed: the first files rtiow opens would
+// take those numbers, and text meant for stderr would land in an image. Hold each number
+// with /dev/null opened read-only (open takes the lowest free number, so each fills its
+// own): reading gives nothing, and writing fails as it would on the closed descriptor, so a
+// table printed to a closed stdout is still reported lost.
+void hold_standard_descriptors() {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (::fcntl(fd, F_GETFD) == -1 && errno == EBADF) {
+      if (::open("/dev/null", O_RDONLY) != fd) std::_Exit(1);
+    }
+  }
+}
+
+// What a command printed must have reached standard output: a full disk, a closed pipe
+// (`| head -1`) or a closed descriptor turn success into exit 1 with one line. (A command
+// that failed has said why already, and exits non-zero.)
+int check_standard_output(int code) {
+  if (code != 0) return code;
+  errno = 0;
+  const bool flushed = std::fflush(stdout) == 0;
+  if (flushed && !std::ferror(stdout)) return code;
+  const std::string why = !flushed && errno != 0
+                              ? std::strerror(errno)
+                              : "a closed descriptor, a closed pipe or a full disk";
+  report(("cannot write to standard output (" + why + "): what was printed is lost").c_str());
+  return 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  hold_standard_descriptors();
   std::set_terminate(on_terminate);
   // A closed pipe is an error to report (exit 1), not a signal that kills silently.
   std::signal(SIGPIPE, SIG_IGN);
@@ -124,5 +158,5 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  return run_parsed_command(commands, mpi);
+  return check_standard_output(run_parsed_command(commands, mpi));
 }

@@ -365,7 +365,7 @@ void write_or_keep(const RenderOptions& o, const Job& job, RenderResult& result,
   } catch (const InvalidInput&) {
     throw;
   } catch (const std::exception& e) {
-    if (!checkpoint) throw;
+    if (!checkpoint || !checkpoint->enabled()) throw;
     if (!checkpoint->holds_the_render()) {
       throw std::runtime_error(std::string(e.what()) + "; and no checkpoint was kept (" +
                                checkpoint->failure() + ")");

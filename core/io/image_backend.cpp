@@ -38,7 +38,15 @@ Loaded from_entry(void* symbol, const std::string& where) {
 Loaded try_open(const std::string& path) {
   // Kept open for the life of the process: the backend's objects live in it.
   void* library = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!library) return {nullptr, {}};
+  if (!library) {
+    // There but not loadable (no memory for it, a broken install): say why, in the loader's
+    // words. Not there: look further.
+    const char* why = ::dlerror();
+    std::error_code error;
+    if (path.find('/') == std::string::npos || !std::filesystem::exists(path, error)) return {};
+    return {nullptr, "cannot read or write images: cannot load " + path + ": " +
+                         (why ? why : "the loader gave no reason")};
+  }
   void* entry = ::dlsym(library, kEntryName);
   if (!entry) return {nullptr, path + " has no " + kEntryName};
   return from_entry(entry, path);

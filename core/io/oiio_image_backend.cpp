@@ -2,12 +2,16 @@
 // (librtiow_image_io.so) and loaded on demand by core/io/image_backend.cpp. This is the one
 // file of rtiow that includes OpenImageIO.
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
@@ -168,6 +172,34 @@ class OiioImageReader final : public ImageReader {
   ImageHeader header_;
 };
 
+// Writes `bytes` to a new file at `path` and flushes it to the disk; false with the
+// system's reason on failure.
+bool write_bytes(const std::string& path, const std::vector<unsigned char>& bytes,
+                 std::string& reason) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    reason = std::strerror(errno);
+    return false;
+  }
+  errno = 0;
+  const unsigned char* data = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, data, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    data += n;
+    left -= std::size_t(n);
+  }
+  const bool written = left == 0 && ::fsync(fd) == 0;
+  if (!written) reason = errno == 0 ? "the write stopped short" : std::strerror(errno);
+  if (::close(fd) != 0 && written) {
+    reason = std::strerror(errno);
+    return false;
+  }
+  return written;
+}
+
 class OiioImageBackend final : public ImageBackend {
  public:
   bool write(const std::string& path, const ImageHeader& header, const void* pixels,
@@ -178,11 +210,22 @@ class OiioImageBackend final : public ImageBackend {
       reason = take_error();
       return false;
     }
+    // The image is encoded in memory and written by write_bytes: a codec never touches the
+    // disk, so a full disk or a file-size limit is an error to report, not a library's
+    // exit(1) (libjpeg's default on a failed write).
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    OIIO::ImageSpec spec = to_spec(header);
+    void* proxy = &memory;
+    spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
     // UNKNOWN: the buffer holds each channel in its own stored type.
-    const bool written = out->open(path, to_spec(header)) &&
-                         out->write_image(OIIO::TypeDesc::UNKNOWN, pixels) && out->close();
-    if (!written) reason = take_error(out->geterror());
-    return written;
+    const bool encoded =
+        out->open(path, spec) && out->write_image(OIIO::TypeDesc::UNKNOWN, pixels) && out->close();
+    if (!encoded) {
+      reason = take_error(out->geterror());
+      return false;
+    }
+    return write_bytes(path, bytes, reason);
   }
 
   std::unique_ptr<ImageReader> open(const std::string& path, std::string& reason) const override {

@@ -1,8 +1,10 @@
-// Nothing lost: renders killed with SIGKILL at random moments (in the middle of a pass, of a
-// checkpoint write, of the final image write) and resumed end with the file an uninterrupted
-// render writes, byte for byte, in every sampling mode; a finished render refines to more
-// samples; a final write that fails keeps the render; a checkpoint of another request is
-// refused in one line.
+// Nothing lost, the executable as a user meets faults: renders killed with SIGKILL at random
+// moments (in the middle of a pass, of a checkpoint write, of the final image write) and
+// resumed end with the file an uninterrupted render writes, byte for byte, in every sampling
+// mode; a finished render refines to more samples; a final write that fails keeps the render;
+// a checkpoint of another request is refused in one line; closed standard descriptors break
+// nothing, and output lost on the way to stdout is an error. (Full disks, limits and
+// unwritable targets under every format: the hostile battery, hostile_input_test.cpp.)
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -71,8 +73,9 @@ enum class Moment { Delay, CheckpointWrite, ImageWrite };
 bool kill_at(BackgroundRender& r, Moment moment, double delay_seconds, const fs::path& dir,
              const std::string& output_name) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  const std::string checkpoint_temp = "." + output_name + ".rtiow-checkpoint.tmp-";
-  const std::string image_temp = "." + fs::path(output_name).stem().string() + ".tmp-";
+  std::string checkpoint_temp = ".", image_temp = ".";  // the writers' temporaries
+  checkpoint_temp.append(output_name).append(".rtiow-checkpoint.tmp-");
+  image_temp.append(fs::path(output_name).stem().string()).append(".tmp-");
   if (moment == Moment::Delay) {
     std::this_thread::sleep_for(std::chrono::duration<double>(delay_seconds));
   } else {
@@ -195,6 +198,57 @@ TEST(Checkpoint, FailedFinalWriteKeepsTheRenderToWriteLater) {
   ASSERT_EQ(run_rtiow(with(request, {"-q", "--checkpoint", "0", "-o", direct.string()})).exit_code,
             0);
   EXPECT_TRUE(slurp(out) == slurp(direct)) << "the kept render is not the render";
+}
+
+}  // namespace
+
+namespace {
+
+// Runs a shell command line (for redirections the test needs); returns the exit code.
+int shell(const std::string& line) {
+  const int status = std::system(line.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Started with descriptors 0-2 closed (a launcher that closes them), a render writes the
+// image it writes with them open.
+TEST(Faults, ClosedStandardDescriptorsBreakNothing) {
+  const fs::path dir = fresh_dir();
+  const std::string args = " render --width 80 --spp 4 --reproducible -o ";
+  const fs::path open = dir / "open.png", closed = dir / "closed.png";
+  ASSERT_EQ(shell(std::string(RTIOW_BINARY) + args + open.string() + " 2>/dev/null"), 0);
+  EXPECT_EQ(shell(std::string(RTIOW_BINARY) + args + closed.string() + " <&- >&- 2>&-"), 0);
+  EXPECT_TRUE(fs::exists(closed)) << "no image written with stdin, stdout and stderr closed";
+  EXPECT_TRUE(slurp(open) == slurp(closed)) << "the image differs with the descriptors closed";
+}
+
+// A command's output that does not reach standard output is an error, whatever the reason.
+TEST(Faults, LostStandardOutputIsAnError) {
+  const fs::path dir = fresh_dir();
+  const std::string err = (dir / "err.txt").string();
+  const std::string rtiow = RTIOW_BINARY;
+  const std::string bench = rtiow +
+                            " bench --width 16 --height 9 --spp 1 --scaling-width 16 "
+                            "--scaling-height 9 --scaling-spp 1 --max-spheres 10 --repeat 1 "
+                            "--json " +
+                            (dir / "b.json").string() + " --plot " + (dir / "b.png").string();
+  const std::string image = (dir / "i.png").string();
+  ASSERT_EQ(shell(rtiow + " render -q --width 40 --spp 2 -o " + image), 0);
+  for (const std::string& command :
+       {bench + " >/dev/full", bench + " >&-",
+        rtiow + " diff " + image + " " + image + " >/dev/full", rtiow + " render --list-scenes >&-",
+        rtiow + " scene cover >/dev/full"}) {
+    const int code = shell(command + " 2>" + err);
+    EXPECT_EQ(code, 1) << command;
+    const std::string text = slurp(err);
+    EXPECT_NE(text.find("rtiow: error: cannot write to standard output"), std::string::npos)
+        << command << ": " << text;
+  }
+  // A closed pipe: the reader leaves after 10 bytes of a scene file of many kilobytes.
+  EXPECT_EQ(shell("bash -c 'set -o pipefail; " + rtiow + " scene cover 2>" + err +
+                  " | head -c 10 >/dev/null'"),
+            1);
+  EXPECT_NE(slurp(err).find("cannot write to standard output"), std::string::npos) << slurp(err);
 }
 
 }  // namespace
