@@ -1,7 +1,10 @@
 #include "app/checkpoint_session.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 
@@ -38,7 +41,9 @@ void CheckpointSession::save(const RenderState& state, bool ended) {
   try {
     write_checkpoint(path_, identity_, state);
     last_save_ok_ = true;
+    kept_at_ = path_;
     failure_.clear();
+    return;
   } catch (const std::exception& e) {
     last_save_ok_ = false;
     failure_ = e.what();
@@ -47,6 +52,26 @@ void CheckpointSession::save(const RenderState& state, bool ended) {
       warned_ = true;
     }
   }
+  if (!ended) return;
+  // The render is over and its place cannot take it (the directory removed or made
+  // read-only, the disk full): keep it where temporary files go rather than lose it.
+  const char* tmpdir = std::getenv("TMPDIR");
+  const std::filesystem::path fallback =
+      std::filesystem::path(tmpdir && *tmpdir ? tmpdir : "/tmp") /
+      ("rtiow-" + std::to_string(::getpid()) + "-" +
+       std::filesystem::path(path_).filename().string());
+  try {
+    write_checkpoint(fallback.string(), identity_, state);
+    last_save_ok_ = true;
+    kept_at_ = fallback.string();
+  } catch (const std::exception&) {
+    // failure_ says why the checkpoint's own place failed, which is what the user can mend.
+  }
+}
+
+std::string CheckpointSession::how_to_continue() const {
+  if (kept_at_ == path_) return "run the same command with --resume";
+  return "move it to " + quote_value(path_, kWholePath) + " and run the same command with --resume";
 }
 
 }  // namespace rtiow

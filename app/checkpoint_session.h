@@ -3,7 +3,8 @@
 // (<output>.rtiow-checkpoint), read to --resume, refreshed every --checkpoint seconds and when
 // the render ends (finished or stopped), kept after it (so a finished render can be refined
 // with more samples). A save that fails while the render runs warns once and the render goes
-// on; the last save's failure is told with the render's outcome.
+// on; the last save's failure is told with the render's outcome, and if the checkpoint's own
+// place cannot take the render's end, it is kept in $TMPDIR (or /tmp) instead.
 
 #include <optional>
 #include <string>
@@ -30,8 +31,12 @@ class CheckpointSession {
 
   const std::string& path() const { return path_; }
   bool enabled() const { return enabled_; }
-  // Whether the last save succeeded, so the checkpoint holds where the render ended.
+  // Whether the last save succeeded, so a checkpoint holds where the render ended: at path(),
+  // or, when the render's end could not be saved there, in the temporary directory.
   bool holds_the_render() const { return enabled_ && last_save_ok_; }
+  const std::string& kept_at() const { return kept_at_; }
+  // What to do with the kept checkpoint to get the image ("run the same command with --resume").
+  std::string how_to_continue() const;
   // Why the last save failed (empty if it did not).
   const std::string& failure() const { return failure_; }
   // The samples per pixel the resumed checkpoint held (the most, when adaptive).
@@ -46,6 +51,7 @@ class CheckpointSession {
   bool last_save_ok_ = false;
   bool warned_ = false;
   std::string failure_;
+  std::string kept_at_;
   std::optional<RenderState> resumed_;
   std::optional<std::uint32_t> resumed_from_;
   Checkpointing checkpointing_;

@@ -371,14 +371,22 @@ void write_or_keep(const RenderOptions& o, const Job& job, RenderResult& result,
                                checkpoint->failure() + ")");
     }
     throw std::runtime_error(std::string(e.what()) + "; the render is kept in " +
-                             quote_value(checkpoint->path()) +
-                             ": run the same command with --resume to write it");
+                             quote_value(checkpoint->kept_at(), kWholePath) + ": " +
+                             checkpoint->how_to_continue() + " to write it");
   }
 }
 
-// A render whose image was written but whose last checkpoint was not: it cannot be refined.
+// A render whose image was written but whose last checkpoint was not where it belongs.
 void warn_if_not_kept(const CheckpointSession* checkpoint, bool quiet) {
   if (!checkpoint || quiet || checkpoint->failure().empty()) return;
+  if (checkpoint->holds_the_render()) {
+    std::fprintf(stderr,
+                 "rtiow: warning: %s; the checkpoint is kept in %s instead (%s to refine)\n",
+                 one_line(checkpoint->failure()).c_str(),
+                 quote_value(checkpoint->kept_at(), kWholePath).c_str(),
+                 checkpoint->how_to_continue().c_str());
+    return;
+  }
   std::fprintf(stderr, "rtiow: warning: %s (the image is written; --resume cannot continue it)\n",
                one_line(checkpoint->failure()).c_str());
 }
@@ -406,7 +414,9 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
               (s.adaptive ? " spp)" : " asked)");
     }
     const std::string kept = checkpoint && checkpoint->holds_the_render()
-                                 ? "; --resume continues it from " + quote_value(checkpoint->path())
+                                 ? "; the render is kept in " +
+                                       quote_value(checkpoint->kept_at(), kWholePath) + " (" +
+                                       checkpoint->how_to_continue() + " to continue it)"
                                  : "";
     std::fprintf(stderr, "rtiow: interrupted: wrote %s%s to %s%s\n",
                  describe_samples(s, result).c_str(), asked.c_str(),

@@ -204,6 +204,43 @@ TEST(Checkpoint, FailedFinalWriteKeepsTheRenderToWriteLater) {
 
 namespace {
 
+// The output's directory removed during the render: neither the image nor the checkpoint can
+// go there, so the checkpoint goes to $TMPDIR, and the message says how to get the image.
+TEST(Checkpoint, DirectoryRemovedMidRenderKeepsTheRenderInTheTemporaryDirectory) {
+  const fs::path dir = fresh_dir();
+  const fs::path gone = dir / "gone", tmp = dir / "tmp";
+  fs::create_directories(gone);
+  fs::create_directories(tmp);
+  const std::vector<std::string> request = {"render", "--scene", "cover", "--width",
+                                            "160",    "--spp",   "400",   "--reproducible"};
+  ::setenv("TMPDIR", tmp.c_str(), 1);  // inherited by the render
+  BackgroundRender r(with(request, {"-o", (gone / "x.png").string()}));
+  ::unsetenv("TMPDIR");
+  ASSERT_TRUE(r.wait_until_catching_sigint());
+  fs::remove_all(gone);
+  EXPECT_EQ(r.wait(120.0), 1) << r.stderr_text();
+  const std::string err = r.stderr_text();
+  EXPECT_NE(err.find("the render is kept in '" + tmp.string() + "/rtiow-"), std::string::npos)
+      << err;
+  EXPECT_NE(err.find("move it to"), std::string::npos) << err;
+  std::vector<fs::path> kept;
+  for (const auto& entry : fs::directory_iterator(tmp)) kept.push_back(entry.path());
+  ASSERT_EQ(kept.size(), 1u) << "one checkpoint in TMPDIR, no temporaries";
+  fs::create_directories(gone);
+  fs::rename(kept[0], gone / "x.png.rtiow-checkpoint");
+  const CommandResult resumed =
+      run_rtiow(with(request, {"-q", "--resume", "-o", (gone / "x.png").string()}));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.stderr_text;
+  const fs::path direct = dir / "direct.png";
+  ASSERT_EQ(run_rtiow(with(request, {"-q", "--checkpoint", "0", "-o", direct.string()})).exit_code,
+            0);
+  EXPECT_TRUE(slurp(gone / "x.png") == slurp(direct)) << "the kept render is not the render";
+}
+
+}  // namespace
+
+namespace {
+
 // Runs a shell command line (for redirections the test needs); returns the exit code.
 int shell(const std::string& line) {
   const int status = std::system(line.c_str());

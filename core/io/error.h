@@ -22,7 +22,12 @@ class InvalidInput : public std::runtime_error {
 // a backslash doubled; a value longer than `max_chars` keeps its head and tail around "...".
 std::string quote_value(std::string_view value, std::size_t max_chars = 80);
 
-// `text` made printable as quote_value() does (no quotes added) and cut to `max_chars`.
-std::string one_line(std::string_view text, std::size_t max_chars = 600);
+// `text` made printable as quote_value() does (no quotes added) and cut to `max_chars`:
+// long enough for a message that names a whole path the user must act on.
+std::string one_line(std::string_view text, std::size_t max_chars = 8192);
+
+// For quote_value() of a path the user must copy to act on (where a render is kept): whole,
+// up to the system's path limit.
+inline constexpr std::size_t kWholePath = 4096;
 
 }  // namespace rtiow
