@@ -471,8 +471,9 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--accel", o.accel, "Intersector: embree or naive (same image, other speed)")
       ->capture_default_str();
   cmd->add_option("--time-limit", o.time_limit,
-                  "Render in passes until this many seconds are spent (ends within one pass); "
-                  "the file holds the samples completed. With --spp, stop at that many")
+                  "Render in passes until this many seconds are spent (ends within one pass; "
+                  "0: no limit); the file holds the samples completed. With --spp, stop at "
+                  "that many")
       ->check(kFiniteNotNegative);
   cmd->add_option("--sampler", o.sampler,
                   "Sampler: sobol (one Owen-scrambled Sobol point for pixel, lens and first "

@@ -560,6 +560,13 @@ std::vector<Case> output_cases() {
        {{"noname.png", scene_with("\"name\": \"user scene\",", "")}}},
       {"OutputNameTooLong", 2, "the file name is longer than 200 bytes",
        render({"-o", std::string(300, 'a') + ".png"})},
+      {"OutputPathTooLong", 2, "the path is longer than 3000 bytes",
+       render({"-o",
+               [] {
+                 std::string path;  // short names, a long path: the path's rule is named
+                 for (int i = 0; i < 300; ++i) path += "d123456789/";
+                 return path + "x.png";
+               }()})},
       {"OutputNewlineInMissingDirectory", 2, "does not exist",
        render({"-o", "new\nline/\x1b[31mred.png"})},
       {"StatsChannelsOnPng", 2, "must be .exr", render({"--stats-channels", "-o", "x.png"})},

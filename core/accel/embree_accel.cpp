@@ -13,11 +13,28 @@
 namespace rtiow {
 namespace {
 
+// Embree's error in words: the name a user can look up, and what it usually means here.
+std::string error_name(RTCError error) {
+  switch (error) {
+    case RTC_ERROR_OUT_OF_MEMORY:
+      return "out of memory (RTC_ERROR_OUT_OF_MEMORY)";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+      return "this CPU is not supported (RTC_ERROR_UNSUPPORTED_CPU)";
+    case RTC_ERROR_INVALID_ARGUMENT:
+      return "RTC_ERROR_INVALID_ARGUMENT";
+    case RTC_ERROR_INVALID_OPERATION:
+      return "RTC_ERROR_INVALID_OPERATION";
+    case RTC_ERROR_CANCELLED:
+      return "RTC_ERROR_CANCELLED";
+    default:
+      return "RTC_ERROR_UNKNOWN (error " + std::to_string(int(error)) + ")";
+  }
+}
+
 void throw_on_device_error(RTCDevice device, const char* what) {
   const RTCError error = rtcGetDeviceError(device);
   if (error != RTC_ERROR_NONE) {
-    throw std::runtime_error(std::string("embree: ") + what + " failed (error " +
-                             std::to_string(int(error)) + ")");
+    throw std::runtime_error(std::string("embree: ") + what + " failed: " + error_name(error));
   }
 }
 
@@ -94,7 +111,11 @@ void no_intersection(const RTCIntersectFunctionNArguments*) {}
 
 EmbreeAccel::EmbreeAccel(const SphereSet& spheres, EmbreeCallback callback) {
   device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("embree: cannot create a device");
+  if (!device_) {
+    // A failed creation leaves its error with the thread (rtcGetDeviceError(NULL)).
+    throw std::runtime_error("embree: cannot create a device: " +
+                             error_name(rtcGetDeviceError(nullptr)));
+  }
   try {
     scene_ = rtcNewScene(device_);
     // ROBUST: conservative box tests, so no sphere whose box the ray grazes is skipped;

@@ -70,9 +70,13 @@ void check_output_path(const std::string& path, const std::vector<std::string>& 
   if (file_name.empty() || file_name == "." || file_name == "..") {
     throw InvalidInput(name + ": names a directory, not a file");
   }
-  if (file_name.size() > kMaxFileNameBytes || path.size() > kMaxPathBytes) {
+  if (file_name.size() > kMaxFileNameBytes) {
     throw InvalidInput(name + ": the file name is longer than " +
                        std::to_string(kMaxFileNameBytes) + " bytes");
+  }
+  if (path.size() > kMaxPathBytes) {
+    throw InvalidInput(name + ": the path is longer than " + std::to_string(kMaxPathBytes) +
+                       " bytes");
   }
   const fs::path parent = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   struct stat info {};
