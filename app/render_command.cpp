@@ -15,6 +15,7 @@
 #include "app/cli_checks.h"
 #include "app/interrupt.h"
 #include "app/mpi_session.h"
+#include "app/output_lock.h"
 #include "app/progress_display.h"
 #include "core/film/render_statistics.h"
 #include "core/io/error.h"
@@ -395,6 +396,9 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
                const MpiSession& mpi) {
   if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
   Job job = prepare_job(o, scene_option_given, output_given, mpi);
+  // Rank 0 writes the output (and, alone, keeps a checkpoint).
+  const std::optional<OutputLock> lock =
+      mpi.rank() == 0 ? std::make_optional<OutputLock>(job.output) : std::nullopt;
   const std::unique_ptr<CheckpointSession> checkpoint = open_checkpoint(o, job, mpi);
   // The image writer loads on a second thread while the render runs (rank 0 writes).
   if (mpi.rank() == 0) {

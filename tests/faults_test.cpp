@@ -241,6 +241,32 @@ TEST(Checkpoint, DirectoryRemovedMidRenderKeepsTheRenderInTheTemporaryDirectory)
 
 namespace {
 
+// Two renders to one output: the second is refused before any work (both would report
+// success while one replaced the other), and the lock goes with the first.
+TEST(Faults, SecondRenderToTheSameOutputIsRefused) {
+  const fs::path dir = fresh_dir();
+  const fs::path out = dir / "same.png";
+  BackgroundRender first(
+      {"render", "--scene", "cover", "--width", "160", "--spp", "1000000", "-o", out.string()});
+  ASSERT_TRUE(first.wait_until_catching_sigint());
+  const CommandResult second =
+      run_rtiow({"render", "--width", "40", "--spp", "2", "-o", out.string()});
+  EXPECT_EQ(second.exit_code, 2);
+  EXPECT_NE(second.stderr_text.find("another rtiow (pid " + std::to_string(first.pid()) + ")"),
+            std::string::npos)
+      << second.stderr_text;
+  first.signal(SIGINT);
+  EXPECT_EQ(first.wait(20.0), 128 + SIGINT) << first.stderr_text();
+  EXPECT_FALSE(fs::exists(dir / ".same.png.rtiow-lock")) << "the lock outlived its render";
+  EXPECT_EQ(
+      run_rtiow({"render", "-q", "--width", "40", "--spp", "2", "-o", out.string()}).exit_code, 0)
+      << "the output is free again";
+}
+
+}  // namespace
+
+namespace {
+
 // Runs a shell command line (for redirections the test needs); returns the exit code.
 int shell(const std::string& line) {
   const int status = std::system(line.c_str());
