@@ -265,13 +265,56 @@ TEST(Faults, SecondRenderToTheSameOutputIsRefused) {
 
 }  // namespace
 
+int shell(const std::string& line);
+
 namespace {
+
+// The output made immutable during the render (chattr +i, which even root cannot write
+// through): the image cannot replace it, the render is kept beside it, and --resume writes it
+// once the flag is gone. Skipped where the file system has no immutable flag.
+TEST(Faults, ImmutableTargetKeepsTheRender) {
+  const fs::path dir = fresh_dir();
+  const fs::path out = dir / "locked.png";
+  rtiow::test::write_file(out, "the user's old image");
+  const std::vector<std::string> request = {"render", "--scene", "cover", "--width",
+                                            "160",    "--spp",   "400",   "--reproducible"};
+  BackgroundRender r(with(request, {"-o", out.string()}));
+  ASSERT_TRUE(r.wait_until_catching_sigint());
+  if (shell("chattr +i '" + out.string() + "' 2>/dev/null") != 0) {
+    r.signal(SIGKILL);
+    r.wait(20.0);
+    GTEST_SKIP() << "chattr +i is not available here";
+  }
+  const int code = r.wait(120.0);
+  shell("chattr -i '" + out.string() + "'");
+  const std::string err = r.stderr_text();
+  EXPECT_EQ(code, 1) << err;
+  EXPECT_NE(err.find("cannot write '" + out.string() + "': Operation not permitted"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("the render is kept in '" + out.string() + ".rtiow-checkpoint'"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(slurp(out), "the user's old image");
+  const CommandResult resumed = run_rtiow(with(request, {"-q", "--resume", "-o", out.string()}));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.stderr_text;
+  const fs::path direct = dir / "direct.png";
+  ASSERT_EQ(run_rtiow(with(request, {"-q", "--checkpoint", "0", "-o", direct.string()})).exit_code,
+            0);
+  EXPECT_TRUE(slurp(out) == slurp(direct)) << "the kept render is not the render";
+}
+
+}  // namespace
+
+namespace {}  // namespace
 
 // Runs a shell command line (for redirections the test needs); returns the exit code.
 int shell(const std::string& line) {
   const int status = std::system(line.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
+
+namespace {
 
 // Started with descriptors 0-2 closed (a launcher that closes them), a render writes the
 // image it writes with them open.
