@@ -56,6 +56,24 @@ std::vector<std::string> with(std::vector<std::string> args, const std::vector<s
   return args;
 }
 
+// Runs a shell command line (for redirections the test needs); returns the exit code.
+int shell(const std::string& line) {
+  const int status = std::system(line.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// After a render whose final write failed: the same request with --resume writes the file an
+// uninterrupted render writes.
+void expect_resume_writes_the_render(const std::vector<std::string>& request, const fs::path& out,
+                                     const fs::path& dir) {
+  const CommandResult resumed = run_rtiow(with(request, {"-q", "--resume", "-o", out.string()}));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.stderr_text;
+  const fs::path direct = dir / "direct.png";
+  ASSERT_EQ(run_rtiow(with(request, {"-q", "--checkpoint", "0", "-o", direct.string()})).exit_code,
+            0);
+  EXPECT_TRUE(slurp(out) == slurp(direct)) << "the kept render is not the render";
+}
+
 // Whether a file whose name starts with `prefix` is in `dir` (a temporary being written).
 bool has_file_starting(const fs::path& dir, const std::string& prefix) {
   std::error_code error;
@@ -192,17 +210,8 @@ TEST(Checkpoint, FailedFinalWriteKeepsTheRenderToWriteLater) {
   EXPECT_NE(err.find("--resume"), std::string::npos) << err;
   EXPECT_EQ(err.find(".tmp-"), std::string::npos) << "names an internal temporary: " << err;
   fs::remove_all(out);
-  const CommandResult resumed = run_rtiow(with(request, {"-q", "--resume", "-o", out.string()}));
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.stderr_text;
-  const fs::path direct = dir / "direct.png";
-  ASSERT_EQ(run_rtiow(with(request, {"-q", "--checkpoint", "0", "-o", direct.string()})).exit_code,
-            0);
-  EXPECT_TRUE(slurp(out) == slurp(direct)) << "the kept render is not the render";
+  expect_resume_writes_the_render(request, out, dir);
 }
-
-}  // namespace
-
-namespace {
 
 // The output's directory removed during the render: neither the image nor the checkpoint can
 // go there, so the checkpoint goes to $TMPDIR, and the message says how to get the image.
@@ -228,18 +237,8 @@ TEST(Checkpoint, DirectoryRemovedMidRenderKeepsTheRenderInTheTemporaryDirectory)
   ASSERT_EQ(kept.size(), 1u) << "one checkpoint in TMPDIR, no temporaries";
   fs::create_directories(gone);
   fs::rename(kept[0], gone / "x.png.rtiow-checkpoint");
-  const CommandResult resumed =
-      run_rtiow(with(request, {"-q", "--resume", "-o", (gone / "x.png").string()}));
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.stderr_text;
-  const fs::path direct = dir / "direct.png";
-  ASSERT_EQ(run_rtiow(with(request, {"-q", "--checkpoint", "0", "-o", direct.string()})).exit_code,
-            0);
-  EXPECT_TRUE(slurp(gone / "x.png") == slurp(direct)) << "the kept render is not the render";
+  expect_resume_writes_the_render(request, gone / "x.png", dir);
 }
-
-}  // namespace
-
-namespace {
 
 // Two renders to one output: the second is refused before any work (both would report
 // success while one replaced the other), and the lock goes with the first.
@@ -262,12 +261,6 @@ TEST(Faults, SecondRenderToTheSameOutputIsRefused) {
       run_rtiow({"render", "-q", "--width", "40", "--spp", "2", "-o", out.string()}).exit_code, 0)
       << "the output is free again";
 }
-
-}  // namespace
-
-int shell(const std::string& line);
-
-namespace {
 
 // The output made immutable during the render (chattr +i, which even root cannot write
 // through): the image cannot replace it, the render is kept beside it, and --resume writes it
@@ -296,25 +289,8 @@ TEST(Faults, ImmutableTargetKeepsTheRender) {
             std::string::npos)
       << err;
   EXPECT_EQ(slurp(out), "the user's old image");
-  const CommandResult resumed = run_rtiow(with(request, {"-q", "--resume", "-o", out.string()}));
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.stderr_text;
-  const fs::path direct = dir / "direct.png";
-  ASSERT_EQ(run_rtiow(with(request, {"-q", "--checkpoint", "0", "-o", direct.string()})).exit_code,
-            0);
-  EXPECT_TRUE(slurp(out) == slurp(direct)) << "the kept render is not the render";
+  expect_resume_writes_the_render(request, out, dir);
 }
-
-}  // namespace
-
-namespace {}  // namespace
-
-// Runs a shell command line (for redirections the test needs); returns the exit code.
-int shell(const std::string& line) {
-  const int status = std::system(line.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-namespace {
 
 // Started with descriptors 0-2 closed (a launcher that closes them), a render writes the
 // image it writes with them open.
