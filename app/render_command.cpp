@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <new>
 #include <optional>
 #include <string>
 #include <utility>
@@ -367,11 +368,14 @@ void write_or_keep(const RenderOptions& o, const Job& job, RenderResult& result,
     throw;
   } catch (const std::exception& e) {
     if (!checkpoint || !checkpoint->enabled()) throw;
+    const std::string what = dynamic_cast<const std::bad_alloc*>(&e)
+                                 ? "out of memory writing " + quote_value(job.output, kWholePath)
+                                 : std::string(e.what());
     if (!checkpoint->holds_the_render()) {
-      throw std::runtime_error(std::string(e.what()) + "; and no checkpoint was kept (" +
-                               checkpoint->failure() + ")");
+      throw std::runtime_error(what + "; and no checkpoint was kept (" + checkpoint->failure() +
+                               ")");
     }
-    throw std::runtime_error(std::string(e.what()) + "; the render is kept in " +
+    throw std::runtime_error(what + "; the render is kept in " +
                              quote_value(checkpoint->kept_at(), kWholePath) + ": " +
                              checkpoint->how_to_continue() + " to write it");
   }
