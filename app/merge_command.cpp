@@ -6,10 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "core/film/render_statistics.h"
 #include "core/io/error.h"
 #include "core/io/image_output.h"
 #include "core/io/output_path.h"
+#include "core/render/render_metadata.h"
 #include "core/render/render_part.h"
+#include "core/sampling/sampler.h"
 
 namespace rtiow {
 namespace {
@@ -17,16 +20,46 @@ namespace {
 struct MergeOptions {
   std::vector<std::string> parts;
   std::string output;
+  bool stats_channels = false;
   bool quiet = false;
 };
+
+// The spp and variance channels of the merged render, as one render's --stats-channels.
+std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
+                                            const std::vector<RenderPart>& parts) {
+  if (merged.spreads.empty()) {
+    for (const RenderPart& p : parts) {
+      if (p.spreads.empty()) {
+        throw InvalidInput("--stats-channels: part file " + quote_value(p.path, kWholePath) +
+                           " holds no spreads (an older rtiow wrote it): render it again");
+      }
+    }
+  }
+  std::string sampler;
+  for (const auto& [key, value] : merged.metadata) {
+    if (const auto* text = std::get_if<std::string>(&value); key == metadata_key::kSampler && text)
+      sampler = *text;
+  }
+  try {
+    return statistics_channels(merged_result(merged, parse_sampler(sampler)));
+  } catch (const InvalidInput& e) {
+    throw InvalidInput("--stats-channels: the parts' sampler: " + std::string(e.what()));
+  }
+}
 
 int run_merge(const MergeOptions& o) {
   namespace fs = std::filesystem;
   check_image_output(o.output, o.parts);
+  const ImageFormat* format = image_format(o.output);
+  if (o.stats_channels && format && !format->extra_channels) {
+    throw InvalidInput("--stats-channels: output " + quote_value(o.output) +
+                       " must be .exr to hold the spp and variance channels");
+  }
   std::vector<RenderPart> parts;
   for (const std::string& path : o.parts) parts.push_back(read_part(path));
   const MergedRender merged = merge_parts(parts);
-  write_image(o.output, merged.film, merged.metadata);
+  write_image(o.output, merged.film, merged.metadata,
+              o.stats_channels ? merged_statistics(merged, parts) : std::vector<ExtraChannel>{});
   if (!o.quiet) {
     std::fprintf(stderr, "merged %zu parts: %dx%d, %llu spp -> %s\n", parts.size(),
                  merged.film.width(), merged.film.height(),
@@ -47,6 +80,9 @@ std::function<int()> add_merge_command(CLI::App& app) {
   cmd->add_option("-o,--output", options->output,
                   "The merged image (" + image_extensions() + "); not one of the parts")
       ->required();
+  cmd->add_flag("--stats-channels", options->stats_channels,
+                "Add per-pixel channels to an .exr output: spp and the variance of the pixel's "
+                "mean (variance.R/G/B), the same as one render's --stats-channels");
   cmd->add_flag("-q,--quiet", options->quiet, "No summary on stderr");
   return [options, cmd] { return cmd->parsed() ? run_merge(*options) : -1; };
 }

@@ -19,8 +19,33 @@ bool launched_by_mpi() {
   return false;
 }
 
-void add_pixel_sums(void* in, void* inout, int* count, MPI_Datatype*) {
-  add_sums(static_cast<PixelSum*>(inout), static_cast<const PixelSum*>(in), std::size_t(*count));
+// Exact per-pixel sums (PixelSum, PixelSpread) add in any order to the same bits.
+template <typename Exact>
+void add_exact(void* in, void* inout, int* count, MPI_Datatype*) {
+  auto* into = static_cast<Exact*>(inout);
+  const auto* from = static_cast<const Exact*>(in);
+  for (int i = 0; i < *count; ++i) into[i] += from[i];
+}
+
+// Adds every rank's `values` into rank 0's.
+template <typename Exact>
+void reduce_exact(int rank, std::vector<Exact>& values) {
+  MPI_Datatype pixel;
+  MPI_Type_contiguous(int(sizeof(Exact)), MPI_BYTE, &pixel);
+  MPI_Type_commit(&pixel);
+  MPI_Op add;
+  MPI_Op_create(add_exact<Exact>, 1, &add);
+  std::vector<Exact> total(rank == 0 ? values.size() : 0);
+  // In slices: MPI counts are int, and a 4K film is 8M pixels of 48-96 bytes.
+  constexpr std::size_t kSlice = 1 << 20;
+  for (std::size_t begin = 0; begin < values.size(); begin += kSlice) {
+    const int count = int(std::min(kSlice, values.size() - begin));
+    MPI_Reduce(values.data() + begin, rank == 0 ? total.data() + begin : nullptr, count, pixel, add,
+               0, MPI_COMM_WORLD);
+  }
+  if (rank == 0) values = std::move(total);
+  MPI_Op_free(&add);
+  MPI_Type_free(&pixel);
 }
 
 }  // namespace
@@ -37,24 +62,10 @@ MpiSession::~MpiSession() {
   if (initialized_) MPI_Finalize();
 }
 
-void MpiSession::reduce_sums(std::vector<PixelSum>& sums) const {
+void MpiSession::reduce_sums(std::vector<PixelSum>& sums, std::vector<PixelSpread>* spreads) const {
   if (!distributed()) return;
-  MPI_Datatype pixel;
-  MPI_Type_contiguous(int(sizeof(PixelSum)), MPI_BYTE, &pixel);
-  MPI_Type_commit(&pixel);
-  MPI_Op add;
-  MPI_Op_create(add_pixel_sums, 1, &add);
-  std::vector<PixelSum> total(rank_ == 0 ? sums.size() : 0);
-  // In slices: MPI counts are int, and a 4K film is 8M pixels of 48 bytes.
-  constexpr std::size_t kSlice = 1 << 20;
-  for (std::size_t begin = 0; begin < sums.size(); begin += kSlice) {
-    const int count = int(std::min(kSlice, sums.size() - begin));
-    MPI_Reduce(sums.data() + begin, rank_ == 0 ? total.data() + begin : nullptr, count, pixel, add,
-               0, MPI_COMM_WORLD);
-  }
-  if (rank_ == 0) sums = std::move(total);
-  MPI_Op_free(&add);
-  MPI_Type_free(&pixel);
+  reduce_exact(rank_, sums);
+  if (spreads) reduce_exact(rank_, *spreads);
 }
 
 std::uint64_t MpiSession::reduce_sum(std::uint64_t value) const {
@@ -80,7 +91,7 @@ void MpiSession::abort(int code) const {
 
 MpiSession::MpiSession(int&, char**&) {}
 MpiSession::~MpiSession() = default;
-void MpiSession::reduce_sums(std::vector<PixelSum>&) const {}
+void MpiSession::reduce_sums(std::vector<PixelSum>&, std::vector<PixelSpread>*) const {}
 std::uint64_t MpiSession::reduce_sum(std::uint64_t value) const {
   return value;
 }

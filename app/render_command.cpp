@@ -235,8 +235,11 @@ void check_adaptive_options(const RenderOptions& o, const std::string& output,
                        "with --sample-range, --part or mpirun");
   }
 
-  if (o.stats_channels && (!o.sample_range.empty() || !o.part.empty() || mpi.distributed())) {
-    throw InvalidInput("--stats-channels is for a render in one process, not a part or mpirun");
+  // A part's file keeps its exact spreads; the variances are the whole render's, at the merge.
+  if (o.stats_channels && (!o.sample_range.empty() || !o.part.empty())) {
+    throw InvalidInput(
+        "--stats-channels is for the whole render, not a part: a part file keeps what the "
+        "variances need, and 'rtiow merge --stats-channels' writes them");
   }
 }
 
@@ -293,16 +296,19 @@ RenderResult render_with_progress(const RenderOptions& o, const Job& job, const 
   return render(job.scene, job.settings, &progress, checkpointing);
 }
 
-// Under MPI, rank 0 adds every rank's exact sums into the image of one process with all the
-// samples. Returns false on the other ranks, which have nothing left to do.
-bool gather_ranks(const MpiSession& mpi, Job& job, RenderResult& result) {
+// Under MPI, rank 0 adds every rank's exact sums (and, for the variances, `spreads`) into the
+// image of one process with all the samples. Returns false on the other ranks, which have nothing
+// left to do.
+bool gather_ranks(const MpiSession& mpi, Job& job, RenderResult& result, bool spreads) {
   const std::uint64_t done = mpi.reduce_sum(std::uint64_t(result.samples_completed));
   result.rays_traced = mpi.reduce_sum(result.rays_traced);
   result.render_seconds = mpi.reduce_max(result.render_seconds);
-  mpi.reduce_sums(result.sums);
+  mpi.reduce_sums(result.sums, spreads ? &result.spreads : nullptr);
   if (mpi.rank() != 0) return false;
   result.stopped = done < std::uint64_t(job.samples_asked);
   result.samples_completed = int(done);
+  result.first_sample = 0;
+  result.pixel_samples.assign(result.sums.size(), std::uint32_t(done));
   resolve(result.sums, done, result.film);
   job.settings.samples_per_pixel = job.samples_asked;
   job.settings.first_sample = 0;
@@ -324,6 +330,7 @@ void write_result(const RenderOptions& o, const Job& job, RenderResult& result) 
   part.digest = render_digest(job.scene, job.settings);
   part.metadata = metadata;
   part.sums = std::move(result.sums);
+  part.spreads = std::move(result.spreads);
   write_part(job.output, part);
 }
 
@@ -411,7 +418,7 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
   }
   RenderResult result =
       render_with_progress(o, job, mpi, checkpoint ? checkpoint->checkpointing() : nullptr);
-  if (mpi.distributed() && !gather_ranks(mpi, job, result)) return 0;
+  if (mpi.distributed() && !gather_ranks(mpi, job, result, o.stats_channels)) return 0;
   write_or_keep(o, job, result, checkpoint.get());
   if (result.stopped) {
     // What was asked: a count, a budget (--adaptive), or nothing but a time limit.
@@ -497,7 +504,8 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
       ->check(kFiniteNotNegative);
   cmd->add_option("--image-error", o.image_error,
                   "Adaptive sampling: stop once the image's estimated relative RMS error is "
-                  "below this (e.g. 0.02), giving each pixel samples in proportion to "
+                  "below this (e.g. 0.02; it aims at 0.92 of it), giving each pixel samples in "
+                  "proportion to "
                   "sqrt(variance / cost); --spp is then the most a pixel takes (default 8192)")
       ->check(kFiniteNotNegative);
   cmd->add_flag("--adaptive", o.adaptive,

@@ -45,8 +45,7 @@ void expect_same_render(const RenderResult& a, const RenderResult& b, const std:
   bool spreads_equal = true;
   for (std::size_t p = 0; p < a.spreads.size(); ++p) {
     const PixelSpread &x = a.spreads[p], &y = b.spreads[p];
-    spreads_equal = spreads_equal && x.odd == y.odd && x.squares.x == y.squares.x &&
-                    x.squares.y == y.squares.y && x.squares.z == y.squares.z;
+    spreads_equal = spreads_equal && x == y;
   }
   EXPECT_TRUE(spreads_equal) << what << ": the spreads (variances) differ";
 }
@@ -162,8 +161,7 @@ TEST_F(CheckpointFile, KeepsTheStateBitForBit) {
   EXPECT_EQ(read->rays_traced, state.rays_traced);
   EXPECT_EQ(read->render_seconds, state.render_seconds);
   for (std::size_t p = 0; p < state.pixels.spreads.size(); ++p) {
-    ASSERT_EQ(read->pixels.spreads[p].squares.y, state.pixels.spreads[p].squares.y);
-    ASSERT_TRUE(read->pixels.spreads[p].odd == state.pixels.spreads[p].odd);
+    ASSERT_TRUE(read->pixels.spreads[p] == state.pixels.spreads[p]);
   }
   EXPECT_FALSE(read_checkpoint((path_.string() + ".none"), id)) << "no file: nothing to resume";
 }
@@ -213,7 +211,8 @@ TEST_F(CheckpointFile, RefusesDamagedFiles) {
   refused_with(flipped, "checksum");
   refused_with(good + "x", "checksum");
   refused_with("", "no checkpoint header");
-  refused_with("rtiow-checkpoint 1\nversion 0.1.0\n", "the header does not end");
+  refused_with("rtiow-checkpoint 2\nversion 0.1.0\n", "the header does not end");
+  refused_with("rtiow-checkpoint 1\nversion 0.1.0\nend\n", "a checkpoint of another format");
 }
 
 }  // namespace

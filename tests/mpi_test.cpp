@@ -1,6 +1,6 @@
 // MPI rendering (built when OpenMPI is installed): mpirun -np 2 and -np 3 give the file one
-// process gives, byte for byte; a rank that dies ends the run instead of hanging it; bad
-// input is reported once.
+// process gives, byte for byte, variance channels included; a rank that dies ends the run instead
+// of hanging it; bad input is reported once.
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -58,6 +58,15 @@ TEST(Mpi, RanksGiveTheSingleProcessFileByteForByte) {
     ASSERT_EQ(run(mpirun(ranks) + kRender + " -o " + distributed.string(), &err), 0) << err;
     EXPECT_EQ(slurp(distributed), slurp(single)) << ranks << " ranks";
   }
+  // And the variances: the ranks' exact spreads add up to one process's.
+  const fs::path single_stats = output("single-stats.exr");
+  ASSERT_EQ(run(kRender + " --stats-channels -o " + single_stats.string()), 0);
+  const fs::path distributed_stats = output("ranks-stats.exr");
+  std::string err;
+  ASSERT_EQ(run(mpirun(2) + kRender + " --stats-channels -o " + distributed_stats.string(), &err),
+            0)
+      << err;
+  EXPECT_EQ(slurp(distributed_stats), slurp(single_stats)) << "the variance channels differ";
 }
 
 TEST(Mpi, BadInputIsReportedOnce) {

@@ -113,13 +113,16 @@ TEST(AdaptiveOnABudget, AgreesInTheMeanAndBeatsUniformSamplingPerRay) {
 }
 
 // The error asked for is the error delivered: with honest variances (core/film/
-// replicate_variance.h) the render stops where its true relative RMS error reaches the target
-// (it stopped at 0.54-0.70 of it while the sample variance stood for the Sobol mean's).
+// replicate_variance.h) the render stops where its true relative RMS error reaches the target,
+// and never above it (it aims at 0.92 of it; it stopped at 0.54-0.70 of it while the sample
+// variance stood for the Sobol mean's).
 // The bias check takes the sample variance's standard error, an upper bound for a Sobol
 // render's: on this 48x32 image an adaptive render's honest image-mean error is itself noisy
 // (the z-scores of eight seeds spread 2.4 where 1 is honest; docs/accuracy.md).
 TEST(ImageError, AgreesInTheMeanAndDeliversTheErrorAskedFor) {
   for (const double target : {0.1, 0.05}) {
+    // A bias is the same in every seed: the seeds' mean difference against its standard error.
+    double difference = 0, error_squared = 0;
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       RenderSettings s = settings(cover(), 4096, seed);
       s.sampler = SamplerKind::Sobol;
@@ -131,13 +134,15 @@ TEST(ImageError, AgreesInTheMeanAndDeliversTheErrorAskedFor) {
       }
       const ImageError e = measure_error(bounded, reference());
       const double delivered = std::sqrt(measure_error(to_estimate(r), reference()).rel_mse);
-      std::printf("target %.2f seed %llu: delivered %.3f of it\n", target,
-                  static_cast<unsigned long long>(seed), delivered / target);
-      EXPECT_LT(std::abs(e.mean_difference), kMaxZ * e.mean_difference_error)
-          << "target " << target << " seed " << seed;
-      EXPECT_LT(delivered, 1.15 * target) << "target " << target << " seed " << seed;
+      std::printf("target %.2f seed %llu: delivered %.3f of it, image mean z %.2f\n", target,
+                  static_cast<unsigned long long>(seed), delivered / target,
+                  e.mean_difference / e.mean_difference_error);
+      difference += e.mean_difference / 3.0;
+      error_squared += e.mean_difference_error * e.mean_difference_error / 9.0;
+      EXPECT_LT(delivered, 1.0 * target) << "target " << target << " seed " << seed;
       EXPECT_GT(delivered, 0.8 * target) << "not wastefully below it";
     }
+    EXPECT_LT(std::abs(difference), kMaxZ * std::sqrt(error_squared)) << "target " << target;
   }
 }
 

@@ -1,10 +1,10 @@
 #pragma once
-// A pixel's spread, for adaptive sampling and the variance channels: the sum of squared
-// sample values in double, added in sample order by the one task that renders the pixel,
-// so it is as deterministic as the image (it is not exact like PixelSum, so shares of a
-// render merged from part files carry no variance), and the exact sum of the samples of the
-// second replicate (odd sample indices, core/sampling/sampler.h), whose mean against the
-// first replicate's is what makes the variance honest (core/film/replicate_variance.h).
+// A pixel's spread, for adaptive sampling and the variance channels: the exact sum of its
+// squared samples and the exact sum of the samples of the second replicate (odd sample
+// indices, core/sampling/sampler.h), whose mean against the first replicate's is what makes
+// the variance honest (core/film/replicate_variance.h). Both are exact like PixelSum, so the
+// shares of a render (passes, threads, part files, MPI ranks) add up to the same variance, bit
+// for bit, as one render.
 
 #include <algorithm>
 #include <cmath>
@@ -15,16 +15,46 @@
 
 namespace rtiow {
 
+// The sum of a pixel's squared samples, exact and order-free like PixelSum, whose 128-bit
+// words it shares (so it merges and is stored the same way): each square, exact in double (a
+// float's square), is rounded once to 2^-32. A sample of at most 2^30 squares to at most 2^92
+// in fixed point, so 2^31 of them still fit.
+class SquareSum : public PixelSum {
+ public:
+  void add(const Color& c) {
+    for (int i = 0; i < 3; ++i) {
+      const double v = counted_value(i == 0 ? c.x : i == 1 ? c.y : c.z);
+      set_channel(i, channel(i) + fixed_square(v));
+    }
+  }
+
+  double value(int i) const { return double(channel(i)) / kScale; }
+
+ private:
+  static int128 fixed_square(double v) {
+    const double scaled = v * v * kScale + 0.5;
+    // One conversion instruction below 2^63 (any sample below 46341), a library call above.
+    return scaled < 9.2e18 ? int128(static_cast<std::int64_t>(scaled))
+                           : static_cast<int128>(scaled);
+  }
+};
+
 struct PixelSpread {
-  Vec3d squares{0, 0, 0};
+  SquareSum squares;
   PixelSum odd;  // the samples of odd index
 
   void add(const Color& c, std::uint64_t sample_index) {
-    const double r = PixelSum::counted_value(c.x), g = PixelSum::counted_value(c.y),
-                 b = PixelSum::counted_value(c.z);
-    squares += Vec3d{r * r, g * g, b * b};
+    squares.add(c);
     if (sample_index & 1u) odd.add(c);
   }
+
+  PixelSpread& operator+=(const PixelSpread& other) {
+    squares += other.squares;
+    odd += other.odd;
+    return *this;
+  }
+
+  bool operator==(const PixelSpread&) const = default;
 };
 
 // The pixel's sample variance over n, per channel, after `n` samples: the variance of its
@@ -41,7 +71,7 @@ inline Vec3d variance_of_mean(const PixelSum& sum, const PixelSpread& spread, st
   for (std::size_t c = 0; c < 3; ++c) {
     const double mean = double(sum.channel(int(c))) / PixelSum::kScale / count;
     const double sample_variance =
-        std::max(0.0, (spread.squares[c] - count * mean * mean) / (count - 1));
+        std::max(0.0, (spread.squares.value(int(c)) - count * mean * mean) / (count - 1));
     v[c] = sample_variance / count;
   }
   return {v[0], v[1], v[2]};

@@ -25,7 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr char kMagic[] = "rtiow-checkpoint 1\n";
+constexpr char kMagic[] = "rtiow-checkpoint 2\n";
 constexpr std::size_t kMaxHeaderBytes = 1 << 16;
 constexpr std::size_t kChunkBytes = 1 << 20;
 
@@ -99,7 +99,7 @@ PixelSum take_sum(const char*& in) {
 }
 
 std::size_t record_bytes(bool targets) {
-  return 3 * 16 + 3 * 8 + 3 * 16 + 4 + 8 + (targets ? 4 : 0);
+  return 3 * 16 + 3 * 16 + 3 * 16 + 4 + 8 + (targets ? 4 : 0);
 }
 
 std::string exact(double v) {  // a double in text that reads back to the same bits
@@ -159,8 +159,7 @@ bool write_state(int fd, const CheckpointIdentity& identity, const RenderState& 
   chunk.reserve(kChunkBytes + record_bytes(true));
   for (std::size_t i = 0; i < p.samples.size(); ++i) {
     put_sum(chunk, p.sums[i]);
-    const Vec3d& squares = p.spreads[i].squares;
-    for (const double v : {squares.x, squares.y, squares.z}) put(chunk, v);
+    put_sum(chunk, p.spreads[i].squares);
     put_sum(chunk, p.spreads[i].odd);
     put(chunk, p.samples[i]);
     put(chunk, p.rays[i]);
@@ -212,7 +211,10 @@ std::map<std::string, std::string> read_header(int fd, const std::string& path,
     text.push_back(c);
     if (c == '\n' && text.size() >= 4 && text.compare(text.size() - 4, 4, "end\n") == 0) break;
   }
-  if (text.rfind(kMagic, 0) != 0) throw bad("no checkpoint header");
+  if (text.rfind(kMagic, 0) != 0) {
+    throw bad(text.rfind("rtiow-checkpoint ", 0) == 0 ? "a checkpoint of another format"
+                                                      : "no checkpoint header");
+  }
   if (text.size() < 4 || text.compare(text.size() - 4, 4, "end\n") != 0) {
     throw bad("the header does not end");
   }
@@ -389,8 +391,8 @@ std::optional<RenderState> read_checkpoint(const std::string& path,
     const char* in = chunk.data();
     for (std::size_t i = first; i < first + count; ++i) {
       p.sums[i] = take_sum(in);
-      const double r = take<double>(in), g = take<double>(in), b = take<double>(in);
-      p.spreads[i].squares = Vec3d{r, g, b};
+      const PixelSum squares = take_sum(in);
+      for (int c = 0; c < 3; ++c) p.spreads[i].squares.set_channel(c, squares.channel(c));
       p.spreads[i].odd = take_sum(in);
       p.samples[i] = take<std::uint32_t>(in);
       p.rays[i] = take<std::uint64_t>(in);

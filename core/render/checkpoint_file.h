@@ -3,7 +3,7 @@
 // kill or a power cut ended can be continued, and a finished one refined, to the bits an
 // uninterrupted render gives.
 //
-// The file: a text header ("rtiow-checkpoint 1", then "key value" lines naming the request
+// The file: a text header ("rtiow-checkpoint 2", then "key value" lines naming the request
 // it belongs to and the state's scalars, then "end"), the per-pixel state in fixed-size
 // little-endian records, and a 64-bit checksum of all that precedes it. It is written to a
 // temporary beside the target, flushed to the disk (fsync) and renamed over the target, so

@@ -31,7 +31,25 @@ const std::string kPartFirstSample = kPartFieldPrefix + "first_sample";
 const std::string kPartSamples = kPartFieldPrefix + "samples";
 const std::string kPartJobSamples = kPartFieldPrefix + "job_samples";
 const std::string kDigest = std::string(kMetadataPrefix) + "digest";
-constexpr int kChannels = kColorChannels + kColorChannels * kWordsPerSum;
+// The exact sums a part holds per pixel, in this order: the samples' (always), and the
+// spread's (the odd samples' and the squares') that the variances need.
+constexpr std::array<const char*, 3> kSumGroups{"sum", "odd", "squares"};
+constexpr int kWordsPerGroup = kColorChannels * kWordsPerSum;
+
+int channel_count(std::size_t groups) {
+  return kColorChannels + int(groups) * kWordsPerGroup;
+}
+
+// Group g of pixel p's exact sums.
+const PixelSum& group_sum(const RenderPart& part, std::size_t p, std::size_t g) {
+  if (g == 0) return part.sums[p];
+  return g == 1 ? part.spreads[p].odd : part.spreads[p].squares;
+}
+
+void set_group_sum(RenderPart& part, std::size_t p, std::size_t g, const PixelSum& sum) {
+  PixelSum& into = g == 0 ? part.sums[p] : g == 1 ? part.spreads[p].odd : part.spreads[p].squares;
+  for (int c = 0; c < kColorChannels; ++c) into.set_channel(c, sum.channel(c));
+}
 
 std::string hex(std::uint64_t v) {
   char buffer[17];
@@ -82,10 +100,14 @@ void write_part(const std::string& path, const RenderPart& part) {
     header.channel_names.emplace_back(c);
     header.channel_types.push_back(PixelType::Float);
   }
-  for (const char* c : {"R", "G", "B"}) {
-    for (int w = 0; w < kWordsPerSum; ++w) {
-      header.channel_names.push_back(std::string("sum.") + c + "." + std::to_string(w));
-      header.channel_types.push_back(PixelType::UInt32);
+  const std::size_t groups = part.spreads.empty() ? 1 : kSumGroups.size();
+  for (std::size_t g = 0; g < groups; ++g) {
+    for (const char* c : {"R", "G", "B"}) {
+      for (int w = 0; w < kWordsPerSum; ++w) {
+        header.channel_names.push_back(std::string(kSumGroups[g]) + "." + c + "." +
+                                       std::to_string(w));
+        header.channel_types.push_back(PixelType::UInt32);
+      }
     }
   }
   auto& attributes = header.attributes;
@@ -104,16 +126,20 @@ void write_part(const std::string& path, const RenderPart& part) {
   attributes.push_back({kPartJobSamples, std::to_string(part.job_samples)});
   attributes.push_back({kDigest, part.digest});
 
-  // Native layout: per pixel 3 floats then 12 words, all 4 bytes wide.
-  std::vector<std::uint32_t> data(std::size_t(part.width) * std::size_t(part.height) * kChannels);
+  // Native layout: per pixel 3 floats then 12 words per group, all 4 bytes wide.
+  const auto channels = std::size_t(channel_count(groups));
+  std::vector<std::uint32_t> data(std::size_t(part.width) * std::size_t(part.height) * channels);
   for (std::size_t p = 0; p < part.sums.size(); ++p) {
-    std::uint32_t* pixel = &data[p * kChannels];
+    std::uint32_t* pixel = &data[p * channels];
     const Color mean = part.sums[p].mean(part.samples);
     std::memcpy(pixel, &mean, sizeof mean);
-    for (int c = 0; c < kColorChannels; ++c) {
-      const auto bits = static_cast<uint128>(part.sums[p].channel(c));
-      for (int w = 0; w < kWordsPerSum; ++w) {
-        pixel[kColorChannels + c * kWordsPerSum + w] = std::uint32_t(bits >> (32 * w));
+    for (std::size_t g = 0; g < groups; ++g) {
+      for (int c = 0; c < kColorChannels; ++c) {
+        const auto bits = static_cast<uint128>(group_sum(part, p, g).channel(c));
+        for (int w = 0; w < kWordsPerSum; ++w) {
+          pixel[kColorChannels + int(g) * kWordsPerGroup + c * kWordsPerSum + w] =
+              std::uint32_t(bits >> (32 * w));
+        }
       }
     }
   }
@@ -125,20 +151,27 @@ void write_part(const std::string& path, const RenderPart& part) {
 
 namespace {
 
-// Where each 32-bit word of each colour's sum is among the file's channels (EXR stores
-// channels sorted by name), or nothing if the file is not a part file.
+// Where each 32-bit word of each colour's sum of each group is among the file's channels
+// (EXR stores channels sorted by name): the samples' sums alone (a part written before parts
+// kept their spreads) or every group; nothing if the file is not a part file.
 using WordChannels = std::array<std::array<int, kWordsPerSum>, kColorChannels>;
 
-std::optional<WordChannels> find_sum_channels(const ImageHeader& header) {
+std::optional<std::vector<WordChannels>> find_sum_channels(const ImageHeader& header) {
   const std::vector<std::string>& names = header.channel_names;
-  if (names.size() != kChannels || header.string_attribute(kDigest).empty()) return {};
-  WordChannels channels;
-  for (int c = 0; c < kColorChannels; ++c) {
-    for (int w = 0; w < kWordsPerSum; ++w) {
-      const std::string channel = std::string("sum.") + "RGB"[c] + "." + std::to_string(w);
-      const auto it = std::find(names.begin(), names.end(), channel);
-      if (it == names.end()) return {};
-      channels[std::size_t(c)][std::size_t(w)] = int(it - names.begin());
+  const std::size_t groups = names.size() == std::size_t(channel_count(1))                   ? 1
+                             : names.size() == std::size_t(channel_count(kSumGroups.size())) ? 3
+                                                                                             : 0;
+  if (groups == 0 || header.string_attribute(kDigest).empty()) return {};
+  std::vector<WordChannels> channels(groups);
+  for (std::size_t g = 0; g < groups; ++g) {
+    for (int c = 0; c < kColorChannels; ++c) {
+      for (int w = 0; w < kWordsPerSum; ++w) {
+        const std::string channel =
+            std::string(kSumGroups[g]) + "." + "RGB"[c] + "." + std::to_string(w);
+        const auto it = std::find(names.begin(), names.end(), channel);
+        if (it == names.end()) return {};
+        channels[g][std::size_t(c)][std::size_t(w)] = int(it - names.begin());
+      }
     }
   }
   return channels;
@@ -199,27 +232,33 @@ Metadata read_part_metadata(const ImageHeader& header) {
   return metadata;
 }
 
-// The exact sums, every channel read as 32-bit words whatever the file stores.
-std::vector<PixelSum> read_part_sums(ImageReader& in, const std::string& name,
-                                     const WordChannels& channels) {
+// The exact sums (and spreads, where the file has them), every channel read as 32-bit words
+// whatever the file stores.
+void read_part_sums(ImageReader& in, const std::string& name,
+                    const std::vector<WordChannels>& channels, RenderPart& part) {
   const ImageHeader& header = in.header();
   const std::size_t pixels = std::size_t(header.width) * std::size_t(header.height);
-  std::vector<std::uint32_t> data(pixels * kChannels);
+  const auto stride = std::size_t(channel_count(channels.size()));
+  std::vector<std::uint32_t> data(pixels * stride);
   std::string reason;
   if (!in.read_pixels(PixelType::UInt32, data.data(), reason)) {
     throw InvalidInput(name + ": cannot read its pixels: " + one_line(reason, 200));
   }
-  std::vector<PixelSum> sums(pixels);
-  for (std::size_t p = 0; p < sums.size(); ++p) {
-    const std::uint32_t* pixel = &data[p * kChannels];
-    for (std::size_t c = 0; c < kColorChannels; ++c) {
-      uint128 bits = 0;
-      for (int w = kWordsPerSum - 1; w >= 0; --w)
-        bits = (bits << 32) | pixel[channels[c][std::size_t(w)]];
-      sums[p].set_channel(int(c), static_cast<int128>(bits));
+  part.sums.assign(pixels, PixelSum{});
+  if (channels.size() > 1) part.spreads.assign(pixels, PixelSpread{});
+  for (std::size_t p = 0; p < pixels; ++p) {
+    const std::uint32_t* pixel = &data[p * stride];
+    for (std::size_t g = 0; g < channels.size(); ++g) {
+      PixelSum sum;
+      for (std::size_t c = 0; c < kColorChannels; ++c) {
+        uint128 bits = 0;
+        for (int w = kWordsPerSum - 1; w >= 0; --w)
+          bits = (bits << 32) | pixel[channels[g][c][std::size_t(w)]];
+        sum.set_channel(int(c), static_cast<int128>(bits));
+      }
+      set_group_sum(part, p, g, sum);
     }
   }
-  return sums;
 }
 
 }  // namespace
@@ -227,7 +266,7 @@ std::vector<PixelSum> read_part_sums(ImageReader& in, const std::string& name,
 RenderPart read_part(const std::string& path) {
   const std::string name = "part file " + quote_value(path);
   auto in = open_input_image(path, name, limits::kMaxPartFileBytes, "part file");
-  const std::optional<WordChannels> channels = find_sum_channels(in->header());
+  const std::optional<std::vector<WordChannels>> channels = find_sum_channels(in->header());
   if (!channels) {
     throw InvalidInput(name + ": not a part file (render one with --sample-range or --part)");
   }
@@ -235,7 +274,7 @@ RenderPart read_part(const std::string& path) {
   part.path = path;
   read_part_header(in->header(), name, part);
   part.metadata = read_part_metadata(in->header());
-  part.sums = read_part_sums(*in, name, *channels);
+  read_part_sums(*in, name, *channels, part);
   return part;
 }
 
@@ -315,14 +354,36 @@ MergedRender merge_parts(const std::vector<RenderPart>& input) {
   const RenderPart& reference = input.front();
   MergedRender merged;
   merged.samples = reference.job_samples;
-  std::vector<PixelSum> sums = reference.sums;
+  merged.sums = reference.sums;
   for (const RenderPart* p : parts) {
-    if (p != &reference) add_sums(sums.data(), p->sums.data(), sums.size());
+    if (p != &reference) add_sums(merged.sums.data(), p->sums.data(), merged.sums.size());
+  }
+  // The variances need every part's spread; a part written before parts kept them has none.
+  const bool spreads = std::all_of(parts.begin(), parts.end(),
+                                   [](const RenderPart* p) { return !p->spreads.empty(); });
+  if (spreads) {
+    merged.spreads = reference.spreads;
+    for (const RenderPart* p : parts) {
+      if (p == &reference) continue;
+      for (std::size_t i = 0; i < merged.spreads.size(); ++i) merged.spreads[i] += p->spreads[i];
+    }
   }
   merged.film = Film(reference.width, reference.height);
-  resolve(sums, merged.samples, merged.film);
+  resolve(merged.sums, merged.samples, merged.film);
   merged.metadata = merged_metadata(reference, parts, merged.samples);
   return merged;
+}
+
+RenderResult merged_result(const MergedRender& merged, SamplerKind sampler) {
+  RenderResult r;
+  r.film = merged.film;
+  r.sums = merged.sums;
+  r.spreads = merged.spreads;
+  r.pixel_samples.assign(merged.sums.size(), std::uint32_t(merged.samples));
+  r.first_sample = 0;
+  r.sampler = sampler;
+  r.samples_completed = int(merged.samples);
+  return r;
 }
 
 }  // namespace rtiow

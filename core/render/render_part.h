@@ -3,13 +3,16 @@
 // their exact sums so that shares rendered anywhere merge into the bits of one render.
 //
 // The file is an OpenEXR image: R, G, B hold the share's own mean (so it can be looked at),
-// and twelve 32-bit unsigned channels sum.{R,G,B}.{0..3} hold the 128-bit sums. Metadata
-// names the samples held and a digest of the scene and settings, which merging checks.
+// and 32-bit unsigned channels {sum,odd,squares}.{R,G,B}.{0..3} hold the 128-bit sums of the
+// samples and of the spread the variances need (core/film/pixel_variance.h; a part written
+// before parts kept spreads has sum.* alone, and merges without variances). Metadata names
+// the samples held and a digest of the scene and settings, which merging checks.
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "core/film/pixel_variance.h"
 #include "core/film/sample_sum.h"
 #include "core/io/image_output.h"
 #include "core/render/render.h"
@@ -25,6 +28,7 @@ struct RenderPart {
   std::string digest;             // scene + settings that change pixels
   Metadata metadata;              // everything else the part recorded (scene, seed, rays...)
   std::vector<PixelSum> sums;
+  std::vector<PixelSpread> spreads;  // empty in a part written without them
 };
 
 // What must match for two shares to belong to one render: the scene, the image size, the
@@ -42,7 +46,13 @@ struct MergedRender {
   Film film;
   std::uint64_t samples = 0;
   Metadata metadata;  // the parts' common metadata, with spp and rays_traced totalled
+  std::vector<PixelSum> sums;
+  std::vector<PixelSpread> spreads;  // empty unless every part had its spread
 };
+
+// The merged render as one render's result (samples from index 0, drawn by `sampler`), for
+// its variances (core/film/render_statistics.h).
+RenderResult merged_result(const MergedRender& merged, SamplerKind sampler);
 
 // Checks that the parts belong to one render (same digest, size and job), that they neither
 // overlap nor leave a gap from sample 0 to the job's last, and adds them. Throws InvalidInput
