@@ -140,7 +140,13 @@ std::vector<Vec3d> honest_variances(int width, int height, const std::vector<Pix
   std::vector<Vec3d> variances(sums.size());
   for (std::size_t p = 0; p < sums.size(); ++p) {
     const Vec3d own = variance_of_mean(sums[p], spreads[p], samples[p]);
-    variances[p] = samples[p] < 2 ? own : own * ratios[p];  // below two: infinite, unknown
+    if (samples[p] < 2 || sampler == SamplerKind::Independent) {
+      variances[p] = own;  // exact for independent samples; below two: infinite, unknown
+      continue;
+    }
+    const Vec3d replicates = replicate_estimate(sums[p], spreads[p], first, samples[p]);
+    variances[p] =
+        own * (ratios[p] * (1.0 - kOwnReplicateWeight)) + replicates * kOwnReplicateWeight;
   }
   return variances;
 }

@@ -8,15 +8,19 @@
 // their means is an unbiased estimate of the variance of the pixel's mean whatever the sampler,
 // but with one degree of freedom. The estimate used everywhere is therefore
 //
-//   variance(p) = sample variance over n (p) * ratio(window around p, p left out),
+//   variance(p) = 3/4 sample variance over n (p) * ratio(window around p, p left out)
+//               + 1/4 replicate estimate (p),
 //   ratio = sum of replicate estimates / sum of sample variances over n, over the window
 //           (in an adaptive render, over the window's pixels of about the same count),
 //
 // which keeps each pixel's own shape (its sample variance, n - 1 degrees of freedom) and takes
 // the sampler's gain over independent sampling from the replicates of its neighbours, where it
-// has some hundred degrees of freedom. It assumes that gain changes slowly across the image
-// (measured: the ratio is near 0 in the sky and 0.2-0.5 on the ground), and is weakest where it
-// does not: a window straddling the horizon lends the ground's ratio to sky pixels.
+// has some hundred degrees of freedom; a quarter of the pixel's own replicate estimate (both
+// are unbiased) brings in what the gain does differently at this pixel. It assumes that gain
+// changes slowly across the image (measured: the ratio is near 0 in the sky and 0.2-0.5 on the
+// ground), and is weakest where it does not: a window straddling the horizon lends the
+// ground's ratio to sky pixels, and at 1024 spp the gain varies from pixel to pixel on the
+// smooth spheres of `materials` more than a quarter of one degree of freedom can follow.
 // docs/accuracy.md has the calibration measured against independent renders.
 
 #include <cstdint>
@@ -35,6 +39,13 @@ inline constexpr int kReplicateWindowRadius = 7;
 // In an adaptive render a pixel borrows the ratio from window neighbours whose count is within
 // a factor of two of its own (the gain grows with the count) where at least this many are.
 inline constexpr double kReplicateMinNeighbours = 32;
+
+// The weight of a pixel's own replicate estimate in its variance (the rest is its sample
+// variance scaled by its neighbours' ratio). Measured on cover, materials and defocus at 16,
+// 64 and 1024 spp (docs/accuracy.md): 1/4 brings the per-pixel calibration of materials at 1024
+// spp from 1.43 to 1.25 and changes no other case by more than 0.05; 1/2 adds so much noise
+// that the cover at 16 spp goes from 1.06 to 1.19.
+inline constexpr double kOwnReplicateWeight = 0.25;
 
 // How many of the n samples from `first` have an odd index (the second replicate).
 constexpr std::uint64_t odd_samples(std::uint64_t first, std::uint64_t n) {
