@@ -34,10 +34,29 @@ void report(const char* what) {
   std::fprintf(stderr, "rtiow: error: %s\n", rtiow::one_line(what).c_str());
 }
 
-// The last guard: should an exception escape where none may (a noexcept frame), say so in
-// one line and exit 1 rather than print terminate's text and abort.
+// The last guard: should an exception escape where none may (a noexcept frame, or a library's
+// initialiser throwing through dlopen, as one of the image library's dependencies does when it
+// cannot start a thread under a memory limit), say so in one line, naming it, and exit 1
+// rather than print terminate's text and abort. No image is half-written (images are written
+// whole and renamed); a checkpoint already saved stays.
 [[noreturn]] void on_terminate() {
-  std::fputs("rtiow: error: internal error (an exception escaped); nothing was written\n", stderr);
+  try {
+    std::string what = "an unknown exception";
+    if (const std::exception_ptr escaped = std::current_exception()) {
+      try {
+        std::rethrow_exception(escaped);
+      } catch (const std::exception& e) {
+        what = e.what();
+      } catch (...) {
+      }
+    }
+    std::fprintf(stderr,
+                 "rtiow: error: internal error: an exception escaped (%s); no image was written\n",
+                 rtiow::one_line(what, 200).c_str());
+  } catch (...) {  // no memory even for the message's text
+    std::fputs("rtiow: error: internal error: an exception escaped; no image was written\n",
+               stderr);
+  }
   std::_Exit(1);
 }
 

@@ -334,3 +334,60 @@ TEST(Faults, LostStandardOutputIsAnError) {
 }
 
 }  // namespace
+
+namespace {
+
+// Memory limits at every stage: an address-space limit from too little to start (the image
+// library, Embree's device, the BVH, the film) to enough to finish. Under each, the render
+// either writes the render or ends with one line in rtiow's words and leaves no temporary;
+// a render that got as far as rendering keeps its work, and --resume without the limit
+// writes the file of an unlimited render.
+TEST(Faults, MemoryLimitsAtEveryStageEndInOneLineAndKeepWhatWasRendered) {
+  const fs::path dir = fresh_dir();
+  const std::vector<std::string> request = {"render", "--scene", "cover", "--width",
+                                            "200",    "--spp",   "8",     "--reproducible"};
+  const fs::path direct = dir / "direct.png";
+  ASSERT_EQ(run_rtiow(with(request, {"-q", "--checkpoint", "0", "-o", direct.string()})).exit_code,
+            0);
+  const std::string expected = slurp(direct);
+  int kept = 0, refused = 0, finished = 0;
+  // Below 80 MB the dynamic loader itself cannot map rtiow's libraries: nothing of rtiow's runs.
+  for (int megabytes = 80; megabytes <= 1200; megabytes += 40) {
+    const fs::path out = dir / ("limit" + std::to_string(megabytes) + ".png");
+    const fs::path err = dir / "stderr.txt";
+    std::string line =
+        "prlimit --as=" + std::to_string(megabytes * 1024 * 1024) + " " + RTIOW_BINARY;
+    for (const std::string& a : request) line += " '" + a + "'";
+    line += " -q -o '" + out.string() + "' 2> '" + err.string() + "'";
+    const int code = shell(line);
+    const std::string text = slurp(err);
+    const std::string where = std::to_string(megabytes) + " MB: " + text;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)
+          << where << " left a temporary";
+    }
+    if (code == 0) {
+      ++finished;
+      EXPECT_TRUE(slurp(out) == expected) << where;
+      continue;
+    }
+    EXPECT_EQ(code, 1) << where;
+    EXPECT_EQ(text.rfind("rtiow: error: ", 0), 0u) << where;
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << where;
+    EXPECT_FALSE(fs::exists(out)) << where << " left a half-written image";
+    if (text.find("the render is kept in") == std::string::npos) {
+      ++refused;
+      continue;
+    }
+    ++kept;
+    const CommandResult resumed = run_rtiow(with(request, {"-q", "--resume", "-o", out.string()}));
+    ASSERT_EQ(resumed.exit_code, 0) << where << resumed.stderr_text;
+    EXPECT_TRUE(slurp(out) == expected) << where << ": the kept render is not the render";
+  }
+  std::printf("limits: %d refused before rendering, %d kept the render, %d finished\n", refused,
+              kept, finished);
+  EXPECT_GT(refused, 0) << "no limit was low enough to stop the start";
+  EXPECT_GT(finished, 0) << "no limit was high enough to finish";
+}
+
+}  // namespace

@@ -101,7 +101,12 @@ void preload_image_backend() {
     std::error_code error;
     const bool beside = std::filesystem::exists(beside_program(), error);
     const auto policy = beside && !linked().backend ? std::launch::async : std::launch::deferred;
-    loading = std::async(policy, load).share();
+    try {
+      loading = std::async(policy, load).share();
+    } catch (const std::system_error&) {
+      // No thread to be had (a memory or process limit): load when the image is written.
+      loading = std::async(std::launch::deferred, load).share();
+    }
   });
   if (loading.wait_for(std::chrono::seconds(0)) == std::future_status::deferred) loaded_backend();
 }

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <new>
 #include <stdexcept>
 #include <vector>
 
@@ -330,7 +331,13 @@ void write_checkpoint(const std::string& path, const CheckpointIdentity& identit
   };
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) fail(errno);
-  const bool written = write_state(fd, identity, state) && ::fsync(fd) == 0;
+  bool written = false;
+  try {
+    written = write_state(fd, identity, state) && ::fsync(fd) == 0;
+  } catch (const std::bad_alloc&) {
+    ::close(fd);  // no temporary left behind, and the caller hears why
+    fail(ENOMEM);
+  }
   const int error = errno;
   if (::close(fd) != 0 && written) fail(errno);
   if (!written) fail(error);
