@@ -1,10 +1,12 @@
-// Nothing lost, the executable as a user meets faults: renders killed with SIGKILL at random
-// moments (in the middle of a pass, of a checkpoint write, of the final image write) and
-// resumed end with the file an uninterrupted render writes, byte for byte, in every sampling
-// mode; a finished render refines to more samples; a final write that fails keeps the render;
-// a checkpoint of another request is refused in one line; closed standard descriptors break
-// nothing, and output lost on the way to stdout is an error. (Full disks, limits and
-// unwritable targets under every format: the hostile battery, hostile_input_test.cpp.)
+// Nothing lost, the executable as a user meets faults: renders killed with SIGKILL, or ended by
+// INT, TERM, HUP, QUIT or XCPU, at random moments (in the middle of a pass, of a checkpoint
+// write, of the final image write) and resumed end with the file an uninterrupted render
+// writes, byte for byte, in every sampling mode; a finished render refines to more samples; a
+// final write that fails keeps the render; memory limits at every stage end in one line and
+// keep what was rendered; a checkpoint of another request is refused in one line; closed
+// standard descriptors break nothing, and output lost on the way to stdout is an error. (Full
+// disks, limits and unwritable targets under every format: the hostile battery,
+// hostile_input_test.cpp.)
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -12,8 +14,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -89,7 +93,7 @@ bool has_file_starting(const fs::path& dir, const std::string& prefix) {
 enum class Moment { Delay, CheckpointWrite, ImageWrite };
 
 bool kill_at(BackgroundRender& r, Moment moment, double delay_seconds, const fs::path& dir,
-             const std::string& output_name) {
+             const std::string& output_name, int sig = SIGKILL) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   std::string checkpoint_temp = ".", image_temp = ".";  // the writers' temporaries
   checkpoint_temp.append(output_name).append(".rtiow-checkpoint.tmp-");
@@ -103,8 +107,9 @@ bool kill_at(BackgroundRender& r, Moment moment, double delay_seconds, const fs:
       if (waitpid(r.pid(), &status, WNOHANG) == r.pid()) return false;  // ended before
     }
   }
-  r.signal(SIGKILL);
-  return r.wait(20.0) == -2;  // killed, not exited
+  r.signal(sig);
+  // Killed, or for a signal rtiow catches, ended by it (128 + the signal), not exited before.
+  return r.wait(20.0) == (sig == SIGKILL ? -2 : 128 + sig);
 }
 
 TEST(Checkpoint, RendersKilledAtRandomMomentsResumeToTheSameFile) {
@@ -155,6 +160,58 @@ TEST(Checkpoint, RendersKilledAtRandomMomentsResumeToTheSameFile) {
   EXPECT_GE(killed_in[int(Moment::ImageWrite)], 2);
   std::printf("killed during a pass %d, a checkpoint write %d, the image write %d times\n",
               killed_in[0], killed_in[1], killed_in[2]);
+}
+
+// Every signal that ends a process by default, at random moments (in a pass, in a checkpoint
+// write, in the final image write), in each adaptive mode and a uniform one: the render ends
+// in its own words with its checkpoint, and --resume writes the uninterrupted file.
+TEST(Checkpoint, EachSignalAtRandomMomentsResumesToTheSameFile) {
+  const fs::path dir = fresh_dir();
+  const std::vector<std::string> base = {"render", "--scene",        "cover", "--width",
+                                         "160",    "--reproducible", "-q"};
+  const std::vector<std::vector<std::string>> modes = {
+      {"--spp", "96"},
+      {"--spp", "96", "--adaptive"},
+      {"--spp", "512", "--image-error", "0.04"},
+      {"--spp", "256", "--target-error", "0.06"},
+  };
+  std::vector<std::string> references;
+  for (std::size_t m = 0; m < modes.size(); ++m) {
+    const std::string ref = (dir / ("reference" + std::to_string(m) + ".png")).string();
+    ASSERT_EQ(run_rtiow(with(with(base, modes[m]), {"--checkpoint", "0", "-o", ref})).exit_code, 0);
+    references.push_back(slurp(ref));
+  }
+  const unsigned seed = std::random_device{}();
+  std::mt19937 random(seed);
+  SCOPED_TRACE("signal moments from seed " + std::to_string(seed));
+  const int signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGXCPU};
+  int ended_by_signal = 0, trial = 0;
+  for (const int sig : signals) {
+    for (std::size_t m = 0; m < modes.size(); ++m, ++trial) {
+      const Moment moment = trial % 3 == 1   ? Moment::CheckpointWrite
+                            : trial % 3 == 2 ? Moment::ImageWrite
+                                             : Moment::Delay;
+      const double delay = std::uniform_real_distribution<double>(0.05, 0.6)(random);
+      const std::string name = "signalled" + std::to_string(trial) + ".png";
+      const std::string out = (dir / name).string();
+      const std::vector<std::string> request = with(base, modes[m]);
+      BackgroundRender r(with(request, {"--checkpoint", "0.03", "-o", out}));
+      ASSERT_TRUE(r.wait_until_catching_sigint());
+      const bool signalled = kill_at(r, moment, delay, dir, name, sig);
+      ended_by_signal += signalled;
+      const std::string where = std::string(strsignal(sig)) + ", mode " + std::to_string(m) +
+                                ", moment " + std::to_string(int(moment));
+      if (signalled) {
+        EXPECT_TRUE(fs::exists(dir / (name + ".rtiow-checkpoint"))) << where;
+        EXPECT_TRUE(fs::exists(out)) << where << ": no partial image";
+      }
+      const CommandResult resumed = run_rtiow(with(request, {"--resume", "-o", out}));
+      ASSERT_EQ(resumed.exit_code, 0) << where << ": " << resumed.stderr_text;
+      EXPECT_TRUE(slurp(out) == references[m]) << where << ": the resumed file differs";
+    }
+  }
+  EXPECT_GE(ended_by_signal, 6) << "signals must land while the render runs";
+  std::printf("%d of %d signals ended a running render\n", ended_by_signal, trial);
 }
 
 TEST(Checkpoint, FinishedRenderRefinesToTheFileOfTheLargerCount) {
