@@ -403,10 +403,28 @@ void warn_if_not_kept(const CheckpointSession* checkpoint, bool quiet) {
                one_line(checkpoint->failure()).c_str());
 }
 
+// A uniform render that asks for more than a day of work on a 2-core machine (the cover runs
+// at about 5e6 samples per second there) says so before it starts, and how to bound it: the
+// count is accepted (a farm or a long night may mean it), but not silently.
+void note_long_request(const Job& job) {
+  const RenderSettings& s = job.settings;
+  if (is_adaptive(s) || !asks_sample_count(s) || s.time_limit_seconds > 0) return;
+  const double samples = double(s.width) * double(s.height) * double(s.samples_per_pixel);
+  constexpr double kSamplesPerSecond = 5e6, kDay = 86400;
+  const double days = samples / kSamplesPerSecond / kDay;
+  if (days < 1) return;
+  std::fprintf(stderr,
+               "rtiow: note: %d spp at %dx%d is %.3g samples, about %.3g days on a 2-core machine; "
+               "a signal (Ctrl-C) keeps what is done and --resume continues it, --time-limit "
+               "bounds it\n",
+               s.samples_per_pixel, s.width, s.height, samples, days);
+}
+
 int run_render(const RenderOptions& o, bool scene_option_given, bool output_given,
                const MpiSession& mpi) {
   if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
   Job job = prepare_job(o, scene_option_given, output_given, mpi);
+  if (mpi.rank() == 0) note_long_request(job);
   // Rank 0 writes the output (and, alone, keeps a checkpoint).
   const std::optional<OutputLock> lock =
       mpi.rank() == 0 ? std::make_optional<OutputLock>(job.output) : std::nullopt;

@@ -556,6 +556,23 @@ TEST(Cli, InheritedIgnoredSignalStaysIgnored) {
   EXPECT_EQ(r.wait(20.0), 128 + SIGINT) << r.stderr_text();
 }
 
+// A count that means days of work is accepted, but not silently: a note says how long and how
+// to bound it; a render of ordinary length says nothing.
+TEST(Cli, ARequestOfDaysSaysSoBeforeItStarts) {
+  const fs::path out = output_path("days.png");
+  BackgroundRender r({"render", "--scene", "cover", "--width", "160", "--spp", "2000000000", "-q",
+                      "--checkpoint", "0", "-o", out.string()});
+  ASSERT_TRUE(r.wait_until_catching_sigint());
+  r.signal(SIGINT);
+  EXPECT_EQ(r.wait(20.0), 128 + SIGINT) << r.stderr_text();
+  EXPECT_NE(r.stderr_text().find("rtiow: note: 2000000000 spp at 160x107"), std::string::npos)
+      << r.stderr_text();
+  EXPECT_NE(r.stderr_text().find("days on a 2-core machine"), std::string::npos);
+  const CommandResult ordinary = run_rtiow("render -q --scene cover --width 32 --spp 2 -o " +
+                                           output_path("ordinary.png").string());
+  EXPECT_EQ(ordinary.stderr_text, "");
+}
+
 TEST(Cli, SecondInterruptAbortsAndLeavesTheOldFileAlone) {
   const fs::path out = output_path("kept.png");
   {
