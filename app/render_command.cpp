@@ -470,7 +470,8 @@ namespace {
 CLI::Option* add_scene_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option(
       "scene_file", o.scene_file,
-      "Scene file (JSON, see docs/scene-format.md); its settings are overridden by the options");
+      "Scene file (JSON, see docs/scene-format.md), or - for standard input; its settings are "
+      "overridden by the options");
   CLI::Option* scene_option =
       cmd->add_option("--scene", o.scene, "Built-in scene to render (see --list-scenes)")
           ->capture_default_str();

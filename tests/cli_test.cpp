@@ -573,6 +573,30 @@ TEST(Cli, ARequestOfDaysSaysSoBeforeItStarts) {
   EXPECT_EQ(ordinary.stderr_text, "");
 }
 
+// `rtiow scene cover | rtiow render -`: a scene on standard input renders as its file does, and
+// a bad one is refused naming standard input.
+TEST(Cli, SceneFromStandardInputRendersAsItsFile) {
+  const fs::path scene = output_path("scene.json"), piped = output_path("piped.png"),
+                 direct = output_path("direct.png"), bad = output_path("bad.json");
+  ASSERT_EQ(run_rtiow("scene cover --scene-seed 3 -o " + scene.string()).exit_code, 0);
+  const std::string common = " --width 48 --spp 2 --reproducible -q ";
+  const CommandResult p =
+      run_rtiow("render -" + common + "-o " + piped.string() + " < " + scene.string());
+  ASSERT_EQ(p.exit_code, 0) << p.stderr_text;
+  ASSERT_EQ(
+      run_rtiow("render --scene cover --scene-seed 3" + common + "-o " + direct.string()).exit_code,
+      0);
+  EXPECT_EQ(slurp(piped), slurp(direct));
+  {
+    std::ofstream broken(bad);
+    broken << "{\"version\": 1,";
+  }
+  const CommandResult b = run_rtiow("render -" + common + "-o " + output_path("bad.png").string() +
+                                    " < " + bad.string());
+  EXPECT_EQ(b.exit_code, 2);
+  EXPECT_EQ(b.stderr_text.rfind("rtiow: error: standard input: ", 0), 0u) << b.stderr_text;
+}
+
 TEST(Cli, SecondInterruptAbortsAndLeavesTheOldFileAlone) {
   const fs::path out = output_path("kept.png");
   {

@@ -531,6 +531,17 @@ Scene parse_scene(const std::string& text, const std::string& source) {
 }
 
 Scene load_scene_file(const std::string& path) {
+  if (path == "-") {  // `rtiow scene cover | rtiow render -`
+    return read_scene_from(
+        [](char* buffer, std::size_t size) {
+          const std::size_t n = std::fread(buffer, 1, size, stdin);
+          if (n == 0 && std::ferror(stdin)) {
+            throw InvalidInput("scene from standard input: cannot read it");
+          }
+          return n;
+        },
+        limits::kMaxSceneFileBytes, "standard input");
+  }
   check_input_file(path, limits::kMaxSceneFileBytes, "scene file");
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (!file) throw InvalidInput("scene file " + quote_value(path) + ": cannot open it");

@@ -28,7 +28,8 @@ namespace rtiow {
 // Parses scene JSON; `source` names it in errors. Throws InvalidInput.
 Scene parse_scene(const std::string& text, const std::string& source);
 
-// Reads and parses a scene file. Throws InvalidInput (including for unreadable files).
+// Reads and parses a scene file, or standard input for "-". Throws InvalidInput (including
+// for unreadable files).
 Scene load_scene_file(const std::string& path);
 
 // The scene as version-1 JSON. Floats are written in their shortest form that reads back
