@@ -96,6 +96,16 @@ int run_diff(const DiffOptions& o) {
     const PlainDiff d = plain_diff(test, reference, o.thresholds);
     std::printf("%s\n", describe(d, o.thresholds).c_str());
     verdict = d.verdict;
+    // Most pixels off by a little is what two renders of one job with other seeds look like:
+    // a plain comparison cannot tell that noise from a change, and says which can.
+    if (o.mode == "auto" && d.verdict == DiffVerdict::Fail && d.fail_percent > 10.0) {
+      std::printf(
+          "note: %.0f%% of pixels differ: if these are renders of one job with other seeds, that "
+          "is their noise; compare noise-aware: render both to .exr with --stats-channels, or "
+          "give several renders of the job (rtiow diff reference.png s1.png s2.png s3.png); see "
+          "docs/diff.md\n",
+          d.fail_percent);
+    }
   } else {
     const NoiseDiff d = mode == "seeds" ? seeds_diff(tests, reference, o.block, o.alpha)
                                         : noise_diff(test, reference, o.block, o.alpha);

@@ -597,6 +597,23 @@ TEST(Cli, SceneFromStandardInputRendersAsItsFile) {
   EXPECT_EQ(b.stderr_text.rfind("rtiow: error: standard input: ", 0), 0u) << b.stderr_text;
 }
 
+// A plain diff of two seeds fails on their noise; it says which comparison tells noise from a
+// change. A small local change says nothing of the kind.
+TEST(Cli, PlainDiffOfTwoSeedsPointsToTheNoiseAwareModes) {
+  const fs::path a = output_path("s3.png"), b = output_path("s4.png");
+  const std::string common = "render -q --scene cover --width 48 --spp 4 ";
+  ASSERT_EQ(run_rtiow(common + "--seed 3 -o " + a.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow(common + "--seed 4 -o " + b.string()).exit_code, 0);
+  const CommandResult d = run_rtiow("diff " + a.string() + " " + b.string());
+  EXPECT_EQ(d.exit_code, 2);
+  EXPECT_NE(d.stdout_text.find("--stats-channels"), std::string::npos) << d.stdout_text;
+  EXPECT_NE(d.stdout_text.find("several renders"), std::string::npos) << d.stdout_text;
+  const CommandResult explicit_plain =
+      run_rtiow("diff --mode plain " + a.string() + " " + b.string());
+  EXPECT_EQ(explicit_plain.stdout_text.find("note:"), std::string::npos)
+      << "asked for plain: no advice";
+}
+
 TEST(Cli, SecondInterruptAbortsAndLeavesTheOldFileAlone) {
   const fs::path out = output_path("kept.png");
   {
