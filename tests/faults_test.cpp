@@ -50,10 +50,33 @@ CommandResult run_rtiow(const std::vector<std::string>& args) {
 
 fs::path fresh_dir() {
   const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / (current_test_name() + ".dir");
+  // A run killed while a file was immutable (ImmutableTargetKeepsTheRender) left it so.
+  if (fs::exists(dir)) std::system(("chattr -R -i '" + dir.string() + "' 2>/dev/null").c_str());
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
 }
+
+// Makes a file immutable for as long as it lives (chattr +i), and mutable again however the
+// test ends, so no build tree is left with a file that cannot be removed.
+class ImmutableFile {
+ public:
+  explicit ImmutableFile(const fs::path& path) : path_(path) {
+    applied_ = std::system(("chattr +i '" + path_.string() + "' 2>/dev/null").c_str()) == 0;
+  }
+  ~ImmutableFile() { release(); }
+  ImmutableFile(const ImmutableFile&) = delete;
+  ImmutableFile& operator=(const ImmutableFile&) = delete;
+  bool applied() const { return applied_; }
+  void release() {
+    if (applied_) std::system(("chattr -i '" + path_.string() + "'").c_str());
+    applied_ = false;
+  }
+
+ private:
+  fs::path path_;
+  bool applied_ = false;
+};
 
 std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
   args.insert(args.end(), more.begin(), more.end());
@@ -330,13 +353,14 @@ TEST(Faults, ImmutableTargetKeepsTheRender) {
                                             "160",    "--spp",   "400",   "--reproducible"};
   BackgroundRender r(with(request, {"-o", out.string()}));
   ASSERT_TRUE(r.wait_until_catching_sigint());
-  if (shell("chattr +i '" + out.string() + "' 2>/dev/null") != 0) {
+  ImmutableFile immutable(out);
+  if (!immutable.applied()) {
     r.signal(SIGKILL);
     r.wait(20.0);
     GTEST_SKIP() << "chattr +i is not available here";
   }
   const int code = r.wait(120.0);
-  shell("chattr -i '" + out.string() + "'");
+  immutable.release();
   const std::string err = r.stderr_text();
   EXPECT_EQ(code, 1) << err;
   EXPECT_NE(err.find("cannot write '" + out.string() + "': Operation not permitted"),
