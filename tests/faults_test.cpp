@@ -135,6 +135,23 @@ bool kill_at(BackgroundRender& r, Moment moment, double delay_seconds, const fs:
   return r.wait(20.0) == (sig == SIGKILL ? -2 : 128 + sig);
 }
 
+// The file each mode's request writes uninterrupted (the base request plus the mode's options),
+// as `reference<m><extension>` in `dir`.
+std::vector<std::string> uninterrupted_files(const fs::path& dir,
+                                             const std::vector<std::string>& base,
+                                             const std::vector<std::vector<std::string>>& modes,
+                                             const std::string& extension) {
+  std::vector<std::string> files;
+  for (std::size_t m = 0; m < modes.size(); ++m) {
+    const std::string path = (dir / ("reference" + std::to_string(m) + extension)).string();
+    const CommandResult r =
+        run_rtiow(with(with(base, modes[m]), {"--checkpoint", "0", "-o", path}));
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    files.push_back(slurp(path));
+  }
+  return files;
+}
+
 TEST(Checkpoint, RendersKilledAtRandomMomentsResumeToTheSameFile) {
   const fs::path dir = fresh_dir();
   const std::vector<std::string> base = {"render", "--scene",        "cover", "--width",
@@ -148,12 +165,8 @@ TEST(Checkpoint, RendersKilledAtRandomMomentsResumeToTheSameFile) {
       {"--spp", "256", "--target-error", "0.06", "--stats-channels"},
       {"--spp", "192", "--part", "1/2"},
   };
-  std::vector<std::string> references;
-  for (std::size_t m = 0; m < modes.size(); ++m) {
-    const std::string ref = (dir / ("reference" + std::to_string(m) + ".exr")).string();
-    ASSERT_EQ(run_rtiow(with(with(base, modes[m]), {"--checkpoint", "0", "-o", ref})).exit_code, 0);
-    references.push_back(slurp(ref));
-  }
+  const std::vector<std::string> references = uninterrupted_files(dir, base, modes, ".exr");
+  ASSERT_FALSE(HasFailure());
   const unsigned seed = std::random_device{}();
   std::mt19937 random(seed);
   SCOPED_TRACE("kill moments from seed " + std::to_string(seed));
@@ -198,12 +211,8 @@ TEST(Checkpoint, EachSignalAtRandomMomentsResumesToTheSameFile) {
       {"--spp", "512", "--image-error", "0.04"},
       {"--spp", "256", "--target-error", "0.06"},
   };
-  std::vector<std::string> references;
-  for (std::size_t m = 0; m < modes.size(); ++m) {
-    const std::string ref = (dir / ("reference" + std::to_string(m) + ".png")).string();
-    ASSERT_EQ(run_rtiow(with(with(base, modes[m]), {"--checkpoint", "0", "-o", ref})).exit_code, 0);
-    references.push_back(slurp(ref));
-  }
+  const std::vector<std::string> references = uninterrupted_files(dir, base, modes, ".png");
+  ASSERT_FALSE(HasFailure());
   const unsigned seed = std::random_device{}();
   std::mt19937 random(seed);
   SCOPED_TRACE("signal moments from seed " + std::to_string(seed));
