@@ -448,16 +448,31 @@ void write_csv(const json& r, const std::string& path) {
   write_text_atomically(path, text);
 }
 
-// Every option checked before the reference (minutes of rendering) is made.
+// Every option checked before the reference (minutes of rendering) is made. The sample
+// counts' limits depend on each other, so every one broken is named in the one line.
 void check_options(const AccuracyOptions& o) {
   if (o.width < 1) throw InvalidInput("--width must be >= 1");
-  if (o.reference_spp < 2 || o.max_spp < 1 || o.fixed_spp < 2) {
-    throw InvalidInput("--reference-spp and --fixed-spp must be >= 2, --max-spp >= 1");
+  std::vector<std::string> spp_problems;
+  if (o.max_spp < 64) {
+    spp_problems.push_back("--max-spp must be >= 64 (the fits and the budget sweep start at " +
+                           std::string("16-32), got ") + std::to_string(o.max_spp));
   }
-  if (std::int64_t(o.reference_spp) < 4 * std::int64_t(o.max_spp)) {
-    throw InvalidInput("--reference-spp must be at least 4x --max-spp (" +
-                       std::to_string(4 * std::int64_t(o.max_spp)) +
-                       "), or its noise swamps the errors");
+  if (std::int64_t(o.reference_spp) < 4 * std::int64_t(std::max(o.max_spp, 64))) {
+    spp_problems.push_back("--reference-spp must be at least 4x --max-spp (" +
+                           std::to_string(4 * std::int64_t(std::max(o.max_spp, 64))) +
+                           ", or its noise swamps the errors), got " +
+                           std::to_string(o.reference_spp));
+  }
+  if (o.fixed_spp < 2) {
+    spp_problems.push_back("--fixed-spp must be >= 2, got " + std::to_string(o.fixed_spp));
+  }
+  if (o.book_spp < 16) {
+    spp_problems.push_back("--book-spp must be >= 16, got " + std::to_string(o.book_spp));
+  }
+  if (!spp_problems.empty()) {
+    std::string text;
+    for (const std::string& p : spp_problems) text += (text.empty() ? "" : "; ") + p;
+    throw InvalidInput(text);
   }
   // The two directories: missing ones are made, but a path that is a file is refused.
   check_output_directory(o.out_dir, "--out");
@@ -472,10 +487,6 @@ void check_options(const AccuracyOptions& o) {
   for (const double e : o.image_errors) {
     if (!(e > 0) || !std::isfinite(e)) throw InvalidInput("--image-errors must be > 0");
   }
-  if (o.max_spp < 64) {
-    throw InvalidInput("--max-spp must be >= 64: the fits and the budget sweep start at 16-32");
-  }
-  if (o.book_spp < 16) throw InvalidInput("--book-spp must be >= 16");
 }
 
 // The measured renders' settings: the scene's depth and aspect ratio at the given width.
@@ -640,12 +651,14 @@ std::function<int()> add_accuracy_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--width", o.width, "Image width (height from the scene's aspect ratio)")
       ->capture_default_str();
-  cmd->add_option("--reference-spp", o.reference_spp, "Samples per pixel of the reference")
+  cmd->add_option("--reference-spp", o.reference_spp,
+                  "Samples per pixel of the reference, at least 4x --max-spp")
       ->capture_default_str();
-  cmd->add_option("--max-spp", o.max_spp, "Largest spp of the sweep (1, 2, 4, ... up to it)")
+  cmd->add_option("--max-spp", o.max_spp,
+                  "Largest spp of the sweep (1, 2, 4, ... up to it), at least 64")
       ->capture_default_str();
   cmd->add_option("--fixed-spp", o.fixed_spp,
-                  "Spp of the depth and intersector comparisons (Fresnel: 4x this)")
+                  "Spp of the depth and intersector comparisons (Fresnel: 4x this), at least 2")
       ->capture_default_str();
   cmd->add_option("--depths", o.depths, "Depth limits to compare")
       ->delimiter(',')
@@ -658,7 +671,7 @@ std::function<int()> add_accuracy_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--book-spp", o.book_spp,
                   "The spp whose independent-sampling error is the goal of the time-to-quality "
-                  "headline (the book's final render: 500)")
+                  "headline (the book's final render: 500), at least 16")
       ->capture_default_str();
   cmd->add_option("--seed", o.seed, "Seed of the measured renders")
       ->check(kNotNegative)

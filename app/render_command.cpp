@@ -547,9 +547,11 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
 
 void add_run_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
-  cmd->add_option("--sample-range", o.sample_range,
-                  "Render only samples A..B-1 (B at most --spp, the job's total) of every pixel "
-                  "into a part file (.exr) for 'rtiow merge' (render farms)");
+  cmd->add_option(
+      "--sample-range", o.sample_range,
+      "Render only samples A:B (from sample A up to, not including, B; B at most --spp, "
+      "the job's total) of every pixel "
+      "into a part file (.exr) for 'rtiow merge' (render farms)");
   cmd->add_option("--part", o.part,
                   "Render the i-th of n equal shares of the samples (i/n, from 0) into a part "
                   "file (.exr)");

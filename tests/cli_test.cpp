@@ -85,21 +85,58 @@ TEST(Cli, HelpIsAvailableAndTrue) {
 
 // docs/usage.md shows `rtiow --help` and `rtiow render --help`: they must be what the binary
 // prints, or the docs have gone stale.
-TEST(Cli, TheDocsShowTheHelpAsTheBinaryPrintsIt) {
-  const std::string docs = slurp(fs::path(RTIOW_SOURCE_DIR) / "docs" / "usage.md");
+// The subcommands `rtiow --help` lists, in its order.
+std::vector<std::string> subcommands() {
+  const std::string help = run_rtiow("--help").stdout_text;
+  std::vector<std::string> names;
+  std::istringstream lines(help.substr(help.find("Subcommands:")));
+  std::string line;
+  std::getline(lines, line);
+  while (std::getline(lines, line)) {
+    if (line.rfind("  ", 0) != 0) break;
+    std::istringstream words(line);
+    std::string name;
+    words >> name;
+    names.push_back(name);
+  }
+  return names;
+}
+
+// docs/usage.md shows every command's help as the binary prints it. It is generated:
+// RTIOW_UPDATE_DOCS=1 build/bin/cli_tests --gtest_filter='Cli.TheDocs*' rewrites the stale
+// blocks and adds a missing command's at the end of "Every command's options".
+TEST(Cli, TheDocsShowEveryCommandsHelpAsTheBinaryPrintsIt) {
+  const fs::path path = fs::path(RTIOW_SOURCE_DIR) / "docs" / "usage.md";
+  std::string docs = slurp(path);
+  const bool update = std::getenv("RTIOW_UPDATE_DOCS") != nullptr;
   auto trimmed = [](std::string s) {
     while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
     return s;
   };
-  for (const std::string args : {"--help", "render --help"}) {
+  std::vector<std::string> all_args = {"--help"};
+  for (const std::string& name : subcommands()) all_args.push_back(name + " --help");
+  ASSERT_GE(all_args.size(), 7u) << "rtiow --help lists fewer commands than it has";
+  for (const std::string& args : all_args) {
+    const std::string printed = trimmed(run_rtiow(args).stdout_text);
     const std::string prompt = "$ build/bin/rtiow " + args + "\n";
-    const std::size_t begin = docs.find(prompt);
+    std::size_t begin = docs.find(prompt);
+    if (begin == std::string::npos && update) {
+      docs = trimmed(docs) + "\n\n```text\n" + prompt + "\n```\n";
+      begin = docs.find(prompt);
+    }
     ASSERT_NE(begin, std::string::npos) << "docs/usage.md does not show " << args;
     const std::size_t from = begin + prompt.size();
-    const std::string shown = docs.substr(from, docs.find("\n```", from) - from);
-    EXPECT_EQ(trimmed(shown), trimmed(run_rtiow(args).stdout_text))
-        << "docs/usage.md shows stale help for `rtiow " << args << "`";
+    const std::size_t to = docs.find("\n```", from);
+    const std::string shown = docs.substr(from, to - from);
+    if (update) {
+      docs.replace(from, to - from, printed);
+    } else {
+      EXPECT_EQ(trimmed(shown), printed)
+          << "docs/usage.md shows stale help for `rtiow " << args
+          << "` (RTIOW_UPDATE_DOCS=1 build/bin/cli_tests --gtest_filter='Cli.TheDocs*')";
+    }
   }
+  if (update) std::ofstream(path, std::ios::binary) << docs;
 }
 
 // Debian's OpenImageIO takes some 0.3 s of symbol binding to load: only commands that read or
@@ -490,6 +527,14 @@ TEST(Cli, AccuracyMeasuresWritesFiguresAndReusesItsReference) {
       run_rtiow("accuracy -q --reference-spp 128 --max-spp 64 --out " + dir.string());
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_NE(refused.stderr_text.find("--reference-spp"), std::string::npos);
+  // Every broken sample-count limit in the one line, not one per attempt.
+  const CommandResult all =
+      run_rtiow("accuracy -q --reference-spp 8 --max-spp 4 --book-spp 2 --out " + dir.string());
+  EXPECT_EQ(all.exit_code, 2);
+  for (const char* option : {"--max-spp must be >= 64", "--reference-spp must be at least 4x",
+                             "--book-spp must be >= 16"}) {
+    EXPECT_NE(all.stderr_text.find(option), std::string::npos) << all.stderr_text;
+  }
 }
 
 TEST(Cli, SphereFieldScenesRenderAndRefuseBadCounts) {
@@ -500,6 +545,8 @@ TEST(Cli, SphereFieldScenesRenderAndRefuseBadCounts) {
   EXPECT_TRUE(fs::exists(out));
   expect_refused("--scene spheres:0", "N must be a whole number");
   expect_refused("--scene spheres:12x", "N must be a whole number");
+  // An unknown name lists the generated scenes too.
+  expect_refused("--scene nope", "spheres:N with N from 1 to 100000000");
 }
 
 }  // namespace

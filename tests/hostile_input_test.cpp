@@ -410,7 +410,7 @@ std::vector<Case> number_cases() {
        {{"s.json", scene_with("\"width\": 8", "\"width\": 18446744073709551615")}}},
       {"WidthAsFloat",
        2,
-       "/image/width: must be a whole number",
+       "/image/width: must be from 1 to",
        render({"s.json"}),
        {{"s.json", scene_with("\"width\": 8", "\"width\": 1e30")}}},
       {"SppHuge",

@@ -78,6 +78,12 @@ TEST(SceneFile, TheValidSceneLoadsWithItsSettingsAndDefaults) {
   EXPECT_EQ(s.spheres.radius[2], -0.4f) << "negative radius: hollow sphere";
 }
 
+// JSON has one number type: a whole number written with an exponent is a whole number.
+TEST(SceneFile, WholeNumbersMayBeWrittenWithAnExponent) {
+  const Scene s = parse_scene(replace(kValid, "\"width\": 32", "\"width\": 3.2e1"), "x.json");
+  EXPECT_EQ(s.image.width, 32);
+}
+
 TEST(SceneFile, GlassMayAskForExactFresnel) {
   const Scene s = parse_scene(
       replace(kValid, "\"ior\": 1.5}", "\"ior\": 1.5, \"fresnel\": \"exact\"}"), "x.json");
@@ -116,7 +122,9 @@ std::vector<BadCase> bad_cases() {
       {"not an object", "[1, 2]", "/: must be an object"},
       {"no version", replace(v, "\"version\": 1,", ""), "/: missing field \"version\""},
       {"future version", replace(v, "\"version\": 1", "\"version\": 2"),
-       "/version: must be from 1 to 1"},
+       "/version: this rtiow reads scene format version 1, got number 2"},
+      {"fractional version", replace(v, "\"version\": 1", "\"version\": 1.5"),
+       "/version: this rtiow reads scene format version 1, got number 1.5"},
       {"unknown top field", replace(v, "\"version\": 1,", "\"version\": 1, \"lights\": [],"),
        "/lights: unknown field"},
       {"misspelt field", replace(v, "\"vfov\": 90", "\"vfow\": 90"), "/camera/vfow: unknown field"},
@@ -125,6 +133,8 @@ std::vector<BadCase> bad_cases() {
        "/image/width: must be a whole number, got string '32'"},
       {"fractional size", replace(v, "\"width\": 32", "\"width\": 32.5"),
        "/image/width: must be a whole number"},
+      {"width beyond range as an exponent", replace(v, "\"width\": 32", "\"width\": 1e20"),
+       "/image/width: must be from 1 to 1048576, got number 1e+20"},
       {"zero width", replace(v, "\"width\": 32", "\"width\": 0"), "/image/width: must be from 1"},
       {"absurd width", replace(v, "\"width\": 32", "\"width\": 100000000"),
        "/image/width: must be from 1"},

@@ -183,7 +183,8 @@ std::optional<std::uint64_t> sphere_field_count(const std::string& name) {
   const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
   if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || n < 1 ||
       n > kMaxFieldSpheres) {
-    throw InvalidInput("scene '" + name + "': N must be a whole number from 1 to 100000000");
+    throw InvalidInput("scene '" + name + "': N must be a whole number from 1 to " +
+                       std::to_string(kMaxFieldSpheres));
   }
   return n;
 }
@@ -217,8 +218,9 @@ Scene make_builtin_scene(const std::string& name, std::uint64_t scene_seed) {
     }
   }
   std::string known;
-  for (const auto& e : registry()) known += (known.empty() ? "" : ", ") + e.info.name;
-  throw InvalidInput("unknown scene '" + name + "' (known: " + known + ")");
+  for (const auto& e : registry()) known += e.info.name + ", ";
+  throw InvalidInput("unknown scene '" + name + "' (known: " + known + kFieldPrefix +
+                     "N with N from 1 to " + std::to_string(kMaxFieldSpheres) + ")");
 }
 
 }  // namespace rtiow

@@ -123,7 +123,19 @@ class Reader {
   }
 
   int integer(const JsonValue& v, const Place& at, int lo, int hi) const {
-    if (!v.IsNumber() || v.IsDouble()) fail(at, "must be a whole number, got " + describe(v));
+    // JSON has one number type: 1e3 is a whole number, and 1e20 one out of range.
+    if (v.IsDouble()) {
+      const double d = v.GetDouble();
+      if (!std::isfinite(d) || std::floor(d) != d) {
+        fail(at, "must be a whole number, got " + describe(v));
+      }
+      if (d < double(lo) || d > double(hi)) {
+        fail(at, "must be from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
+                     describe(v));
+      }
+      return int(d);
+    }
+    if (!v.IsNumber()) fail(at, "must be a whole number, got " + describe(v));
     // An unsigned value beyond int64 would wrap to a negative one: compare it unconverted.
     const bool in_range = v.IsUint64() ? v.GetUint64() <= std::uint64_t(std::max(hi, 0)) &&
                                              std::int64_t(v.GetUint64()) >= lo
@@ -443,7 +455,12 @@ Scene read_scene(const Reader& r, JsonInput& input) {
   r.only(
       root, root_at,
       {"version", "name", "scene_seed", "camera", "image", "background", "materials", "spheres"});
-  r.integer(r.require(root, root_at, "version"), Place(root_at, "version"), kVersion, kVersion);
+  const JsonValue& version = r.require(root, root_at, "version");
+  if (!version.IsNumber() || !version.IsInt() || version.GetInt() != kVersion) {
+    r.fail(Place(root_at, "version"), "this rtiow reads scene format version " +
+                                          std::to_string(kVersion) + ", got " +
+                                          Reader::describe(version));
+  }
   if (const JsonValue* name = r.find(root, "name")) {
     scene.name = r.string(*name, Place(root_at, "name"), "a string");
   }
