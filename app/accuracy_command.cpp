@@ -493,10 +493,11 @@ void check_options(const AccuracyOptions& o) {
 RenderSettings base_settings(const AccuracyOptions& o, const Scene& scene) {
   RenderSettings base;
   base.width = o.width;
-  base.height = int(std::min(std::round(o.width / scene.image.aspect_ratio), 1e9));
+  base.height = int(std::min(height_for_width(o.width, scene.image.aspect_ratio), 1e9));
   base.max_depth = scene.image.max_depth;
   base.threads = o.threads;
   base.seed = o.seed;
+  base.sampler = SamplerKind::Independent;  // the reference's and the comparisons'
   base.samples_per_pixel = o.reference_spp;
   validate(base);
   return base;

@@ -107,6 +107,7 @@ int run_point(const PointOptions& o) {
   settings.width = o.width, settings.height = o.height;
   settings.samples_per_pixel = o.spp, settings.max_depth = o.depth;
   settings.threads = o.threads;
+  settings.seed = 0, settings.sampler = SamplerKind::Independent;  // the book's, as measured
   settings.accel = parse_accel(o.accel);
   json result = measure_render(scene, settings, o.repeat, o.budget);
   result["scene"] = o.scene;
@@ -147,6 +148,7 @@ json bench_cover(const BenchOptions& o) {
   settings.width = o.width, settings.height = o.height;
   settings.samples_per_pixel = o.spp, settings.max_depth = o.depth;
   settings.threads = o.threads;
+  settings.seed = 0, settings.sampler = SamplerKind::Independent;  // the book's, as measured
 
   json cover = {{"scene", "cover"}, {"spheres", scene.spheres.size()},
                 {"width", o.width}, {"height", o.height},

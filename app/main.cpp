@@ -26,6 +26,7 @@
 #include "app/render_command.h"
 #include "app/scene_command.h"
 #include "core/io/error.h"
+#include "core/version.h"
 
 namespace {
 
@@ -157,7 +158,7 @@ int main(int argc, char** argv) {
       "built on Embree, oneTBB and OpenImageIO",
       "rtiow"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "rtiow 0.1.0");
+  app.set_version_flag("--version", std::string("rtiow ") + rtiow::version());
   std::vector<std::function<int()>> commands{
       rtiow::add_render_command(app, mpi), rtiow::add_scene_command(app),
       rtiow::add_merge_command(app),       rtiow::add_bench_command(app),

@@ -28,6 +28,7 @@
 #include "core/render/render_loop.h"
 #include "core/render/render_metadata.h"
 #include "core/render/render_part.h"
+#include "core/render/render_request.h"
 #include "core/render/sample_share.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/scene/scene_file.h"
@@ -42,18 +43,16 @@ struct RenderOptions {
   bool list_scenes = false;
   std::string output;
   std::optional<int> width, height, spp, depth;
-  std::uint64_t seed = 1;
-  int threads = 0;
-  std::string accel = "embree";
+  std::uint64_t seed = RenderRequest{}.seed;
+  int threads = RenderRequest{}.threads;
+  std::string accel = to_string(RenderRequest{}.accel);
   std::string fresnel;  // empty: as the scene says
   double time_limit = 0.0;
-  // Sobol: at equal time 2.3-5.4x lower relMSE than independent sampling on every built-in
-  // scene (docs/accuracy.md); the book's sampler is --sampler independent.
-  std::string sampler = to_string(SamplerKind::Sobol);
+  std::string sampler = to_string(RenderRequest{}.sampler);
   double target_error = 0.0;
   double image_error = 0.0;
   bool adaptive = false;
-  int min_spp = 16;
+  int min_spp = RenderRequest{}.min_samples;
   bool stats_channels = false;
   bool quiet = false;
   bool reproducible = false;
@@ -65,67 +64,32 @@ struct RenderOptions {
   std::optional<double> vfov, aperture, focus_distance;
 };
 
-constexpr int kDefaultAdaptiveMaxSpp = 8192;
-
 Vec3d to_vec3(const std::vector<double>& v) {
   return {v[0], v[1], v[2]};
 }
 
-// The side an image takes from the other and the aspect ratio: checked, never clamped.
-int derived_side(int given, double ratio, const char* side, const char* option) {
-  if (given < 1 || given > limits::kMaxImageSide) return given;  // validate() names it
-  const double derived = std::round(double(given) * ratio);
-  if (!(derived >= 1.0 && derived <= double(limits::kMaxImageSide))) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.6g", derived);
-    throw InvalidInput(std::string("the scene's aspect ratio gives a ") + side + " of " + text +
-                       " pixels for " + option + " " + std::to_string(given) + " (must be 1 to " +
-                       std::to_string(limits::kMaxImageSide) + "): give both sides");
-  }
-  return int(derived);
-}
-
-// The scene's own camera and image settings, overridden by whatever the user gave.
-void apply_overrides(const RenderOptions& o, Scene& scene, RenderSettings& settings) {
-  CameraSettings& cam = scene.camera;
+// The options as a request to the core, which gives them their meaning.
+RenderRequest request_of(const RenderOptions& o) {
+  RenderRequest r;
+  r.width = o.width, r.height = o.height;
+  r.samples_per_pixel = o.spp;
+  r.max_depth = o.depth;
+  CameraOverrides& cam = r.camera;
   if (!o.lookfrom.empty()) cam.lookfrom = to_vec3(o.lookfrom);
   if (!o.lookat.empty()) cam.lookat = to_vec3(o.lookat);
   if (!o.vup.empty()) cam.vup = to_vec3(o.vup);
-  if (o.vfov) cam.vfov_degrees = *o.vfov;
-  if (o.aperture) cam.aperture = *o.aperture;
-  if (o.focus_distance) cam.focus_distance = *o.focus_distance;
-  if (!o.fresnel.empty()) {
-    const FresnelModel model = parse_fresnel(o.fresnel).value();  // CLI11 checked the name
-    for (Material& m : scene.materials) {
-      if (auto* d = std::get_if<Dielectric>(&m)) d->fresnel = model;
-    }
-  }
-
-  const ImageSettings& image = scene.image;
-  if (o.width && o.height) {
-    settings.width = *o.width, settings.height = *o.height;
-  } else if (o.height) {
-    settings.height = *o.height;
-    settings.width = derived_side(*o.height, image.aspect_ratio, "width", "--height");
-  } else {
-    settings.width = o.width.value_or(image.width);
-    settings.height = derived_side(settings.width, 1.0 / image.aspect_ratio, "height", "--width");
-  }
-  // With a target error and no --spp, a pixel takes at most kDefaultAdaptiveMaxSpp; with
-  // only a time limit, samples are added until the time is spent.
-  const bool capped_adaptive = o.target_error > 0 || o.image_error > 0;
-  settings.samples_per_pixel = o.spp.value_or(capped_adaptive    ? kDefaultAdaptiveMaxSpp
-                                              : o.time_limit > 0 ? kSamplesUntilTimeLimit
-                                                                 : image.samples_per_pixel);
-  settings.time_limit_seconds = o.time_limit;
-  settings.sampler = parse_sampler(o.sampler);
-  settings.target_error = o.target_error;
-  settings.image_error = o.image_error;
-  settings.adaptive = o.adaptive;
-  settings.min_samples = o.min_spp;
-  settings.max_depth = o.depth.value_or(image.max_depth);
-  settings.seed = o.seed;
-  settings.threads = o.threads;
+  cam.vfov_degrees = o.vfov, cam.aperture = o.aperture, cam.focus_distance = o.focus_distance;
+  if (!o.fresnel.empty()) r.fresnel = parse_fresnel(o.fresnel).value();  // CLI11 checked it
+  r.sampler = parse_sampler(o.sampler);
+  r.accel = parse_accel(o.accel);
+  r.seed = o.seed;
+  r.threads = o.threads;
+  r.time_limit_seconds = o.time_limit;
+  r.target_error = o.target_error;
+  r.image_error = o.image_error;
+  r.adaptive = o.adaptive;
+  r.min_samples = o.min_spp;
+  return r;
 }
 
 // The default output: the scene's name made a safe file name, in the working directory.
@@ -262,13 +226,15 @@ Job prepare_job(const RenderOptions& o, bool scene_option_given, bool output_giv
   // Cheap checks of the output first, so a bad -o is refused before a large scene loads.
   if (output_given) check_output_path(output_path(o, output_given, Scene{}), input_files(o));
   Job job;
-  job.scene = load_scene(o, scene_option_given);
-  job.settings.accel = parse_accel(o.accel);
-  apply_overrides(o, job.scene, job.settings);
+  const RenderRequest request = request_of(o);  // a bad --sampler or --accel before the load
+  Scene scene = load_scene(o, scene_option_given);
+  job.output = output_path(o, output_given, scene);
+  // The whole job, resolved and checked before it is cut into a share.
+  ResolvedRender resolved = resolve(std::move(scene), request);
+  job.scene = std::move(resolved.scene);
+  job.settings = resolved.settings;
   job.samples_asked = job.settings.samples_per_pixel;
-  job.output = output_path(o, output_given, job.scene);
   job.share = !o.sample_range.empty() || !o.part.empty();
-  validate(job.settings);  // the whole job, before it is cut into a share
   apply_share(o, job.output, job.settings);
   apply_rank_share(o, mpi, job.settings);
   check_adaptive_options(o, job.output, mpi);
@@ -306,12 +272,8 @@ bool gather_ranks(const MpiSession& mpi, Job& job, RenderResult& result, bool sp
   mpi.reduce_sums(result.sums, spreads ? &result.spreads : nullptr);
   if (mpi.rank() != 0) return false;
   result.stopped = done < std::uint64_t(job.samples_asked);
-  result.samples_completed = int(done);
-  result.first_sample = 0;
-  result.pixel_samples.assign(result.sums.size(), std::uint32_t(done));
-  resolve(result.sums, done, result.film);
-  job.settings.samples_per_pixel = job.samples_asked;
-  job.settings.first_sample = 0;
+  complete_from_shares(done, result);
+  restore_whole_job(std::uint64_t(job.samples_asked), job.settings);
   return true;
 }
 
@@ -519,13 +481,15 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
       ->capture_default_str();
   cmd->add_option("--target-error", o.target_error,
                   "Adaptive sampling: each pixel stops once its relative standard error is below "
-                  "this (e.g. 0.05); --spp is then the most a pixel takes (default 8192)")
+                  "this (e.g. 0.05); --spp is then the most a pixel takes (default " +
+                      std::to_string(kDefaultErrorDrivenMaxSpp) + ")")
       ->check(kFiniteNotNegative);
   cmd->add_option("--image-error", o.image_error,
                   "Adaptive sampling: stop once the image's estimated relative RMS error is "
                   "below this (e.g. 0.02; it aims at 0.92 of it), giving each pixel samples in "
                   "proportion to "
-                  "sqrt(variance / cost); --spp is then the most a pixel takes (default 8192)")
+                  "sqrt(variance / cost); --spp is then the most a pixel takes (default " +
+                      std::to_string(kDefaultErrorDrivenMaxSpp) + ")")
       ->check(kFiniteNotNegative);
   cmd->add_flag("--adaptive", o.adaptive,
                 "Adaptive sampling on a budget: the time of --spp uniform samples (or "

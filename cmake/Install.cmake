@@ -9,15 +9,25 @@ set_target_properties(rtiow_core PROPERTIES EXPORT_NAME rtiow OUTPUT_NAME rtiow)
 install(TARGETS rtiow RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES app/bench_plot.py app/accuracy_plot.py DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS rtiow_core EXPORT rtiowTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-# The image backend beside the library: the rtiow executable loads it from lib/ when it
-# reads or writes an image; a program that links rtiow::rtiow links it (the library finds
-# it loaded), which costs such a program OpenImageIO's start-up, as linking it directly would.
-set_target_properties(rtiow_image_io PROPERTIES EXPORT_NAME image_io)
-install(TARGETS rtiow_image_io EXPORT rtiowTargets LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# The image backend: the rtiow executable loads the shared one from lib/ beside its bin/ when
+# it reads or writes an image. A program that links rtiow::rtiow links the static one in
+# (forced by its entry point, which the library references weakly), so it runs wherever it
+# is installed and wherever the prefix moves, at the cost of OpenImageIO's start-up, as
+# linking OpenImageIO directly would.
+install(TARGETS rtiow_image_io LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+set_target_properties(rtiow_image_io_static PROPERTIES EXPORT_NAME image_io
+                                                       OUTPUT_NAME rtiow_image_io)
+install(TARGETS rtiow_image_io_static EXPORT rtiowTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 set_property(TARGET rtiow_core APPEND PROPERTY INTERFACE_LINK_LIBRARIES
              "$<INSTALL_INTERFACE:rtiow::image_io>")
+set_property(TARGET rtiow_core APPEND PROPERTY INTERFACE_LINK_OPTIONS
+             "$<INSTALL_INTERFACE:LINKER:--undefined=rtiow_image_backend>")
+# The headers, less the scene reader's internals, which need RapidJSON (only the core's
+# sources include them, and the package does not ask for RapidJSON).
 install(DIRECTORY core materials DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rtiow
-        FILES_MATCHING PATTERN "*.h")
+        FILES_MATCHING PATTERN "*.h"
+        PATTERN "json_stream.h" EXCLUDE PATTERN "rapidjson.h" EXCLUDE)
 
 set(rtiow_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/rtiow)
 install(EXPORT rtiowTargets NAMESPACE rtiow:: DESTINATION ${rtiow_cmake_dir})

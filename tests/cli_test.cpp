@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/rtiow.h"
 #include "tests/background_render.h"
 #include "tests/test_files.h"
 
@@ -137,6 +138,13 @@ TEST(Cli, TheDocsShowEveryCommandsHelpAsTheBinaryPrintsIt) {
     }
   }
   if (update) std::ofstream(path, std::ios::binary) << docs;
+}
+
+// One version string: the program says the library's, which CMake's project(VERSION) sets.
+TEST(Cli, TheVersionIsTheProjects) {
+  EXPECT_EQ(run_rtiow("--version").stdout_text,
+            std::string("rtiow ") + RTIOW_PROJECT_VERSION + "\n");
+  EXPECT_STREQ(rtiow::version(), RTIOW_PROJECT_VERSION);
 }
 
 // Debian's OpenImageIO takes some 0.3 s of symbol binding to load: only commands that read or
@@ -296,6 +304,58 @@ TEST(Cli, RefusesUnwritableOutputsBeforeRendering) {
   const CommandResult bad_dir = run_rtiow("render -q --spp 1 --width 8 -o /nonexistent-dir/x.png");
   EXPECT_EQ(bad_dir.exit_code, 2);
   EXPECT_NE(bad_dir.stderr_text.find("does not exist"), std::string::npos);
+}
+
+// The pixels of an .exr the command line wrote.
+std::vector<float> exr_pixels(const fs::path& path, int& width, int& height) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) return {};
+  width = in->spec().width, height = in->spec().height;
+  std::vector<float> rgb(std::size_t(width) * std::size_t(height) * 3);
+  in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, rgb.data());
+  return rgb;
+}
+
+// One request, one image: the C++ API's resolve() and `rtiow render` give the same bits for
+// the same request, defaults included (sampler, seed, the aspect rule, an error target's cap).
+TEST(Cli, TheLibraryAndTheCommandLineGiveOneRequestTheSameImage) {
+  struct Case {
+    std::string options;
+    std::string scene;
+    rtiow::RenderRequest request;
+  };
+  rtiow::RenderRequest camera;
+  camera.height = 30, camera.samples_per_pixel = 4, camera.max_depth = 8;
+  camera.camera.lookfrom = rtiow::Vec3d{-2, 2, 1}, camera.camera.vfov_degrees = 40;
+  camera.fresnel = rtiow::FresnelModel::Exact;
+  rtiow::RenderRequest error_driven;
+  error_driven.width = 40, error_driven.image_error = 0.2;
+  rtiow::RenderRequest uniform;
+  uniform.width = 24, uniform.samples_per_pixel = 3, uniform.seed = 7;
+  uniform.sampler = rtiow::SamplerKind::Independent;
+  const std::vector<Case> cases = {
+      {"--scene materials --height 30 --spp 4 --depth 8 --lookfrom -2,2,1 --vfov 40 "
+       "--fresnel exact",
+       "materials", camera},
+      {"--scene cover --width 40 --image-error 0.2", "cover", error_driven},
+      {"--scene defocus --width 24 --spp 3 --seed 7 --sampler independent", "defocus", uniform},
+  };
+  for (const Case& c : cases) {
+    const fs::path out = output_path(c.scene + ".exr");
+    const CommandResult r = run_rtiow("render -q " + c.options + " -o " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    int width = 0, height = 0;
+    const std::vector<float> cli = exr_pixels(out, width, height);
+
+    const rtiow::ResolvedRender job =
+        rtiow::resolve(rtiow::make_builtin_scene(c.scene, 1), c.request);
+    const rtiow::Film film = rtiow::render(job.scene, job.settings).film;
+    ASSERT_EQ(film.width(), width) << c.options;
+    ASSERT_EQ(film.height(), height) << c.options;
+    ASSERT_EQ(cli.size(), film.pixels().size() * 3);
+    EXPECT_EQ(std::memcmp(cli.data(), film.pixels().data(), cli.size() * sizeof(float)), 0)
+        << c.options;
+  }
 }
 
 TEST(Cli, WritesTheImageWithMetadataAndSaysWhere) {

@@ -26,6 +26,7 @@ RenderSettings small(const Scene& scene, int width, int spp, int depth, std::uin
   s.samples_per_pixel = spp;
   s.max_depth = depth;
   s.seed = seed;
+  s.sampler = SamplerKind::Independent;
   return s;
 }
 
@@ -377,6 +378,7 @@ TEST(ParameterExtremes, RandomExtremeScenesNeverProduceNaN) {
     RenderSettings s;
     s.width = 16, s.height = 12, s.samples_per_pixel = 4, s.max_depth = 20;
     s.seed = std::uint64_t(trial);
+    s.sampler = SamplerKind::Independent;
     try {
       expect_finite(render(scene, s).film, "random scene " + std::to_string(trial));
       ++rendered;

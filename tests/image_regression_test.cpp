@@ -92,6 +92,7 @@ RenderSettings settings_for(const Scene& scene, int spp, std::uint64_t seed) {
   s.samples_per_pixel = spp;
   s.max_depth = scene.image.max_depth;
   s.seed = seed;
+  s.sampler = SamplerKind::Independent;
   return s;
 }
 

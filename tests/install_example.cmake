@@ -37,6 +37,27 @@ if(size LESS 10000)
 endif()
 message(STATUS "installed rtiow built and ran the example: three.png, ${size} bytes")
 
+# The installed headers need nothing the package does not find (RapidJSON is the core's own).
+file(GLOB_RECURSE headers ${prefix}/include/rtiow/*.h)
+foreach(header ${headers})
+  file(STRINGS ${header} internal REGEX "rapidjson|json_stream")
+  if(internal)
+    message(FATAL_ERROR "installed ${header} needs the core's internals: ${internal}")
+  endif()
+endforeach()
+
+# A program built against the install keeps working when the prefix moves (the image
+# backend is linked in): move it, run the example again, move it back.
+file(REMOVE ${WORK_DIR}/three.png)
+file(RENAME ${prefix} ${WORK_DIR}/moved)
+execute_process(COMMAND ${WORK_DIR}/build/spheres ${WORK_DIR}/three.png RESULT_VARIABLE code
+                OUTPUT_VARIABLE out ERROR_VARIABLE err)
+file(RENAME ${WORK_DIR}/moved ${prefix})
+if(NOT code EQUAL 0 OR NOT EXISTS ${WORK_DIR}/three.png)
+  message(FATAL_ERROR "the example failed once the prefix moved (${code}):\n${out}${err}")
+endif()
+message(STATUS "the example ran with its install prefix moved")
+
 # The image tests, copied out of the source tree so their references are written here.
 file(COPY ${SOURCE_DIR}/examples/image_tests DESTINATION ${WORK_DIR})
 set(tests_source ${WORK_DIR}/image_tests)

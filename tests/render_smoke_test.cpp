@@ -32,6 +32,7 @@ RenderSettings tiny(const Scene& scene) {
   s.samples_per_pixel = 4;
   s.max_depth = 12;
   s.seed = 11;
+  s.sampler = SamplerKind::Independent;
   return s;
 }
 

@@ -31,6 +31,7 @@ RenderSettings settings(const Scene& scene, int spp, std::uint64_t seed) {
   s.samples_per_pixel = spp;
   s.max_depth = 50;
   s.seed = seed;
+  s.sampler = SamplerKind::Independent;
   return s;
 }
 

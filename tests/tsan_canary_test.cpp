@@ -34,6 +34,7 @@ TEST(TsanCanary, RaceInTheLoopBodyIsReported) {
   s.samples_per_pixel = 1;
   s.max_depth = 1;
   s.threads = 2;
+  s.seed = 0, s.sampler = SamplerKind::Independent;
   const Camera camera(scene.camera, s.width, s.height);
   PixelAccumulators pixels(std::size_t(s.width * s.height));
   const RacyAccel accel;

@@ -24,13 +24,23 @@ namespace {
 using Entry = const ImageBackend* (*)(int abi_version);
 constexpr const char* kEntryName = "rtiow_image_backend";
 
+}  // namespace
+}  // namespace rtiow
+
+// Defined when the backend is linked in statically (an installed rtiow's programs link its
+// static archive), else null: then it is found loaded, or loaded.
+extern "C" __attribute__((weak)) const rtiow::ImageBackend* rtiow_image_backend(int abi_version);
+
+namespace rtiow {
+namespace {
+
 struct Loaded {
   const ImageBackend* backend = nullptr;
   std::string error;
 };
 
-Loaded from_entry(void* symbol, const std::string& where) {
-  const ImageBackend* backend = reinterpret_cast<Entry>(symbol)(kImageBackendAbi);
+Loaded from_entry(Entry entry, const std::string& where) {
+  const ImageBackend* backend = entry(kImageBackendAbi);
   if (!backend) return {nullptr, where + " is from another build of rtiow"};
   return {backend, {}};
 }
@@ -49,7 +59,7 @@ Loaded try_open(const std::string& path) {
   }
   void* entry = ::dlsym(library, kEntryName);
   if (!entry) return {nullptr, path + " has no " + kEntryName};
-  return from_entry(entry, path);
+  return from_entry(reinterpret_cast<Entry>(entry), path);
 }
 
 std::string beside_program() {
@@ -62,8 +72,11 @@ std::string beside_program() {
 }
 
 Loaded linked() {
+  if (&rtiow_image_backend != nullptr) {
+    return from_entry(&rtiow_image_backend, "the linked backend");
+  }
   if (void* entry = ::dlsym(RTLD_DEFAULT, kEntryName))
-    return from_entry(entry, "the linked backend");
+    return from_entry(reinterpret_cast<Entry>(entry), "the linked backend");
   return {};
 }
 

@@ -16,10 +16,7 @@
 
 #include "core/io/error.h"
 #include "core/scene/scene_file.h"
-
-#ifndef RTIOW_VERSION
-#define RTIOW_VERSION "unknown"
-#endif
+#include "core/version.h"
 
 namespace rtiow {
 namespace {
@@ -285,7 +282,7 @@ CheckpointIdentity checkpoint_identity(const Scene& scene, const RenderSettings&
   } else if (s.adaptive) {
     mode = "--adaptive" + min_spp + spp;
   }
-  return {RTIOW_VERSION,
+  return {version(),
           digest(scene_to_json(scene)),
           std::to_string(s.width) + "x" + std::to_string(s.height),
           std::to_string(s.max_depth),

@@ -15,6 +15,7 @@
 #include "core/io/image_file.h"
 #include "core/io/input_limits.h"
 #include "core/render/render_metadata.h"
+#include "core/render/sample_share.h"
 #include "core/sampling/rng.h"
 #include "core/scene/scene_file.h"
 
@@ -379,10 +380,8 @@ RenderResult merged_result(const MergedRender& merged, SamplerKind sampler) {
   r.film = merged.film;
   r.sums = merged.sums;
   r.spreads = merged.spreads;
-  r.pixel_samples.assign(merged.sums.size(), std::uint32_t(merged.samples));
-  r.first_sample = 0;
   r.sampler = sampler;
-  r.samples_completed = int(merged.samples);
+  complete_from_shares(merged.samples, r);
   return r;
 }
 

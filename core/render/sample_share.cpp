@@ -4,6 +4,7 @@
 #include <optional>
 #include <utility>
 
+#include "core/film/sample_sum.h"
 #include "core/io/error.h"
 
 namespace rtiow {
@@ -61,6 +62,18 @@ SampleShare parse_sample_range(const std::string& text, std::uint64_t total) {
 void restrict_to(const SampleShare& share, RenderSettings& settings) {
   settings.first_sample = share.first;
   settings.samples_per_pixel = int(share.count);
+}
+
+void restore_whole_job(std::uint64_t job_samples, RenderSettings& settings) {
+  settings.first_sample = 0;
+  settings.samples_per_pixel = int(job_samples);
+}
+
+void complete_from_shares(std::uint64_t samples, RenderResult& result) {
+  result.first_sample = 0;
+  result.samples_completed = int(samples);
+  result.pixel_samples.assign(result.sums.size(), std::uint32_t(samples));
+  resolve(result.sums, samples, result.film);
 }
 
 }  // namespace rtiow

@@ -28,4 +28,11 @@ SampleShare parse_sample_range(const std::string& text, std::uint64_t total);
 // Settings that render only `share` of the job.
 void restrict_to(const SampleShare& share, RenderSettings& settings);
 
+// The other way, once shares are added together (part files merged, MPI ranks reduced): the
+// settings of the whole job of `job_samples` per pixel, and `result`, whose sums and spreads
+// hold `samples` per pixel from sample 0, made the result one render of them gives (its film
+// resolved from the sums). Both ways of combining shares end here.
+void restore_whole_job(std::uint64_t job_samples, RenderSettings& settings);
+void complete_from_shares(std::uint64_t samples, RenderResult& result);
+
 }  // namespace rtiow

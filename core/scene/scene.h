@@ -2,6 +2,7 @@
 // A scene: what the renderer models and nothing more. Spheres with materials, a
 // background, a camera, and the image settings the scene was composed for.
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -20,6 +21,15 @@ struct ImageSettings {
   int samples_per_pixel = 100;
   int max_depth = 50;
 };
+
+// The one aspect rule: the side not given follows from the other and the aspect ratio
+// (width / height), rounded to the nearest pixel. Unchecked: callers check the range.
+inline double height_for_width(int width, double aspect_ratio) {
+  return std::round(double(width) * (1.0 / aspect_ratio));
+}
+inline double width_for_height(int height, double aspect_ratio) {
+  return std::round(double(height) * aspect_ratio);
+}
 
 struct Scene {
   std::string name;

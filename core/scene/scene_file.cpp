@@ -264,7 +264,7 @@ void read_image(const Reader& r, const JsonValue& v, ImageSettings& image) {
     image.aspect_ratio = r.number(*aspect, at);
     if (image.aspect_ratio <= 0.0) r.fail(at, "must be > 0");
     // The height it implies must be a size rtiow renders: checked here, never clamped.
-    const double h = std::round(double(image.width) / image.aspect_ratio);
+    const double h = height_for_width(image.width, image.aspect_ratio);
     if (!(h >= 1.0 && h <= double(limits::kMaxImageSide))) {
       r.fail(at, "gives a height of " + Reader::format(h) + " pixels for width " +
                      std::to_string(image.width) + " (must be 1 to " +

@@ -1,0 +1,9 @@
+#include "core/version.h"
+
+namespace rtiow {
+
+const char* version() {
+  return RTIOW_VERSION;  // from project(VERSION), defined by core/CMakeLists.txt
+}
+
+}  // namespace rtiow
