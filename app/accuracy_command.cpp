@@ -15,11 +15,11 @@
 #include "app/cli_checks.h"
 #include "app/plot_script.h"
 #include "core/film/image_error.h"
-#include "core/film/render_statistics.h"
 #include "core/io/atomic_file.h"
-#include "core/io/error.h"
 #include "core/io/output_path.h"
+#include "core/limits/error.h"
 #include "core/render/render.h"
+#include "core/render/render_statistics.h"
 #include "core/scene/builtin_scenes.h"
 
 namespace rtiow {

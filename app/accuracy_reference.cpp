@@ -6,11 +6,11 @@
 #include <optional>
 
 #include "app/progress_display.h"
-#include "core/film/render_statistics.h"
-#include "core/io/error.h"
 #include "core/io/image_output.h"
+#include "core/limits/error.h"
 #include "core/render/render_metadata.h"
 #include "core/render/render_part.h"
+#include "core/render/render_statistics.h"
 
 namespace rtiow {
 namespace {

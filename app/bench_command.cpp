@@ -16,8 +16,8 @@
 
 #include "app/bench_report.h"
 #include "app/trace_rate.h"
-#include "core/io/error.h"
 #include "core/io/output_path.h"
+#include "core/limits/error.h"
 #include "core/render/render.h"
 #include "core/scene/builtin_scenes.h"
 

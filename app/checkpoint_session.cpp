@@ -8,7 +8,7 @@
 #include <exception>
 #include <filesystem>
 
-#include "core/io/error.h"
+#include "core/limits/error.h"
 
 namespace rtiow {
 

@@ -9,12 +9,13 @@
 #include <vector>
 
 #include "app/cli_checks.h"
-#include "core/film/diff_images.h"
-#include "core/film/image_diff.h"
-#include "core/io/error.h"
+#include "core/compare/diff_images.h"
+#include "core/compare/image_diff.h"
 #include "core/io/image_output.h"
 #include "core/io/input_file.h"
 #include "core/io/output_path.h"
+#include "core/limits/error.h"
+#include "core/limits/image_size.h"
 
 namespace rtiow {
 namespace {

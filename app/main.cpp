@@ -25,7 +25,7 @@
 #include "app/mpi_session.h"
 #include "app/render_command.h"
 #include "app/scene_command.h"
-#include "core/io/error.h"
+#include "core/limits/error.h"
 #include "core/version.h"
 
 namespace {

@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "core/film/render_statistics.h"
-#include "core/io/error.h"
 #include "core/io/image_output.h"
 #include "core/io/output_path.h"
+#include "core/limits/error.h"
 #include "core/render/render_metadata.h"
 #include "core/render/render_part.h"
+#include "core/render/render_statistics.h"
 #include "core/sampling/sampler.h"
 
 namespace rtiow {

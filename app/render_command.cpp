@@ -18,17 +18,17 @@
 #include "app/mpi_session.h"
 #include "app/output_lock.h"
 #include "app/progress_display.h"
-#include "core/film/render_statistics.h"
-#include "core/io/error.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_output.h"
-#include "core/io/input_limits.h"
 #include "core/io/output_path.h"
+#include "core/limits/error.h"
+#include "core/limits/input_limits.h"
 #include "core/render/render.h"
 #include "core/render/render_loop.h"
 #include "core/render/render_metadata.h"
 #include "core/render/render_part.h"
 #include "core/render/render_request.h"
+#include "core/render/render_statistics.h"
 #include "core/render/sample_share.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/scene/scene_file.h"
@@ -449,20 +449,27 @@ CLI::Option* add_image_options(CLI::App* cmd, RenderOptions& o) {
       cmd->add_option("-o,--output", o.output,
                       "Output image; the format follows the extension (" + image_extensions() +
                           "). Default: <scene>.png in the working directory");
-  cmd->add_option("--width", o.width, "Image width in pixels, 1 to 2^20 (default: the scene's)");
+  // The ranges in the help come from the one table (core/limits/input_limits.h).
+  const std::string side = std::to_string(limits::kMaxImageSide);
+  cmd->add_option("--width", o.width,
+                  "Image width in pixels, 1 to " + side + " (default: the scene's)");
   cmd->add_option("--height", o.height,
-                  "Image height in pixels, 1 to 2^20 (default: from the width and the scene's "
-                  "aspect ratio)");
+                  "Image height in pixels, 1 to " + side +
+                      " (default: from the width and the scene's "
+                      "aspect ratio)");
   return output_option;
 }
 
 void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--spp", o.spp, "Samples per pixel (default: the scene's)");
-  cmd->add_option("--depth", o.depth, "Maximum rays per path, 0 to 65536 (default: the scene's)");
+  cmd->add_option("--depth", o.depth,
+                  "Maximum rays per path, 0 to " + std::to_string(limits::kMaxDepth) +
+                      " (default: the scene's)");
   cmd->add_option("--seed", o.seed, "Seed of the sample streams, 0 to 2^64-1")
       ->check(kNotNegative)
       ->capture_default_str();
-  cmd->add_option("--threads", o.threads, "Worker threads, 0 (all cores) to 1024")
+  cmd->add_option("--threads", o.threads,
+                  "Worker threads, 0 (all cores) to " + std::to_string(limits::kMaxThreads))
       ->capture_default_str();
   cmd->add_option("--accel", o.accel, "Intersector: embree or naive (same image, other speed)")
       ->capture_default_str();

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "core/io/atomic_file.h"
-#include "core/io/error.h"
 #include "core/io/output_path.h"
+#include "core/limits/error.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/scene/scene_file.h"
 

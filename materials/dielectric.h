@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "core/geometry/surface_hit.h"
-#include "core/io/input_limits.h"
+#include "core/limits/input_limits.h"
 #include "core/sampling/sample_layout.h"
 #include "materials/fresnel.h"
 #include "materials/parameter_check.h"
@@ -19,7 +19,7 @@ struct Dielectric {
   FresnelModel fresnel = FresnelModel::Schlick;
 };
 
-// The index within the range the extremes tests render without NaN (core/io/input_limits.h).
+// The index within the range the extremes tests render without NaN (core/limits/input_limits.h).
 inline std::optional<ParameterProblem> check_parameters(const Dielectric& m) {
   if (!(m.ior >= limits::kMinIor && m.ior <= limits::kMaxIor)) {
     return ParameterProblem{"ior", -1, m.ior, "must be from 0.001 to 1e+06"};

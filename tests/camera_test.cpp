@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/io/error.h"
+#include "core/limits/error.h"
 
 namespace rtiow {
 namespace {

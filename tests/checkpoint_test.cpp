@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/io/error.h"
+#include "core/limits/error.h"
 #include "core/render/checkpoint_file.h"
 #include "core/render/render.h"
 #include "core/render/render_state.h"

@@ -8,10 +8,10 @@
 #include <cstdio>
 #include <limits>
 
-#include "core/film/image_diff.h"
+#include "core/compare/image_diff.h"
 #include "core/geometry/ray_offset.h"
 #include "core/geometry/sphere_intersect.h"
-#include "core/io/error.h"
+#include "core/limits/error.h"
 #include "core/render/render.h"
 #include "core/sampling/rng.h"
 #include "core/scene/builtin_scenes.h"

@@ -2,7 +2,7 @@
 // are one heavy-tailed random path value tinted by a colour (so R, G and B are correlated,
 // as in a render), averaged as a render averages them.
 
-#include "core/film/image_diff.h"
+#include "core/compare/image_diff.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <limits>
 #include <vector>
 
-#include "core/film/student_t.h"
-#include "core/io/error.h"
+#include "core/compare/student_t.h"
+#include "core/limits/error.h"
 #include "core/sampling/rng.h"
 
 namespace rtiow {

@@ -1,6 +1,6 @@
 // Image regression tests: every built-in scene against a stored reference.
 //
-// The comparisons are rtiow diff's own (core/film/image_diff.h): plain thresholds in display
+// The comparisons are rtiow diff's own (core/compare/image_diff.h): plain thresholds in display
 // space, and several renders with other seeds against the reference's mean.
 //
 // References (tests/references/<scene>.exr, half float, linear, with the variance of each
@@ -22,11 +22,11 @@
 #include <numbers>
 #include <vector>
 
-#include "core/film/diff_images.h"
-#include "core/film/image_diff.h"
-#include "core/film/render_statistics.h"
+#include "core/compare/diff_images.h"
+#include "core/compare/image_diff.h"
 #include "core/io/image_output.h"
 #include "core/render/render.h"
+#include "core/render/render_statistics.h"
 #include "core/scene/builtin_scenes.h"
 
 namespace rtiow::test {

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "core/io/error.h"
+#include "core/limits/error.h"
 #include "core/scene/name_index.h"
 
 namespace rtiow {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/io/error.h"
+#include "core/limits/error.h"
 #include "core/sampling/sampler.h"
 #include "core/scene/scene.h"
 #include "core/scene/scene_file.h"

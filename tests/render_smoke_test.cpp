@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/accel/naive_accel.h"
-#include "core/io/error.h"
+#include "core/limits/error.h"
 #include "core/render/integrator.h"
 #include "core/render/render.h"
 #include "core/render/render_loop.h"

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "core/film/image_error.h"
-#include "core/film/render_statistics.h"
 #include "core/render/render.h"
+#include "core/render/render_statistics.h"
 #include "core/scene/builtin_scenes.h"
 
 namespace rtiow {

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/film/render_statistics.h"
 #include "core/film/replicate_variance.h"
 #include "core/render/render.h"
+#include "core/render/render_statistics.h"
 #include "core/scene/builtin_scenes.h"
 
 namespace rtiow {

@@ -8,7 +8,7 @@
 #include "core/geometry/ray_offset.h"
 #include "core/geometry/sphere_bounds.h"
 #include "core/geometry/sphere_intersect.h"
-#include "core/render/thread_sanitizer.h"
+#include "core/parallel/thread_sanitizer.h"
 
 namespace rtiow {
 namespace {

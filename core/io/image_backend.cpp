@@ -10,9 +10,9 @@
 #include <string>
 #include <system_error>
 
-#include "core/io/error.h"
 #include "core/io/image_file.h"
 #include "core/io/input_file.h"
+#include "core/limits/error.h"
 
 #ifndef RTIOW_LIBDIR_FROM_BINDIR
 #define RTIOW_LIBDIR_FROM_BINDIR "../lib"

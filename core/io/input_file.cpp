@@ -6,7 +6,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "core/io/error.h"
+#include "core/limits/error.h"
 
 namespace rtiow {
 
@@ -34,10 +34,6 @@ bool same_file(const std::string& a, const std::string& b) {
   }, sb{};
   return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev &&
          sa.st_ino == sb.st_ino;
-}
-
-std::uint64_t physical_memory_bytes() {
-  return std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGESIZE));
 }
 
 }  // namespace rtiow

@@ -13,9 +13,6 @@ namespace rtiow {
 // at most `max_bytes`. Returns its size.
 std::uint64_t check_input_file(const std::string& path, std::uint64_t max_bytes, const char* what);
 
-// The machine's physical memory in bytes: what refusals of too large an input measure against.
-std::uint64_t physical_memory_bytes();
-
 // True if both paths exist and name the same file (same device and inode), however spelt.
 bool same_file(const std::string& a, const std::string& b);
 

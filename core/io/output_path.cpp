@@ -9,8 +9,8 @@
 #include <cstring>
 #include <filesystem>
 
-#include "core/io/error.h"
 #include "core/io/input_file.h"
+#include "core/limits/error.h"
 
 namespace rtiow {
 namespace {

@@ -20,6 +20,7 @@
 #include <numeric>
 #include <vector>
 
+#include "core/limits/input_limits.h"
 #include "core/render/render_loop.h"
 #include "core/render/render_state.h"
 #include "core/render/sample_allocation.h"
@@ -174,7 +175,7 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
   const bool by_error = settings.image_error > 0.0;
   const bool open_ended = !asks_sample_count(settings);
   const std::uint32_t most =
-      by_error ? std::uint32_t(settings.samples_per_pixel) : kMostAdaptiveSamples;
+      by_error ? std::uint32_t(settings.samples_per_pixel) : limits::kMostAdaptiveSamples;
   const auto least = std::min(
       {most, std::uint32_t(settings.min_samples), std::uint32_t(settings.samples_per_pixel)});
   for (bool first = start_rounds(state, least);; first = false) {

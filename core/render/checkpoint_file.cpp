@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/io/error.h"
+#include "core/limits/error.h"
 #include "core/scene/scene_file.h"
 #include "core/version.h"
 

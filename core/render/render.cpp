@@ -9,9 +9,10 @@
 
 #include "core/accel/embree_accel.h"
 #include "core/accel/naive_accel.h"
-#include "core/io/error.h"
 #include "core/io/input_file.h"
-#include "core/io/input_limits.h"
+#include "core/limits/error.h"
+#include "core/limits/image_size.h"
+#include "core/limits/input_limits.h"
 #include "core/render/adaptive_sampling.h"
 #include "core/render/render_loop.h"
 #include "core/render/render_state.h"
@@ -22,9 +23,7 @@
 namespace rtiow {
 namespace {
 
-// Beyond this many pixels indices overflow; a film costs this much per pixel (the float
-// image and the exact fixed-point sums).
-constexpr std::uint64_t kMaxPixels = 1ull << 31;
+// A film costs this much per pixel: the float image and the exact fixed-point sums.
 constexpr std::uint64_t kBytesPerPixel = sizeof(Color) + sizeof(PixelSum) + sizeof(PixelSpread) +
                                          sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
@@ -100,14 +99,10 @@ AccelKind parse_accel(const std::string& name) {
 }
 
 void validate(const RenderSettings& s) {
-  if (s.width <= 0) throw InvalidInput("width must be > 0, got " + std::to_string(s.width));
-  if (s.height <= 0) throw InvalidInput("height must be > 0, got " + std::to_string(s.height));
+  // Refuse before allocating what the machine cannot hold: the film and its accumulators.
+  check_image_size(s.width, s.height, kBytesPerPixel);
   if (s.samples_per_pixel <= 0) {
     throw InvalidInput("spp must be > 0, got " + std::to_string(s.samples_per_pixel));
-  }
-  if (s.width > limits::kMaxImageSide || s.height > limits::kMaxImageSide) {
-    throw InvalidInput("image " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                       ": each side must be at most " + std::to_string(limits::kMaxImageSide));
   }
   if (s.max_depth < 0 || s.max_depth > limits::kMaxDepth) {
     throw InvalidInput("depth must be from 0 to " + std::to_string(limits::kMaxDepth) + ", got " +
@@ -149,20 +144,6 @@ void validate(const RenderSettings& s) {
                        std::to_string(s.min_samples) +
                        " (--min-spp); give --spp above it, or leave out --adaptive for a "
                        "uniform render");
-  }
-  const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
-  if (pixels > kMaxPixels) {
-    throw InvalidInput("image " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                       " has more than 2^31 pixels");
-  }
-  // Refuse before allocating what the machine cannot hold: the film and its accumulator.
-  const std::uint64_t needed = pixels * kBytesPerPixel;
-  const std::uint64_t available = physical_memory_bytes();
-  if (needed > available / 2) {
-    throw InvalidInput("image " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                       " needs " + std::to_string(needed >> 20) +
-                       " MiB, more than half of this machine's " + std::to_string(available >> 20) +
-                       " MiB");
   }
 }
 

@@ -56,9 +56,6 @@ inline bool asks_sample_count(const RenderSettings& s) {
   return s.samples_per_pixel != kSamplesUntilTimeLimit;
 }
 
-// The most samples a pixel takes with `adaptive`, whose samples_per_pixel is a budget.
-inline constexpr std::uint32_t kMostAdaptiveSamples = 1u << 24;
-
 // Whether pixels get different sample counts (any adaptive mode).
 inline bool is_adaptive(const RenderSettings& s) {
   return s.target_error > 0.0 || s.image_error > 0.0 || s.adaptive;

@@ -20,10 +20,10 @@
 #include "core/film/film.h"
 #include "core/film/pixel_variance.h"
 #include "core/film/sample_sum.h"
+#include "core/parallel/thread_sanitizer.h"
 #include "core/render/integrator.h"
 #include "core/render/pixel_accumulators.h"
 #include "core/render/render.h"
-#include "core/render/thread_sanitizer.h"
 #include "core/scene/camera.h"
 
 namespace rtiow {
@@ -125,19 +125,10 @@ template <typename Range, typename Body>
 void parallel_over(const RenderSettings& settings, const Range& range, const Body& body) {
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   tbb::task_arena arena(threads);
-  char fork = 0, join = 0;  // their addresses name the fork and the join for TSan
-  tsan_release(&fork);
-  arena.execute([&] {
-    tbb::parallel_for(
-        range,
-        [&](const Range& part) {
-          tsan_acquire(&fork);
-          body(part);
-          tsan_release(&join);
-        },
-        tbb::simple_partitioner());
-  });
-  tsan_acquire(&join);
+  tsan_release(&tsan_fork_sync);  // what the tasks read was written before this
+  arena.execute(
+      [&] { tbb::parallel_for(range, TsanOrderedBody<Body>(body), tbb::simple_partitioner()); });
+  tsan_acquire(&tsan_join_sync);  // every task's writes before the caller goes on
 }
 
 // Brings the n pixels pixel_at(0..n-1) (raster order) to target_of(pixel) samples each,

@@ -4,7 +4,8 @@
 #include <cstdio>
 #include <string>
 
-#include "core/film/render_statistics.h"
+#include "core/limits/input_limits.h"
+#include "core/render/render_statistics.h"
 
 namespace rtiow {
 
@@ -43,8 +44,8 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
             {key::kSppMin, std::int64_t(*least)},
             {key::kSppMax, std::int64_t(*most)},
             {key::kSppMean, mean_samples(r)},
-            {key::kSppLimit,
-             std::int64_t(s.adaptive ? kMostAdaptiveSamples : std::uint32_t(s.samples_per_pixel))},
+            {key::kSppLimit, std::int64_t(s.adaptive ? limits::kMostAdaptiveSamples
+                                                     : std::uint32_t(s.samples_per_pixel))},
         });
   } else {
     metadata.emplace_back(key::kSpp, std::int64_t(r.samples_completed));

@@ -10,10 +10,10 @@
 #include <string_view>
 
 #include "core/io/atomic_file.h"
-#include "core/io/error.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
-#include "core/io/input_limits.h"
+#include "core/limits/error.h"
+#include "core/limits/input_limits.h"
 #include "core/render/render_metadata.h"
 #include "core/render/sample_share.h"
 #include "core/sampling/rng.h"

@@ -51,7 +51,7 @@ struct MergedRender {
 };
 
 // The merged render as one render's result (samples from index 0, drawn by `sampler`), for
-// its variances (core/film/render_statistics.h).
+// its variances (core/render/render_statistics.h).
 RenderResult merged_result(const MergedRender& merged, SamplerKind sampler);
 
 // Checks that the parts belong to one render (same digest, size and job), that they neither

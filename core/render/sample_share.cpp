@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "core/film/sample_sum.h"
-#include "core/io/error.h"
+#include "core/limits/error.h"
 
 namespace rtiow {
 namespace {

@@ -1,6 +1,6 @@
 #include "core/sampling/sampler.h"
 
-#include "core/io/error.h"
+#include "core/limits/error.h"
 
 namespace rtiow {
 

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <optional>
 
-#include "core/io/error.h"
+#include "core/limits/error.h"
 #include "core/sampling/rng.h"
 
 namespace rtiow {

@@ -7,8 +7,8 @@
 #include <numbers>
 #include <string>
 
-#include "core/io/error.h"
-#include "core/io/input_limits.h"
+#include "core/limits/error.h"
+#include "core/limits/input_limits.h"
 #include "core/sampling/sampling.h"
 
 namespace rtiow {

@@ -7,8 +7,8 @@
 #include <unordered_set>
 #include <vector>
 
-#include "core/io/error.h"
-#include "core/io/input_limits.h"
+#include "core/limits/error.h"
+#include "core/limits/input_limits.h"
 
 namespace rapidjson {
 template <>

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <string>
 
-#include "core/io/error.h"
-#include "core/io/input_limits.h"
+#include "core/limits/error.h"
+#include "core/limits/input_limits.h"
 
 namespace rtiow {
 namespace {

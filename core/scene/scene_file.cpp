@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "core/io/input_file.h"
-#include "core/io/input_limits.h"
+#include "core/limits/input_limits.h"
 #include "core/scene/json_stream.h"
 #include "core/scene/name_index.h"
 #include "core/scene/rapidjson.h"

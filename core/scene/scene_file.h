@@ -20,7 +20,7 @@
 
 #include <string>
 
-#include "core/io/error.h"
+#include "core/limits/error.h"
 #include "core/scene/scene.h"
 
 namespace rtiow {

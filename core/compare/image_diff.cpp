@@ -1,15 +1,15 @@
-#include "core/film/image_diff.h"
+#include "core/compare/image_diff.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
 
-#include "core/io/error.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
-#include "core/io/input_limits.h"
-#include "core/render/render.h"
+#include "core/limits/error.h"
+#include "core/limits/image_size.h"
+#include "core/limits/input_limits.h"
 
 namespace rtiow {
 namespace {
@@ -66,10 +66,8 @@ DiffInput read_diff_input(const std::string& path) {
                        std::to_string(header.height) + " with " + std::to_string(channels) +
                        " channels is not an image rtiow compares (R, G, B needed)");
   }
-  RenderSettings size;  // the header decides what is allocated: the render's own limits
-  size.width = header.width, size.height = header.height;
-  try {
-    validate(size);
+  try {  // the header decides what is allocated: the float values of every channel
+    check_image_size(header.width, header.height, channels * sizeof(float));
   } catch (const InvalidInput& e) {
     throw InvalidInput(name + ": " + e.what());
   }

@@ -1,4 +1,4 @@
-#include "core/io/error.h"
+#include "core/limits/error.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -19,15 +19,20 @@ inline constexpr double kMaxRayComponent = 1e18;
 // real materials lie within 1 to 4).
 inline constexpr double kMinIor = 1e-3, kMaxIor = 1e6;
 
-// Image sizes: each side at most 2^20 pixels (the pixel count and memory are checked
-// separately, in validate(RenderSettings)).
+// Image sizes: each side at most 2^20 pixels, and at most 2^31 pixels (beyond, pixel indices
+// overflow); the memory an image needs is checked against the machine's
+// (core/limits/image_size.h).
 inline constexpr int kMaxImageSide = 1 << 20;
+inline constexpr std::uint64_t kMaxPixels = std::uint64_t(1) << 31;
 inline constexpr int kMaxDepth = 1 << 16;
 inline constexpr int kMaxThreads = 1024;  // beyond, TBB's pool refuses or crashes
 
 // Sample indices: a share of a render names samples A..B-1 with B at most 2^32 (the
 // samplers index samples with 32 bits).
 inline constexpr std::uint64_t kMaxSampleIndex = std::uint64_t(1) << 32;
+
+// The most samples a pixel takes under --adaptive, whose --spp is a budget, not a cap.
+inline constexpr std::uint32_t kMostAdaptiveSamples = 1u << 24;
 
 // Scene files: read as a stream (memory grows with the spheres, not the text), but no file
 // is read past this size, nested deeper than this, or holds a string longer than this.

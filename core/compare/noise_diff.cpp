@@ -1,4 +1,4 @@
-// The noise-aware comparisons of core/film/image_diff.h: against the images' own variance
+// The noise-aware comparisons of core/compare/image_diff.h: against the images' own variance
 // estimates (one test image), or against the spread of several renders with other seeds.
 
 #include <algorithm>
@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/film/image_diff.h"
-#include "core/film/student_t.h"
-#include "core/io/error.h"
+#include "core/compare/image_diff.h"
+#include "core/compare/student_t.h"
+#include "core/limits/error.h"
 
 namespace rtiow {
 namespace {

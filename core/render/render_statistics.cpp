@@ -1,4 +1,4 @@
-#include "core/film/render_statistics.h"
+#include "core/render/render_statistics.h"
 
 #include <filesystem>
 

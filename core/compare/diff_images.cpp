@@ -1,4 +1,4 @@
-#include "core/film/diff_images.h"
+#include "core/compare/diff_images.h"
 
 #include <algorithm>
 #include <cmath>

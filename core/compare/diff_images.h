@@ -1,9 +1,9 @@
 #pragma once
-// Pictures of a comparison (core/film/image_diff.h), for a user to see where two images
+// Pictures of a comparison (core/compare/image_diff.h), for a user to see where two images
 // differ: written with write_image like any render (PNG: gamma 2).
 
+#include "core/compare/image_diff.h"
 #include "core/film/film.h"
-#include "core/film/image_diff.h"
 
 namespace rtiow {
 
