@@ -456,6 +456,7 @@ std::vector<Case> size_cases() {
       {"WidthNotANumber", 2, "--width", render({"--width", "ten"})},
       {"WidthWithNewline", 2, "--width = 1\\n0", render({"--width", "1\n0"})},
       {"HeightZero", 2, "height must be > 0", render({"--width", "8", "--height", "0"})},
+      {"HeightZeroAlone", 2, "height must be > 0, got 0", render({"--height", "0"})},
       {"TooManyPixels", 2, "more than 2^31 pixels",
        render({"--width", "1048576", "--height", "1048576"})},
       {"DerivedHeightZero",

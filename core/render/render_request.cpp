@@ -13,7 +13,9 @@ namespace {
 
 // The side an image takes from the other and the aspect ratio: checked, never clamped.
 int derived_side(int given, double derived, const char* side, const char* option) {
-  if (given < 1 || given > limits::kMaxImageSide) return given;  // validate() names it
+  // A given side out of range: validate() refuses it by name; the derived one stays valid, so
+  // the message is about the side the user gave.
+  if (given < 1 || given > limits::kMaxImageSide) return 1;
   if (!(derived >= 1.0 && derived <= double(limits::kMaxImageSide))) {
     char text[64];
     std::snprintf(text, sizeof text, "%.6g", derived);
