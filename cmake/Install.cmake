@@ -27,7 +27,8 @@ set_property(TARGET rtiow_core APPEND PROPERTY INTERFACE_LINK_OPTIONS
 # sources include them, and the package does not ask for RapidJSON).
 install(DIRECTORY core materials DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rtiow
         FILES_MATCHING PATTERN "*.h"
-        PATTERN "json_stream.h" EXCLUDE PATTERN "rapidjson.h" EXCLUDE)
+        PATTERN "json_stream.h" EXCLUDE PATTERN "rapidjson.h" EXCLUDE
+        PATTERN "json_reader.h" EXCLUDE PATTERN "material_json.h" EXCLUDE)
 
 set(rtiow_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/rtiow)
 install(EXPORT rtiowTargets NAMESPACE rtiow:: DESTINATION ${rtiow_cmake_dir})

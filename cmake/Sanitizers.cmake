@@ -20,6 +20,7 @@ function(rtiow_add_sanitized_test kind name)
   target_link_libraries(${target} PRIVATE rtiow_core_${kind} OpenImageIO::OpenImageIO
                                           GTest::gtest_main)
   target_compile_options(${target} PRIVATE ${RTIOW_SANITIZER_FLAGS_${kind}})
+  target_compile_definitions(${target} PRIVATE RTIOW_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   rtiow_set_warnings(${target})
   rtiow_set_codegen(${target})
   add_test(NAME ${target} COMMAND ${target})

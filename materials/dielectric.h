@@ -9,7 +9,7 @@
 #include "core/limits/input_limits.h"
 #include "core/sampling/sample_layout.h"
 #include "materials/fresnel.h"
-#include "materials/parameter_check.h"
+#include "materials/material_parameters.h"
 #include "materials/scattered.h"
 
 namespace rtiow {
@@ -17,15 +17,24 @@ namespace rtiow {
 struct Dielectric {
   float ior = 1.5f;  // index of refraction inside, relative to outside
   FresnelModel fresnel = FresnelModel::Schlick;
-};
 
-// The index within the range the extremes tests render without NaN (core/limits/input_limits.h).
-inline std::optional<ParameterProblem> check_parameters(const Dielectric& m) {
-  if (!(m.ior >= limits::kMinIor && m.ior <= limits::kMaxIor)) {
-    return ParameterProblem{"ior", -1, m.ior, "must be from 0.001 to 1e+06"};
+  static constexpr const char* kType = "dielectric";
+  static constexpr const char* kDoc =
+      "glass, water, a bubble: reflects or refracts, absorbs nothing";
+  // The index within the range the extremes tests render without NaN (core/limits/input_limits.h).
+  static constexpr auto parameters() {
+    return std::tuple{
+        NumberParameter<Dielectric>{"ior", &Dielectric::ior, std::nullopt, float(limits::kMinIor),
+                                    float(limits::kMaxIor), false,
+                                    "the index of refraction inside, relative to outside"},
+        ChoiceParameter<Dielectric, FresnelModel, 2>{
+            "fresnel",
+            &Dielectric::fresnel,
+            FresnelModel::Schlick,
+            {FresnelModel::Schlick, FresnelModel::Exact},
+            "the reflectance: the book's Schlick approximation or exact Fresnel"}};
   }
-  return std::nullopt;
-}
+};
 
 // The bounce dimensions scatter reads.
 constexpr unsigned bounce_uses(const Dielectric&) {

@@ -5,18 +5,22 @@
 #include "core/geometry/surface_hit.h"
 #include "core/sampling/sample_layout.h"
 #include "core/sampling/sampling.h"
-#include "materials/parameter_check.h"
+#include "materials/material_parameters.h"
 #include "materials/scattered.h"
 
 namespace rtiow {
 
 struct Lambertian {
   Color albedo;
-};
 
-inline std::optional<ParameterProblem> check_parameters(const Lambertian& m) {
-  return check_albedo(m.albedo);
-}
+  static constexpr const char* kType = "lambertian";
+  static constexpr const char* kDoc = "ideal diffuse reflection, as the book's";
+  static constexpr auto parameters() {
+    return std::tuple{
+        ColorParameter<Lambertian>{"albedo", &Lambertian::albedo, 0.0f, 1.0f,
+                                   "the fraction of light reflected, per channel (R, G, B)"}};
+  }
+};
 
 // The bounce dimensions scatter reads.
 constexpr unsigned bounce_uses(const Lambertian&) {

@@ -9,7 +9,7 @@
 #include "core/geometry/surface_hit.h"
 #include "core/sampling/sample_layout.h"
 #include "core/sampling/sampling.h"
-#include "materials/parameter_check.h"
+#include "materials/material_parameters.h"
 #include "materials/scattered.h"
 
 namespace rtiow {
@@ -17,19 +17,20 @@ namespace rtiow {
 struct Metal {
   Color albedo;
   float fuzz = 0.0f;
+
+  static constexpr const char* kType = "metal";
+  static constexpr const char* kDoc = "mirror reflection, blurred by fuzz";
+  static constexpr auto parameters() {
+    return std::tuple{
+        ColorParameter<Metal>{"albedo", &Metal::albedo, 0.0f, 1.0f,
+                              "the fraction of light reflected, per channel (R, G, B)"},
+        NumberParameter<Metal>{"fuzz", &Metal::fuzz, 0.0f, 0.0f, 1.0f, true,
+                               "the radius of the ball the mirror direction is blurred by"}};
+  }
 };
 
 inline Metal make_metal(Color albedo, float fuzz) {
   return Metal{albedo, std::min(fuzz, 1.0f)};
-}
-
-inline std::optional<ParameterProblem> check_parameters(const Metal& m) {
-  if (auto problem = check_albedo(m.albedo)) return problem;
-  if (!(m.fuzz >= 0.0f))
-    return ParameterProblem{"fuzz", -1, m.fuzz, "must be >= 0 (values above 1 act as 1)"};
-  if (m.fuzz > 1.0f)
-    return ParameterProblem{"fuzz", -1, m.fuzz, "must be at most 1 (make_metal clamps)"};
-  return std::nullopt;
 }
 
 // The bounce dimensions scatter reads: none for a mirror.

@@ -1,0 +1,176 @@
+#include "core/scene/material_json.h"
+
+#include <nlohmann/json.hpp>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+namespace rtiow {
+namespace {
+
+using scene_json::Place;
+using scene_json::Reader;
+using scene_json::shortest;
+
+template <typename M>
+void read_parameter(const Reader& r, const JsonValue& v, const Place& p, const ColorParameter<M>& d,
+                    M& m) {
+  m.*d.member = r.numbers3(r.require(v, p, d.name), Place(p, d.name));
+}
+
+template <typename M>
+void read_parameter(const Reader& r, const JsonValue& v, const Place& p,
+                    const NumberParameter<M>& d, M& m) {
+  const JsonValue* value = d.fallback ? r.find(v, d.name) : &r.require(v, p, d.name);
+  m.*d.member = value ? d.from_file(r.single(*value, Place(p, d.name))) : *d.fallback;
+}
+
+template <typename M, typename E, std::size_t N>
+void read_parameter(const Reader& r, const JsonValue& v, const Place& p,
+                    const ChoiceParameter<M, E, N>& d, M& m) {
+  m.*d.member = d.fallback;
+  const JsonValue* value = r.find(v, d.name);
+  if (!value) return;
+  const Place at(p, d.name);
+  const std::string expected = d.choice_list();
+  const std::string_view text = r.string(*value, at, expected.c_str());
+  const std::optional<E> choice = d.parse(text);
+  if (!choice) r.fail(at, "must be " + expected + ", got " + quote_value(text, 40));
+  m.*d.member = *choice;
+}
+
+// The fields a material of type M may have: "type" and its parameters.
+template <typename M>
+std::vector<std::string_view> fields_of() {
+  std::vector<std::string_view> fields{"type"};
+  for_each_parameter<M>([&](const auto& d) { fields.push_back(d.name); });
+  return fields;
+}
+
+template <typename M>
+M read_fields(const Reader& r, const JsonValue& v, const Place& p) {
+  r.only(v, p, fields_of<M>());
+  M m{};
+  for_each_parameter<M>([&](const auto& d) { read_parameter(r, v, p, d, m); });
+  return m;
+}
+
+// Parameters as JSON values: the shortest decimals that read back to the same floats.
+template <typename M>
+nlohmann::ordered_json value_json(const ColorParameter<M>& d, const M& m) {
+  const Color& c = m.*d.member;
+  return {shortest(c.x), shortest(c.y), shortest(c.z)};
+}
+template <typename M>
+nlohmann::ordered_json value_json(const NumberParameter<M>& d, const M& m) {
+  return shortest(m.*d.member);
+}
+template <typename M, typename E, std::size_t N>
+nlohmann::ordered_json value_json(const ChoiceParameter<M, E, N>& d, const M& m) {
+  return to_string(m.*d.member);
+}
+
+template <typename M>
+bool is_default(const ColorParameter<M>&, const M&) {
+  return false;  // required
+}
+template <typename M>
+bool is_default(const NumberParameter<M>& d, const M& m) {
+  return d.fallback && m.*d.member == *d.fallback;
+}
+template <typename M, typename E, std::size_t N>
+bool is_default(const ChoiceParameter<M, E, N>& d, const M& m) {
+  return m.*d.member == d.fallback;
+}
+
+// The docs' columns for each kind of parameter: its value, its default.
+template <typename M>
+std::string value_doc(const ColorParameter<M>& d) {
+  return "3 numbers, each in [" + parameter_number(d.min) + ", " + parameter_number(d.max) + "]";
+}
+template <typename M>
+std::string value_doc(const NumberParameter<M>& d) {
+  if (d.clamps_above) {
+    return "a number >= " + parameter_number(d.min) + " (above " + parameter_number(d.max) +
+           " acts as " + parameter_number(d.max) + ")";
+  }
+  return "a number from " + parameter_number(d.min) + " to " + parameter_number(d.max);
+}
+template <typename M, typename E, std::size_t N>
+std::string value_doc(const ChoiceParameter<M, E, N>& d) {
+  return d.choice_list("`");
+}
+template <typename M>
+std::string default_doc(const ColorParameter<M>&) {
+  return "required";
+}
+template <typename M>
+std::string default_doc(const NumberParameter<M>& d) {
+  return d.fallback ? parameter_number(*d.fallback) : "required";
+}
+template <typename M, typename E, std::size_t N>
+std::string default_doc(const ChoiceParameter<M, E, N>& d) {
+  return "`" + std::string(to_string(d.fallback)) + "`";
+}
+
+}  // namespace
+
+Material read_material(const Reader& r, const JsonValue& v, const Place& p) {
+  r.object(v, p);
+  const std::string_view type = r.string(r.require(v, p, "type"), Place(p, "type"), "a string");
+  std::optional<Material> material;
+  for_each_material_type([&](const auto& kind) {
+    using M = std::decay_t<decltype(kind)>;
+    if (!material && type == M::kType) material = read_fields<M>(r, v, p);
+  });
+  if (!material) {
+    r.fail(Place(p, "type"), "unknown material type " + quote_value(type, 40) + " (expected " +
+                                 material_type_names() + ")");
+  }
+  // The ranges are the material's own rule, the same for a scene built in C++.
+  if (const auto problem = check_parameters(*material)) {
+    const Place field(p, problem->field);
+    const std::string what = problem->rule + ", got " + Reader::format(problem->value);
+    if (problem->component >= 0) r.fail(Place(field, std::size_t(problem->component)), what);
+    r.fail(field, what);
+  }
+  return *material;
+}
+
+std::string material_to_json(const Material& material) {
+  return visit_material(material, [](const auto& m) {
+    using M = std::decay_t<decltype(m)>;
+    nlohmann::ordered_json j = {{"type", M::kType}};
+    for_each_parameter<M>([&](const auto& d) {
+      if (!is_default(d, m)) j[d.name] = value_json(d, m);
+    });
+    return j.dump();
+  });
+}
+
+std::string material_format_table() {
+  std::string table =
+      "| `type` | parameter | value | default | meaning |\n"
+      "|---|---|---|---|---|\n";
+  for_each_material_type([&](const auto& kind) {
+    using M = std::decay_t<decltype(kind)>;
+    bool first = true;
+    for_each_parameter<M>([&](const auto& d) {
+      table.append("| ")
+          .append(first ? "`" + std::string(M::kType) + "`: " + M::kDoc : std::string())
+          .append(" | `")
+          .append(d.name)
+          .append("` | ")
+          .append(value_doc(d))
+          .append(" | ")
+          .append(default_doc(d))
+          .append(" | ")
+          .append(d.doc)
+          .append(" |\n");
+      first = false;
+    });
+  });
+  return table;
+}
+
+}  // namespace rtiow
