@@ -146,9 +146,8 @@ json sweep_spp(const Experiment& x, const AccuracyOptions& o, SamplerKind sample
   json rows = json::array();
   for (int spp = adaptive ? 32 : 1; spp <= o.max_spp; spp *= 2) {
     RenderSettings s = x.settings();
-    s.samples_per_pixel = spp;
+    s.samples = adaptive ? SampleBudget(AdaptiveBudget{spp}) : SampleBudget(FixedSamples{spp});
     s.sampler = sampler;
-    s.adaptive = adaptive;
     rows.push_back(x.run(adaptive ? "budget" : "spp", to_string(sampler), spp, s).row);
   }
   return rows;
@@ -158,9 +157,8 @@ json sweep_image_error(const Experiment& x, const AccuracyOptions& o, SamplerKin
   json rows = json::array();
   for (const double target : o.image_errors) {
     RenderSettings s = x.settings();
-    s.samples_per_pixel = 4 * o.max_spp;
+    s.samples = ImageErrorTarget{target, 4 * o.max_spp};
     s.sampler = sampler;
-    s.image_error = target;
     Trial t = x.run("image_error", to_string(sampler), target, s);
     t.row["achieved_error"] = std::sqrt(t.row["rel_mse"].get<double>());
     rows.push_back(t.row);
@@ -172,7 +170,7 @@ json sweep_depth(const Experiment& x, const AccuracyOptions& o) {
   json rows = json::array();
   for (const int depth : o.depths) {
     RenderSettings s = x.settings();
-    s.samples_per_pixel = o.fixed_spp;
+    s.samples = FixedSamples{o.fixed_spp};
     s.max_depth = depth;
     rows.push_back(x.run("depth", "independent", depth, s).row);
   }
@@ -183,7 +181,7 @@ json sweep_depth(const Experiment& x, const AccuracyOptions& o) {
 json compare_intersectors(const Experiment& x, const AccuracyOptions& o) {
   json rows = json::array();
   RenderSettings s = x.settings();
-  s.samples_per_pixel = o.fixed_spp;
+  s.samples = FixedSamples{o.fixed_spp};
   const Trial embree = x.run("intersector", "embree", o.fixed_spp, s);
   s.accel = AccelKind::Naive;
   Trial naive = x.run("intersector", "naive", o.fixed_spp, s);
@@ -198,14 +196,14 @@ json compare_intersectors(const Experiment& x, const AccuracyOptions& o) {
 json compare_fresnel(const Experiment& x, const AccuracyOptions& o, const Scene& scene) {
   json rows = json::array();
   RenderSettings s = x.settings();
-  s.samples_per_pixel = 4 * o.fixed_spp;
+  s.samples = FixedSamples{4 * o.fixed_spp};
   for (const FresnelModel model : {FresnelModel::Schlick, FresnelModel::Exact}) {
     Scene variant = scene;
     for (Material& m : variant.materials) {
       if (auto* d = std::get_if<Dielectric>(&m)) d->fresnel = model;
     }
     const std::string name(to_string(model));
-    rows.push_back(x.run("fresnel", name, s.samples_per_pixel, s, &variant).row);
+    rows.push_back(x.run("fresnel", name, 4 * o.fixed_spp, s, &variant).row);
   }
   return rows;
 }
@@ -214,8 +212,7 @@ json sweep_adaptive(const Experiment& x, const AccuracyOptions& o) {
   json rows = json::array();
   for (const double target : o.target_errors) {
     RenderSettings s = x.settings();
-    s.samples_per_pixel = 4 * o.max_spp;
-    s.target_error = target;
+    s.samples = PixelErrorTarget{target, 4 * o.max_spp};
     Trial t = x.run("adaptive", "independent", target, s);
     t.row["achieved_error"] = std::sqrt(t.row["rel_mse"].get<double>());
     rows.push_back(t.row);
@@ -498,7 +495,7 @@ RenderSettings base_settings(const AccuracyOptions& o, const Scene& scene) {
   base.threads = o.threads;
   base.seed = o.seed;
   base.sampler = SamplerKind::Independent;  // the reference's and the comparisons'
-  base.samples_per_pixel = o.reference_spp;
+  base.samples = FixedSamples{o.reference_spp};
   validate(base);
   return base;
 }

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <variant>
 
 #include "app/progress_display.h"
 #include "core/io/image_output.h"
@@ -20,8 +21,13 @@ namespace fs = std::filesystem;
 // The metadata key that ties a cached reference to its scene, settings and spp.
 constexpr const char* kReferenceKey = "reference_key";
 
+// A reference is a uniform render of a fixed count.
+int reference_spp(const RenderSettings& settings) {
+  return std::get<FixedSamples>(settings.samples).per_pixel;
+}
+
 std::string reference_key(const Scene& scene, const RenderSettings& settings) {
-  return render_digest(scene, settings) + "-" + std::to_string(settings.samples_per_pixel) + "spp";
+  return render_digest(scene, settings) + "-" + std::to_string(reference_spp(settings)) + "spp";
 }
 
 }  // namespace
@@ -41,8 +47,7 @@ Reference load_or_render_reference(const Scene& scene, const RenderSettings& set
   }
   if (!quiet) {
     std::fprintf(stderr, "accuracy: rendering the reference (%dx%d, %d spp) into %s\n",
-                 settings.width, settings.height, settings.samples_per_pixel,
-                 reference.path.c_str());
+                 settings.width, settings.height, reference_spp(settings), reference.path.c_str());
   }
   RenderProgress progress;
   RenderResult result;
@@ -51,14 +56,14 @@ Reference load_or_render_reference(const Scene& scene, const RenderSettings& set
     if (!quiet) {
       display = std::make_unique<ProgressDisplay>(
           progress, std::uint64_t(settings.width) * std::uint64_t(settings.height) *
-                        std::uint64_t(settings.samples_per_pixel));
+                        std::uint64_t(reference_spp(settings)));
     }
     result = render(scene, settings, &progress);
   }
   fs::create_directories(cache_dir);
   namespace field = metadata_key;
   const Metadata metadata{{field::kScene, scene.name},
-                          {field::kSpp, std::int64_t(settings.samples_per_pixel)},
+                          {field::kSpp, std::int64_t(reference_spp(settings))},
                           {field::kSeed, std::int64_t(settings.seed)},
                           {field::kDepth, std::int64_t(settings.max_depth)},
                           {field::kSampler, to_string(settings.sampler)},

@@ -105,7 +105,7 @@ int run_point(const PointOptions& o) {
   const double scene_seconds = std::chrono::duration<double>(Clock::now() - scene_start).count();
   RenderSettings settings;
   settings.width = o.width, settings.height = o.height;
-  settings.samples_per_pixel = o.spp, settings.max_depth = o.depth;
+  settings.samples = FixedSamples{o.spp}, settings.max_depth = o.depth;
   settings.threads = o.threads;
   settings.seed = 0, settings.sampler = SamplerKind::Independent;  // the book's, as measured
   settings.accel = parse_accel(o.accel);
@@ -146,7 +146,7 @@ json bench_cover(const BenchOptions& o) {
   const Scene scene = make_builtin_scene("cover", 1);
   RenderSettings settings;
   settings.width = o.width, settings.height = o.height;
-  settings.samples_per_pixel = o.spp, settings.max_depth = o.depth;
+  settings.samples = FixedSamples{o.spp}, settings.max_depth = o.depth;
   settings.threads = o.threads;
   settings.seed = 0, settings.sampler = SamplerKind::Independent;  // the book's, as measured
 
@@ -220,7 +220,7 @@ int run_bench(const BenchOptions& o) {
   check_output_path(o.json_path, {}, "--json");
   check_output_path(o.plot_path, {o.json_path}, "--plot");
   RenderSettings check;
-  check.width = o.width, check.height = o.height, check.samples_per_pixel = o.spp;
+  check.width = o.width, check.height = o.height, check.samples = FixedSamples{o.spp};
   check.max_depth = o.depth, check.threads = o.threads;
   validate(check);
 

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "app/checkpoint_session.h"
@@ -72,7 +73,7 @@ Vec3d to_vec3(const std::vector<double>& v) {
 RenderRequest request_of(const RenderOptions& o) {
   RenderRequest r;
   r.width = o.width, r.height = o.height;
-  r.samples_per_pixel = o.spp;
+  r.spp = o.spp;
   r.max_depth = o.depth;
   CameraOverrides& cam = r.camera;
   if (!o.lookfrom.empty()) cam.lookfrom = to_vec3(o.lookfrom);
@@ -110,19 +111,21 @@ std::string describe_samples(const RenderSettings& s, const RenderResult& r) {
     const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
     char goal[128] = "adaptive";
     // An error-driven render that stopped at its cap says so, and how far it got.
-    if (s.target_error > 0 && r.pixels_above_target > 0) {
-      std::snprintf(goal, sizeof goal, "target error %g not reached by %llu pixels at %d spp",
-                    s.target_error, static_cast<unsigned long long>(r.pixels_above_target),
-                    s.samples_per_pixel);
-    } else if (s.target_error > 0) {
-      std::snprintf(goal, sizeof goal, "target error %g", s.target_error);
+    if (const auto* t = std::get_if<PixelErrorTarget>(&s.samples)) {
+      if (r.pixels_above_target > 0) {
+        std::snprintf(goal, sizeof goal, "target error %g not reached by %llu pixels at %d spp",
+                      t->error, static_cast<unsigned long long>(r.pixels_above_target), t->most);
+      } else {
+        std::snprintf(goal, sizeof goal, "target error %g", t->error);
+      }
     }
-    if (s.image_error > 0 && r.estimated_image_error > s.image_error && !r.stopped &&
-        !r.time_limited) {
-      std::snprintf(goal, sizeof goal, "image error %g not reached: %.3g at %d spp", s.image_error,
-                    r.estimated_image_error, s.samples_per_pixel);
-    } else if (s.image_error > 0) {
-      std::snprintf(goal, sizeof goal, "image error %g", s.image_error);
+    if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) {
+      if (r.estimated_image_error > i->error && !r.stopped && !r.time_limited) {
+        std::snprintf(goal, sizeof goal, "image error %g not reached: %.3g at %d spp", i->error,
+                      r.estimated_image_error, i->most);
+      } else {
+        std::snprintf(goal, sizeof goal, "image error %g", i->error);
+      }
     }
     std::snprintf(text, sizeof text, "%u-%u spp (mean %.1f, %s)", *least, *most, mean_samples(r),
                   goal);
@@ -147,7 +150,7 @@ std::string output_path(const RenderOptions& o, bool output_given, const Scene& 
 }
 
 // "A:B" or "i/n" into the share of samples this process renders; nothing when neither.
-// The job is settings.samples_per_pixel samples; a share must lie within it.
+// The job is the settings' fixed sample count; a share must lie within it.
 void apply_share(const RenderOptions& o, const std::string& output, RenderSettings& settings) {
   if (o.sample_range.empty() && o.part.empty()) return;
   if (!o.sample_range.empty() && !o.part.empty()) {
@@ -157,7 +160,8 @@ void apply_share(const RenderOptions& o, const std::string& output, RenderSettin
     throw InvalidInput("output " + quote_value(output) +
                        ": a share of a render is written as a part file, which must be .exr");
   }
-  const auto total = std::uint64_t(settings.samples_per_pixel);
+  const std::uint64_t total =
+      shareable_samples(settings, o.part.empty() ? "--sample-range" : "--part");
   restrict_to(
       o.part.empty() ? parse_sample_range(o.sample_range, total) : parse_part(o.part, total),
       settings);
@@ -171,7 +175,7 @@ void apply_rank_share(const RenderOptions& o, const MpiSession& mpi, RenderSetti
         "--sample-range and --part are for separate jobs; under mpirun the ranks "
         "share the samples themselves");
   }
-  const auto total = std::uint64_t(settings.samples_per_pixel);
+  const std::uint64_t total = shareable_samples(settings, "mpirun");
   const auto ranks = std::uint64_t(mpi.size());
   if (total < ranks) {
     throw InvalidInput(std::to_string(total) + " samples per pixel cannot be shared by " +
@@ -213,8 +217,8 @@ struct Job {
   Scene scene;
   RenderSettings settings;
   std::string output;
-  int samples_asked = 0;  // the whole job's, before it is cut into shares
-  bool share = false;     // written as a part file
+  std::uint64_t samples_asked = 0;  // a shared job's whole count, before it is cut
+  bool share = false;               // written as a part file
 };
 
 std::vector<std::string> input_files(const RenderOptions& o) {
@@ -233,11 +237,14 @@ Job prepare_job(const RenderOptions& o, bool scene_option_given, bool output_giv
   ResolvedRender resolved = resolve(std::move(scene), request);
   job.scene = std::move(resolved.scene);
   job.settings = resolved.settings;
-  job.samples_asked = job.settings.samples_per_pixel;
+  // A shared job's whole count, which the shares are cut from and which combines them again.
+  if (const auto* fixed = std::get_if<FixedSamples>(&job.settings.samples)) {
+    job.samples_asked = std::uint64_t(fixed->per_pixel);
+  }
+  check_adaptive_options(o, job.output, mpi);
   job.share = !o.sample_range.empty() || !o.part.empty();
   apply_share(o, job.output, job.settings);
   apply_rank_share(o, mpi, job.settings);
-  check_adaptive_options(o, job.output, mpi);
   check_image_output(job.output, input_files(o), o.stats_channels);
   validate(job.scene, job.settings);
   return job;
@@ -253,11 +260,11 @@ RenderResult render_with_progress(const RenderOptions& o, const Job& job, const 
   if (!o.quiet && mpi.rank() == 0) {
     // Adaptive sampling and an open-ended time limit have no total to show progress against.
     const RenderSettings& s = job.settings;
-    const bool open_ended = is_adaptive(s) || !asks_sample_count(s);
+    const auto* fixed = std::get_if<FixedSamples>(&s.samples);
     display = std::make_unique<ProgressDisplay>(
-        progress, open_ended ? 0
-                             : std::uint64_t(s.width) * std::uint64_t(s.height) *
-                                   std::uint64_t(s.samples_per_pixel));
+        progress,
+        fixed ? std::uint64_t(s.width) * std::uint64_t(s.height) * std::uint64_t(fixed->per_pixel)
+              : 0);
   }
   return render(job.scene, job.settings, &progress, checkpointing);
 }
@@ -271,9 +278,9 @@ bool gather_ranks(const MpiSession& mpi, Job& job, RenderResult& result, bool sp
   result.render_seconds = mpi.reduce_max(result.render_seconds);
   mpi.reduce_sums(result.sums, spreads ? &result.spreads : nullptr);
   if (mpi.rank() != 0) return false;
-  result.stopped = done < std::uint64_t(job.samples_asked);
+  result.stopped = done < job.samples_asked;
   complete_from_shares(done, result);
-  restore_whole_job(std::uint64_t(job.samples_asked), job.settings);
+  restore_whole_job(job.samples_asked, job.settings);
   return true;
 }
 
@@ -288,7 +295,7 @@ void write_result(const RenderOptions& o, const Job& job, RenderResult& result) 
   part.width = job.settings.width, part.height = job.settings.height;
   part.first_sample = job.settings.first_sample;
   part.samples = std::uint64_t(result.samples_completed);
-  part.job_samples = std::uint64_t(job.samples_asked);
+  part.job_samples = job.samples_asked;
   part.digest = render_digest(job.scene, job.settings);
   part.metadata = metadata;
   part.sums = std::move(result.sums);
@@ -370,8 +377,9 @@ void warn_if_not_kept(const CheckpointSession* checkpoint, bool quiet) {
 // count is accepted (a farm or a long night may mean it), but not silently.
 void note_long_request(const Job& job) {
   const RenderSettings& s = job.settings;
-  if (is_adaptive(s) || !asks_sample_count(s) || s.time_limit_seconds > 0) return;
-  const double samples = double(s.width) * double(s.height) * double(s.samples_per_pixel);
+  const auto* fixed = std::get_if<FixedSamples>(&s.samples);
+  if (!fixed || s.time_limit_seconds > 0) return;
+  const double samples = double(s.width) * double(s.height) * double(fixed->per_pixel);
   constexpr double kSamplesPerSecond = 5e6, kDay = 86400;
   const double days = samples / kSamplesPerSecond / kDay;
   if (days < 1) return;
@@ -379,7 +387,7 @@ void note_long_request(const Job& job) {
                "rtiow: note: %d spp at %dx%d is %.3g samples, about %.3g days on a 2-core machine; "
                "a signal (Ctrl-C) keeps what is done and --resume continues it, --time-limit "
                "bounds it\n",
-               s.samples_per_pixel, s.width, s.height, samples, days);
+               fixed->per_pixel, s.width, s.height, samples, days);
 }
 
 int run_render(const RenderOptions& o, bool scene_option_given, bool output_given,
@@ -401,12 +409,17 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
   if (mpi.distributed() && !gather_ranks(mpi, job, result, o.stats_channels)) return 0;
   write_or_keep(o, job, result, checkpoint.get());
   if (result.stopped) {
-    // What was asked: a count, a budget (--adaptive), or nothing but a time limit.
+    // What was asked: a count, a budget (--adaptive), a cap, or nothing but a time limit.
     const RenderSettings& s = job.settings;
     std::string asked;
-    if (asks_sample_count(s)) {
-      asked = (s.adaptive ? " (of a budget of " : " (of ") + std::to_string(s.samples_per_pixel) +
-              (s.adaptive ? " spp)" : " asked)");
+    if (const std::optional<int> spp = spp_option(s.samples)) {
+      const bool budget = std::holds_alternative<AdaptiveBudget>(s.samples);
+      const bool cap = std::holds_alternative<PixelErrorTarget>(s.samples) ||
+                       std::holds_alternative<ImageErrorTarget>(s.samples);
+      asked = (budget ? " (of a budget of "
+               : cap  ? " (of a cap of "
+                      : " (of ") +
+              std::to_string(*spp) + (budget || cap ? " spp)" : " asked)");
     }
     const std::string kept = checkpoint && checkpoint->holds_the_render()
                                  ? "; the render is kept in " +

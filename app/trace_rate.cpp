@@ -39,7 +39,9 @@ std::vector<Ray> record_traced_rays(const Scene& scene, const RenderSettings& se
   tbb::enumerable_thread_specific<std::vector<Ray>> log;
   const RecordingAccel recorder(embree, log);
   Film film(settings.width, settings.height);
-  render_tiles(RenderContext<RecordingAccel>{scene, camera, recorder, settings}, film, nullptr);
+  const auto samples = std::uint32_t(std::get<FixedSamples>(settings.samples).per_pixel);
+  render_tiles(RenderContext<RecordingAccel>{scene, camera, recorder, settings}, samples, film,
+               nullptr);
   std::vector<Ray> rays;
   for (const auto& part : log) rays.insert(rays.end(), part.begin(), part.end());
   return rays;

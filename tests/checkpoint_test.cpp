@@ -26,11 +26,10 @@ RenderSettings small(SamplerKind sampler) {
   RenderSettings s;
   s.width = 40;
   s.height = 27;
-  s.samples_per_pixel = 48;
+  s.samples = FixedSamples{48};
   s.max_depth = 10;
   s.seed = 5;
   s.sampler = sampler;
-  s.min_samples = 4;
   return s;
 }
 
@@ -82,14 +81,11 @@ TEST(Checkpoint, UniformResumesToTheSameBits) {
 
 TEST(Checkpoint, AdaptiveModesResumeToTheSameBits) {
   RenderSettings s = small(SamplerKind::Sobol);
-  s.adaptive = true;
+  s.samples = AdaptiveBudget{48, 4};
   expect_resumes_exactly(s, "--adaptive");
-  s.adaptive = false;
-  s.image_error = 0.05;
-  s.samples_per_pixel = 512;
+  s.samples = ImageErrorTarget{0.05, 512, 4};
   expect_resumes_exactly(s, "--image-error");
-  s.image_error = 0.0;
-  s.target_error = 0.08;
+  s.samples = PixelErrorTarget{0.08, 512, 4};
   expect_resumes_exactly(s, "--target-error");
 }
 
@@ -99,16 +95,16 @@ TEST(Checkpoint, FinishedRenderRefinesToTheLargerCount) {
   RenderState finished{0};
   Checkpointing keep;
   keep.save = [&](const RenderState& state, bool) { finished = state; };
-  s.samples_per_pixel = 12;
+  s.samples = FixedSamples{12};
   render(scene, s, nullptr, &keep);
-  s.samples_per_pixel = 40;
+  s.samples = FixedSamples{40};
   const RenderResult direct = render(scene, s);
   RenderState again = finished;  // the render takes the state it resumes
   Checkpointing resume;
   resume.resume = &finished;
   expect_same_render(direct, render(scene, s, nullptr, &resume), "12 then 40 spp");
   // Fewer than the state holds is refused, naming the count.
-  s.samples_per_pixel = 8;
+  s.samples = FixedSamples{8};
   resume.resume = &again;
   try {
     render(scene, s, nullptr, &resume);
@@ -131,7 +127,7 @@ class CheckpointFile : public ::testing::Test {
     Checkpointing keep;
     keep.save = [&](const RenderState& state, bool) { saved = state; };
     RenderSettings s = settings_;
-    s.adaptive = true;
+    s.samples = AdaptiveBudget{48, 4};
     settings_ = s;
     render(scene_, s, nullptr, &keep);
     return saved;
@@ -186,7 +182,7 @@ TEST_F(CheckpointFile, RefusesAnotherRequestNamingWhatDiffers) {
   why = refusal(checkpoint_identity(scene_, other));
   EXPECT_NE(why.find("depth"), std::string::npos) << why;
   other = settings_;
-  other.samples_per_pixel = 96;  // an adaptive budget is part of the request
+  other.samples = AdaptiveBudget{96, 4};  // an adaptive budget is part of the request
   why = refusal(checkpoint_identity(scene_, other));
   EXPECT_NE(why.find("sampling"), std::string::npos) << why;
   const Scene materials = make_builtin_scene("materials", 1);

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -15,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -138,6 +140,99 @@ TEST(Cli, TheDocsShowEveryCommandsHelpAsTheBinaryPrintsIt) {
     }
   }
   if (update) std::ofstream(path, std::ios::binary) << docs;
+}
+
+// A line of program output with what varies between runs taken out: every number becomes N
+// and the path after "->" or "wrote ... to" becomes PATH (the docs show another machine's).
+std::string output_form(const std::string& line) {
+  static const std::regex number(R"(-?[0-9]+(\.[0-9]+)?(e[+-]?[0-9]+)?)");
+  static const std::regex path(R"((-> |to )\S+)");
+  return std::regex_replace(std::regex_replace(line, path, "$1PATH"), number, "N");
+}
+
+// The render examples in docs/usage.md print what the program prints, in form: each command
+// is run again (at 16 pixels wide, into a scratch directory) and its lines, numbers and paths
+// aside, must be the lines the docs show.
+TEST(Cli, TheDocsRenderExamplesShowWhatTheProgramPrints) {
+  const std::string docs = slurp(fs::path(RTIOW_SOURCE_DIR) / "docs" / "usage.md");
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + "-dir");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string prompt = "$ build/bin/rtiow render ";
+  std::istringstream lines(docs);
+  std::vector<std::pair<std::string, std::vector<std::string>>> examples;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("$ ", 0) == 0 || line.rfind("```", 0) == 0) {
+      examples.emplace_back(line, std::vector<std::string>{});
+    } else if (!examples.empty() && line != "..." && line.rfind("progress:", 0) != 0) {
+      examples.back().second.push_back(line);
+    }
+  }
+  int checked = 0;
+  for (const auto& [command, shown] : examples) {
+    // Examples of one run's moment (a signal and the resumes after it) and the listings are not
+    // re-run.
+    if (command.rfind(prompt, 0) != 0 || command.find('#') != std::string::npos ||
+        command.find("--resume") != std::string::npos ||
+        command.find("--help") != std::string::npos ||
+        command.find("--list-scenes") != std::string::npos) {
+      continue;
+    }
+    std::string args = command.substr(prompt.size());
+    args = std::regex_replace(args, std::regex(R"(--width \d+)"), "");
+    const CommandResult r = run_rtiow("render --width 16 " + args, "cd " + dir.string() + " && ");
+    ASSERT_EQ(r.exit_code, 0) << command << "\n" << r.stderr_text;
+    std::vector<std::string> printed;
+    std::istringstream out(r.stdout_text + r.stderr_text);
+    for (std::string line; std::getline(out, line);) {
+      if (line.rfind("progress:", 0) != 0) printed.push_back(output_form(line));
+    }
+    std::vector<std::string> expected;
+    for (const std::string& line : shown) expected.push_back(output_form(line));
+    EXPECT_EQ(expected, printed) << "docs/usage.md: `" << command << "` shows other lines than "
+                                 << "the program prints";
+    ++checked;
+  }
+  EXPECT_GE(checked, 8) << "the render examples were not found in docs/usage.md";
+}
+
+// docs/diff.md's example comparisons print what `rtiow diff` prints, in form: two seeds with
+// variance channels and two without, small, compared in each mode the docs show.
+TEST(Cli, TheDiffDocsShowWhatTheProgramPrints) {
+  const std::string docs = slurp(fs::path(RTIOW_SOURCE_DIR) / "docs" / "diff.md");
+  std::vector<std::string> shown;
+  std::istringstream lines(docs);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("noise-aware, ", 0) == 0 || line.rfind("plain: ", 0) == 0)
+      shown.push_back(output_form(line));
+  }
+  const auto image = [](int seed, bool stats) {
+    const fs::path p = output_path("s" + std::to_string(seed) + ".exr");
+    const CommandResult r =
+        run_rtiow("render -q --scene cover --width 32 --height 18 --spp 8 --seed " +
+                  std::to_string(seed) + (stats ? " --stats-channels" : "") + " -o " + p.string());
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    return p.string();
+  };
+  const std::string s3 = image(3, true), s4 = image(4, true), t1 = image(11, false),
+                    t2 = image(12, false);
+  std::vector<std::string> printed;
+  for (const std::string& args : {"diff " + s3 + " " + s4,
+                                  "diff " + s3 + " " + s4 +
+                                      " --mode plain --fail 0.1 --failpercent 5 --warn 0.1 "
+                                      "--warnpercent 5",
+                                  "diff " + s3 + " " + t1 + " " + t2}) {
+    const CommandResult r = run_rtiow(args);
+    const std::string first = r.stdout_text.substr(0, r.stdout_text.find('\n'));
+    printed.push_back(output_form(first));
+    EXPECT_NE(std::find(shown.begin(), shown.end(), printed.back()), shown.end())
+        << "docs/diff.md shows no line of the form `rtiow " << args << "` prints:\n"
+        << first;
+  }
+  for (const std::string& form : shown) {
+    EXPECT_NE(std::find(printed.begin(), printed.end(), form), printed.end())
+        << "docs/diff.md shows a line the program no longer prints: " << form;
+  }
 }
 
 // One version string: the program says the library's, which CMake's project(VERSION) sets.
@@ -325,13 +420,13 @@ TEST(Cli, TheLibraryAndTheCommandLineGiveOneRequestTheSameImage) {
     rtiow::RenderRequest request;
   };
   rtiow::RenderRequest camera;
-  camera.height = 30, camera.samples_per_pixel = 4, camera.max_depth = 8;
+  camera.height = 30, camera.spp = 4, camera.max_depth = 8;
   camera.camera.lookfrom = rtiow::Vec3d{-2, 2, 1}, camera.camera.vfov_degrees = 40;
   camera.fresnel = rtiow::FresnelModel::Exact;
   rtiow::RenderRequest error_driven;
   error_driven.width = 40, error_driven.image_error = 0.2;
   rtiow::RenderRequest uniform;
-  uniform.width = 24, uniform.samples_per_pixel = 3, uniform.seed = 7;
+  uniform.width = 24, uniform.spp = 3, uniform.seed = 7;
   uniform.sampler = rtiow::SamplerKind::Independent;
   const std::vector<Case> cases = {
       {"--scene materials --height 30 --spp 4 --depth 8 --lookfrom -2,2,1 --vfov 40 "

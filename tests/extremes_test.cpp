@@ -23,7 +23,7 @@ RenderSettings small(const Scene& scene, int width, int spp, int depth, std::uin
   RenderSettings s;
   s.width = width;
   s.height = std::max(1, int(std::lround(width / scene.image.aspect_ratio)));
-  s.samples_per_pixel = spp;
+  s.samples = FixedSamples{spp};
   s.max_depth = depth;
   s.seed = seed;
   s.sampler = SamplerKind::Independent;
@@ -310,7 +310,7 @@ TEST(ParameterExtremes, ImageLimitsRender) {
     expect_renders(base, s, "depth " + std::to_string(depth));
   }
   s.max_depth = 10;
-  s.samples_per_pixel = 1;
+  s.samples = FixedSamples{1};
   expect_renders(base, s, "spp 1");
   s.width = 1, s.height = 1;
   expect_renders(base, s, "1x1");
@@ -376,7 +376,7 @@ TEST(ParameterExtremes, RandomExtremeScenesNeverProduceNaN) {
     scene.camera.aperture = rng.next_float() < 0.5f ? 0.0 : scale * decades(-3, 2);
     scene.camera.focus_distance = scale * decades(-3, 3);
     RenderSettings s;
-    s.width = 16, s.height = 12, s.samples_per_pixel = 4, s.max_depth = 20;
+    s.width = 16, s.height = 12, s.samples = FixedSamples{4}, s.max_depth = 20;
     s.seed = std::uint64_t(trial);
     s.sampler = SamplerKind::Independent;
     try {

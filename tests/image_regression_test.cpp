@@ -89,7 +89,7 @@ RenderSettings settings_for(const Scene& scene, int spp, std::uint64_t seed) {
   RenderSettings s;
   s.width = kWidth;
   s.height = std::max(1, int(std::lround(kWidth / scene.image.aspect_ratio)));
-  s.samples_per_pixel = spp;
+  s.samples = FixedSamples{spp};
   s.max_depth = scene.image.max_depth;
   s.seed = seed;
   s.sampler = SamplerKind::Independent;
@@ -111,7 +111,7 @@ void write_reference(const std::string& name) {
   spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
   spec.attribute("compression", "zip");
   spec.attribute("rtiow:scene", name);
-  spec.attribute("rtiow:spp", s.samples_per_pixel);
+  spec.attribute("rtiow:spp", kReferenceSpp);
   spec.attribute("rtiow:seed", int(s.seed));
   spec.attribute("rtiow:depth", s.max_depth);
   auto out = OIIO::ImageOutput::create(reference_path(name).string());

@@ -29,7 +29,7 @@ RenderSettings tiny(const Scene& scene) {
   RenderSettings s;
   s.width = 48;
   s.height = std::max(1, int(std::lround(48 / scene.image.aspect_ratio)));
-  s.samples_per_pixel = 4;
+  s.samples = FixedSamples{4};
   s.max_depth = 12;
   s.seed = 11;
   s.sampler = SamplerKind::Independent;
@@ -96,10 +96,10 @@ TEST(Render, SobolAndAdaptiveRendersAreDeterministic) {
                        : mode == kSobol     ? SamplerKind::Sobol
                                             : SamplerKind::Independent;
     const bool adaptive = mode >= kTargetError;
-    settings.samples_per_pixel = mode == kBudget ? 48 : adaptive ? 128 : 8;
-    settings.target_error = mode == kTargetError ? 0.15 : 0.0;
-    settings.image_error = mode == kImageError ? 0.08 : 0.0;
-    settings.adaptive = mode == kBudget;
+    settings.samples = mode == kTargetError  ? SampleBudget(PixelErrorTarget{0.15, 128})
+                       : mode == kImageError ? SampleBudget(ImageErrorTarget{0.08, 128})
+                       : mode == kBudget     ? SampleBudget(AdaptiveBudget{48})
+                                             : SampleBudget(FixedSamples{8});
     const auto [one, two, naive] = render_three_ways(scene, settings);
     EXPECT_TRUE(test::bit_identical(one.film, two.film)) << "mode " << mode;
     EXPECT_TRUE(test::bit_identical(one.film, naive.film)) << "mode " << mode;
@@ -123,9 +123,9 @@ TEST(Render, SobolAndAdaptiveRendersAreDeterministic) {
 TEST(Render, TargetErrorStopsEveryPixelAtItsTarget) {
   const Scene scene = make_builtin_scene("cover", 1);
   RenderSettings s = tiny(scene);  // 48x27
-  s.samples_per_pixel = 1024;
+  const PixelErrorTarget target{0.15, 1024};
+  s.samples = target;
   s.max_depth = 50;
-  s.target_error = 0.15;
   s.seed = 5;
   const RenderResult r = render(scene, s);
   PixelAccumulators pixels(r.pixel_samples.size());
@@ -133,15 +133,15 @@ TEST(Render, TargetErrorStopsEveryPixelAtItsTarget) {
   pixels.spreads = r.spreads;
   pixels.samples = r.pixel_samples;
   const std::vector<double> judged = neighbourhood_relative_variance(s, pixels);
-  const double target_variance = s.target_error * s.target_error;
+  const double target_variance = target.error * target.error;
   int between = 0;
   double closest = 0;
   for (std::size_t p = 0; p < judged.size(); ++p) {
     const std::uint32_t n = r.pixel_samples[p];
-    if (n >= std::uint32_t(s.samples_per_pixel)) continue;
+    if (n >= std::uint32_t(target.most)) continue;
     const double ratio = judged[p] / double(n) / target_variance;
     EXPECT_LE(ratio, 1.0) << "pixel " << p << " stopped at " << n << " samples";
-    between += n > std::uint32_t(s.min_samples);
+    between += n > std::uint32_t(target.least);
     closest = std::max(closest, ratio);
   }
   EXPECT_GT(between, 100);
@@ -162,14 +162,14 @@ TEST(Render, DifferentSeedsGiveDifferentNoise) {
 TEST(Render, SharesOfTheSamplesAddUpToTheWholeRender) {
   const Scene scene = make_builtin_scene("cover", 1);
   RenderSettings whole = tiny(scene);
-  whole.samples_per_pixel = 9;
+  whole.samples = FixedSamples{9};
   const RenderResult all = render(scene, whole);
   std::vector<PixelSum> sums(all.sums.size());
   std::uint64_t rays = 0;
   for (auto [first, count] : {std::pair{0, 2}, std::pair{2, 5}, std::pair{7, 2}}) {
     RenderSettings share = whole;
     share.first_sample = std::uint64_t(first);
-    share.samples_per_pixel = count;
+    share.samples = FixedSamples{count};
     const RenderResult part = render(scene, share);
     for (std::size_t i = 0; i < sums.size(); ++i) sums[i] += part.sums[i];
     rays += part.rays_traced;
@@ -190,7 +190,7 @@ TEST(Render, SharesOfTheSamplesAddUpToTheWholeRender) {
 TEST(Render, PacketsOfSeveralPixelsGiveEachPixelItsOwnSamples) {
   const Scene scene = make_builtin_scene("cover", 1);
   RenderSettings settings = tiny(scene);
-  settings.samples_per_pixel = 3;  // a packet of 8: two pixels and a part of a third
+  settings.samples = FixedSamples{3};  // a packet of 8: two pixels and a part of a third
   settings.accel = AccelKind::Naive;
   const RenderResult whole = render(scene, settings);
   const Camera camera(scene.camera, settings.width, settings.height);
@@ -245,7 +245,7 @@ TEST(Render, EveryPathTracesExactlyMaxDepthRaysInAClosedRoom) {
     settings.max_depth = depth;
     const RenderResult r = render(room, settings);
     const std::uint64_t samples = std::uint64_t(settings.width) * std::uint64_t(settings.height) *
-                                  std::uint64_t(settings.samples_per_pixel);
+                                  std::uint64_t(std::get<FixedSamples>(settings.samples).per_pixel);
     EXPECT_EQ(r.rays_traced, std::uint64_t(depth) * samples) << "depth " << depth;
     for (const Color& c : r.film.pixels()) ASSERT_EQ(c, (Color{0, 0, 0})) << "depth " << depth;
   }
@@ -305,7 +305,7 @@ TEST(Render, SphereFieldHasExactlyNSmallSpheres) {
 TEST(Render, RefusesInvalidSettingsBeforeWork) {
   const Scene scene = make_builtin_scene("materials", 1);
   RenderSettings settings = tiny(scene);
-  settings.samples_per_pixel = 0;
+  settings.samples = FixedSamples{0};
   EXPECT_THROW(render(scene, settings), InvalidInput);
   settings = tiny(scene);
   settings.width = -3;

@@ -28,7 +28,7 @@ RenderSettings settings(const Scene& scene, int spp, std::uint64_t seed) {
   RenderSettings s;
   s.width = kWidth;
   s.height = int(std::lround(kWidth / scene.image.aspect_ratio));
-  s.samples_per_pixel = spp;
+  s.samples = FixedSamples{spp};
   s.max_depth = 50;
   s.seed = seed;
   s.sampler = SamplerKind::Independent;
@@ -53,7 +53,7 @@ TEST(AdaptiveSampling, AgreesInTheMeanWithTheReferenceAndReachesItsTarget) {
   for (const double target : {0.2, 0.1}) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       RenderSettings s = settings(cover(), 1024, seed);
-      s.target_error = target;
+      s.samples = PixelErrorTarget{target, 1024};
       const ImageError e = error_of(s);
       EXPECT_LT(std::abs(e.mean_difference), kMaxZ * e.mean_difference_error)
           << "target " << target << " seed " << seed << ": " << e.mean_difference << " +- "
@@ -65,7 +65,7 @@ TEST(AdaptiveSampling, AgreesInTheMeanWithTheReferenceAndReachesItsTarget) {
 
 TEST(AdaptiveSampling, SpendsSamplesWhereTheNoiseIs) {
   RenderSettings s = settings(cover(), 1024, 4);
-  s.target_error = 0.1;
+  s.samples = PixelErrorTarget{0.1, 1024};
   const RenderResult r = render(cover(), s);
   // The sky (top row) is smooth and stops at the minimum; the image as a whole needs more.
   for (int x = 0; x < s.width; ++x) EXPECT_EQ(r.pixel_samples[std::size_t(x)], 16u) << x;
@@ -97,7 +97,7 @@ TEST(AdaptiveOnABudget, AgreesInTheMeanAndBeatsUniformSamplingPerRay) {
       RenderSettings s = settings(cover(), 128, seed);
       s.sampler = sampler;
       const RenderResult uniform = render(cover(), s);
-      s.adaptive = true;
+      s.samples = AdaptiveBudget{128};
       const RenderResult adaptive = render(cover(), s);
       const ImageError u = measure_error(to_estimate(uniform), reference()),
                        a = measure_error(to_estimate(adaptive), reference());
@@ -127,7 +127,7 @@ TEST(ImageError, AgreesInTheMeanAndDeliversTheErrorAskedFor) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       RenderSettings s = settings(cover(), 4096, seed);
       s.sampler = SamplerKind::Sobol;
-      s.image_error = target;
+      s.samples = ImageErrorTarget{target, 4096};
       const RenderResult r = render(cover(), s);
       ImageEstimate bounded = to_estimate(r);
       for (std::size_t p = 0; p < bounded.variance.size(); ++p) {

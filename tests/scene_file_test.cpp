@@ -31,7 +31,7 @@ TEST_P(BuiltinRoundTrip, FileRendersTheIdenticalImage) {
   RenderSettings s;
   s.width = 40;
   s.height = std::max(1, int(std::lround(40 / builtin.image.aspect_ratio)));
-  s.samples_per_pixel = 3;
+  s.samples = FixedSamples{3};
   s.max_depth = 10;
   s.seed = 0, s.sampler = SamplerKind::Independent;
   EXPECT_TRUE(test::bit_identical(render(builtin, s).film, render(loaded, s).film));

@@ -31,7 +31,7 @@ TEST(TsanCanary, RaceInTheLoopBodyIsReported) {
   RenderSettings s;
   s.width = 128;
   s.height = 128;
-  s.samples_per_pixel = 1;
+  s.samples = FixedSamples{1};
   s.max_depth = 1;
   s.threads = 2;
   s.seed = 0, s.sampler = SamplerKind::Independent;

@@ -43,7 +43,7 @@ RenderSettings settings(const Scene& scene, int width, int spp, SamplerKind samp
   RenderSettings s;
   s.width = width;
   s.height = int(std::lround(width / scene.image.aspect_ratio));
-  s.samples_per_pixel = spp;
+  s.samples = FixedSamples{spp};
   s.max_depth = 50;
   s.sampler = sampler;
   return s;
@@ -92,7 +92,7 @@ TEST(VarianceCalibration, HoldsOnTheOtherScenesForBothSobolSamplers) {
 TEST(VarianceCalibration, AdaptiveRendersReportTheirVarianceHonestly) {
   const Scene cover = make_builtin_scene("cover", 1);
   RenderSettings s = settings(cover, 160, 64, SamplerKind::Sobol);
-  s.adaptive = true;
+  s.samples = AdaptiveBudget{64};
   const Calibration c = two_seeds(cover, s);
   std::printf("sobol --adaptive 64: per pixel %.3f, image %.3f\n", c.per_pixel, c.image);
   EXPECT_NEAR(c.per_pixel, 1.0, 0.15);

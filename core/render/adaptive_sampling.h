@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <functional>
 #include <numeric>
+#include <variant>
 #include <vector>
 
 #include "core/limits/input_limits.h"
@@ -122,15 +123,15 @@ inline std::uint32_t next_target_count(std::uint32_t n, double variance, double 
 // pixels whose estimated relative standard error is still above the target (up to the
 // maximum), by next_target_count.
 template <typename Accel>
-void render_adaptive(const RenderContext<Accel>& ctx, RenderProgress* progress,
-                     RenderJournal& journal, RenderResult& result) {
+void render_adaptive(const RenderContext<Accel>& ctx, const PixelErrorTarget& target,
+                     RenderProgress* progress, RenderJournal& journal, RenderResult& result) {
   const RenderSettings& settings = ctx.settings;
   RenderState& state = journal.state();
   PixelAccumulators& pixels = state.pixels;
   RoundDeadline deadline(settings, progress, journal);
-  const auto most = std::uint32_t(settings.samples_per_pixel);
-  const auto least = std::min(most, std::uint32_t(settings.min_samples));
-  const double target_variance = settings.target_error * settings.target_error;
+  const auto most = std::uint32_t(target.most);
+  const auto least = std::min(most, std::uint32_t(target.least));
+  const double target_variance = target.error * target.error;
   // How fast a pixel's variance falls with its count: 1/n for independent samples, about
   // n^-1.2 for the Sobol samplers (the cover's RMSE slope is -0.6, docs/accuracy.md).
   const double rate = settings.sampler == SamplerKind::Independent ? 1.0 : 1.2;
@@ -172,18 +173,22 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
   RenderState& state = journal.state();
   PixelAccumulators& pixels = state.pixels;
   RoundDeadline deadline(settings, progress, journal);
-  const bool by_error = settings.image_error > 0.0;
-  const bool open_ended = !asks_sample_count(settings);
+  const auto* by_error = std::get_if<ImageErrorTarget>(&settings.samples);
+  const auto* by_budget = std::get_if<AdaptiveBudget>(&settings.samples);
+  // The uniform samples per pixel whose cost is the budget (infinite: the time limit's).
+  const double budget_spp =
+      by_budget && by_budget->per_pixel ? double(*by_budget->per_pixel) : INFINITY;
   const std::uint32_t most =
-      by_error ? std::uint32_t(settings.samples_per_pixel) : limits::kMostAdaptiveSamples;
-  const auto least = std::min(
-      {most, std::uint32_t(settings.min_samples), std::uint32_t(settings.samples_per_pixel)});
+      by_error ? std::uint32_t(by_error->most) : limits::kMostAdaptiveSamples;
+  std::uint32_t least =
+      std::min(most, std::uint32_t(by_error ? by_error->least : by_budget->least));
+  if (budget_spp < double(least)) least = std::uint32_t(budget_spp);
   for (bool first = start_rounds(state, least);; first = false) {
     render_round(ctx, first, deadline, journal, progress, result);
     if (deadline.ended()) break;
     const PixelEstimates e = pooled_estimates(settings, pixels);
     if (by_error) {
-      const double aim = kImageErrorAim * settings.image_error;
+      const double aim = kImageErrorAim * by_error->error;
       const double goal = aim * aim;
       const double estimate = estimated_rel_mse(e.variance, pixels.samples);
       result.estimated_image_error = std::sqrt(estimate);
@@ -196,10 +201,10 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
       continue;
     }
     const double spent = estimated_cost(e.cost, pixels.samples);
-    // The budget: what every pixel at samples_per_pixel would cost.
-    double budget = open_ended ? INFINITY
-                               : double(settings.samples_per_pixel) *
-                                     std::accumulate(e.cost.begin(), e.cost.end(), 0.0);
+    // The budget: what every pixel at the budget's count would cost.
+    double budget = std::isinf(budget_spp)
+                        ? INFINITY
+                        : budget_spp * std::accumulate(e.cost.begin(), e.cost.end(), 0.0);
     if (settings.time_limit_seconds > 0.0) {
       // What the time left holds at the rate so far (timing decides only when rounds end).
       const double rate = double(result.rays_traced) / std::max(deadline.elapsed(), 1e-9);

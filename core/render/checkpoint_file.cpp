@@ -11,7 +11,9 @@
 #include <filesystem>
 #include <map>
 #include <new>
+#include <optional>
 #include <stdexcept>
+#include <variant>
 #include <vector>
 
 #include "core/limits/error.h"
@@ -268,19 +270,22 @@ CheckpointIdentity stored_identity(const std::map<std::string, std::string>& fie
 }  // namespace
 
 CheckpointIdentity checkpoint_identity(const Scene& scene, const RenderSettings& s) {
+  // A uniform render continues to any count; an adaptive one only as it was asked.
   std::string mode = "uniform";
-  const std::string spp = asks_sample_count(s) ? " --spp " + std::to_string(s.samples_per_pixel)
-                                               : std::string(" (until the time limit)");
-  const std::string min_spp = " --min-spp " + std::to_string(s.min_samples);
-  char value[64];
-  if (s.target_error > 0) {
-    std::snprintf(value, sizeof value, "--target-error %g", s.target_error);
+  if (const std::optional<int> least = least_samples(s.samples)) {
+    const std::optional<int> asked = spp_option(s.samples);
+    const std::string spp =
+        asked ? " --spp " + std::to_string(*asked) : std::string(" (until the time limit)");
+    const std::string min_spp = " --min-spp " + std::to_string(*least);
+    char value[64];
+    if (const auto* t = std::get_if<PixelErrorTarget>(&s.samples)) {
+      std::snprintf(value, sizeof value, "--target-error %g", t->error);
+    } else if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) {
+      std::snprintf(value, sizeof value, "--image-error %g", i->error);
+    } else {
+      std::snprintf(value, sizeof value, "--adaptive");
+    }
     mode = value + min_spp + spp;
-  } else if (s.image_error > 0) {
-    std::snprintf(value, sizeof value, "--image-error %g", s.image_error);
-    mode = value + min_spp + spp;
-  } else if (s.adaptive) {
-    mode = "--adaptive" + min_spp + spp;
   }
   return {version(),
           digest(scene_to_json(scene)),

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <string>
+#include <variant>
 
 #include "core/accel/embree_accel.h"
 #include "core/accel/naive_accel.h"
@@ -27,6 +29,53 @@ namespace {
 constexpr std::uint64_t kBytesPerPixel = sizeof(Color) + sizeof(PixelSum) + sizeof(PixelSpread) +
                                          sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
+// Each kind of budget's own ranges; the time limit is what ends an open-ended one.
+void validate_budget(const SampleBudget& budget, double time_limit_seconds) {
+  const auto positive_spp = [](int spp) {
+    if (spp <= 0) throw InvalidInput("spp must be > 0, got " + std::to_string(spp));
+  };
+  const auto finite_error = [](double error, const char* what) {
+    if (!(error > 0.0) || !std::isfinite(error)) {
+      throw InvalidInput(std::string(what) + " must be a finite number > 0");
+    }
+  };
+  const auto valid_least = [](int least) {
+    if (least < 2) {
+      throw InvalidInput("minimum samples must be >= 2 (a variance needs two), got " +
+                         std::to_string(least));
+    }
+  };
+  const bool timed = time_limit_seconds > 0.0;
+  if (const auto* f = std::get_if<FixedSamples>(&budget)) {
+    positive_spp(f->per_pixel);
+  } else if (std::holds_alternative<UntilTimeLimit>(budget)) {
+    if (!timed) throw InvalidInput("a render until the time limit needs a time limit > 0");
+  } else if (const auto* a = std::get_if<AdaptiveBudget>(&budget)) {
+    valid_least(a->least);
+    if (!a->per_pixel && !timed) {
+      throw InvalidInput("--adaptive needs a budget: --spp, a time limit or both");
+    }
+    if (a->per_pixel) positive_spp(*a->per_pixel);
+    // A budget no larger than the minimum leaves nothing to allocate: the render would be
+    // uniform while its metadata says adaptive.
+    if (a->per_pixel && *a->per_pixel <= a->least) {
+      throw InvalidInput("--adaptive: a budget of " + std::to_string(*a->per_pixel) +
+                         " spp leaves nothing to allocate after every pixel's minimum of " +
+                         std::to_string(a->least) +
+                         " (--min-spp); give --spp above it, or leave out --adaptive for a "
+                         "uniform render");
+    }
+  } else if (const auto* t = std::get_if<PixelErrorTarget>(&budget)) {
+    finite_error(t->error, "target error");
+    positive_spp(t->most);
+    valid_least(t->least);
+  } else if (const auto* i = std::get_if<ImageErrorTarget>(&budget)) {
+    finite_error(i->error, "image error");
+    positive_spp(i->most);
+    valid_least(i->least);
+  }
+}
+
 // A resumed state must be of this render's size and, for uniform sampling, hold one count
 // no larger than the one asked (the checkpoint's identity was checked by whoever read it).
 void check_resumable(const RenderState& state, const RenderSettings& settings) {
@@ -40,9 +89,10 @@ void check_resumable(const RenderState& state, const RenderSettings& settings) {
   if (is_adaptive(settings)) return;
   const auto [least, most] = std::minmax_element(p.samples.begin(), p.samples.end());
   if (*least != *most) throw InvalidInput("the state to resume is not of a uniform render");
-  if (asks_sample_count(settings) && *most > std::uint32_t(settings.samples_per_pixel)) {
+  const auto* fixed = std::get_if<FixedSamples>(&settings.samples);
+  if (fixed && *most > std::uint32_t(fixed->per_pixel)) {
     throw InvalidInput("the render to resume already has " + std::to_string(*most) +
-                       " spp, more than the " + std::to_string(settings.samples_per_pixel) +
+                       " spp, more than the " + std::to_string(fixed->per_pixel) +
                        " asked: give --spp " + std::to_string(*most) + " or more");
   }
 }
@@ -66,9 +116,9 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   result.pixels_above_target = state.pixels_above_target;
   for (const std::uint32_t s : state.pixels.samples) progress->samples_done += s;
   RenderJournal journal(state, checkpointing);
-  if (settings.target_error > 0.0) {
-    render_adaptive(ctx, progress, journal, result);
-  } else if (settings.image_error > 0.0 || settings.adaptive) {
+  if (const auto* target = std::get_if<PixelErrorTarget>(&settings.samples)) {
+    render_adaptive(ctx, *target, progress, journal, result);
+  } else if (is_adaptive(settings)) {
     render_by_image_error(ctx, progress, journal, result);
   } else {
     render_uniform(ctx, progress, journal, result);
@@ -101,9 +151,7 @@ AccelKind parse_accel(const std::string& name) {
 void validate(const RenderSettings& s) {
   // Refuse before allocating what the machine cannot hold: the film and its accumulators.
   check_image_size(s.width, s.height, kBytesPerPixel);
-  if (s.samples_per_pixel <= 0) {
-    throw InvalidInput("spp must be > 0, got " + std::to_string(s.samples_per_pixel));
-  }
+  validate_budget(s.samples, s.time_limit_seconds);
   if (s.max_depth < 0 || s.max_depth > limits::kMaxDepth) {
     throw InvalidInput("depth must be from 0 to " + std::to_string(limits::kMaxDepth) + ", got " +
                        std::to_string(s.max_depth));
@@ -115,35 +163,14 @@ void validate(const RenderSettings& s) {
   if (!(s.time_limit_seconds >= 0.0) || !std::isfinite(s.time_limit_seconds)) {
     throw InvalidInput("time limit must be a finite number of seconds >= 0");
   }
-  if (s.first_sample > limits::kMaxSampleIndex ||
-      s.first_sample + std::uint64_t(std::max(s.samples_per_pixel, 0)) > limits::kMaxSampleIndex) {
-    throw InvalidInput("samples " + std::to_string(s.first_sample) + " to " +
-                       std::to_string(s.first_sample + std::uint64_t(s.samples_per_pixel)) +
+  const auto* fixed = std::get_if<FixedSamples>(&s.samples);
+  const std::uint64_t last = s.first_sample + std::uint64_t(fixed ? fixed->per_pixel : 0);
+  if (s.first_sample > limits::kMaxSampleIndex || last > limits::kMaxSampleIndex) {
+    throw InvalidInput("samples " + std::to_string(s.first_sample) + " to " + std::to_string(last) +
                        " go beyond sample index 2^32");
   }
-  if (!(s.target_error >= 0.0) || !std::isfinite(s.target_error)) {
-    throw InvalidInput("target error must be a finite number >= 0 (0: off)");
-  }
-  if (!(s.image_error >= 0.0) || !std::isfinite(s.image_error)) {
-    throw InvalidInput("image error must be a finite number >= 0 (0: off)");
-  }
-  if (int(s.target_error > 0.0) + int(s.image_error > 0.0) + int(s.adaptive) > 1) {
-    throw InvalidInput(
-        "choose one adaptive mode: --target-error (per pixel), --image-error or --adaptive (a "
-        "budget)");
-  }
-  if (s.min_samples < 2) {
-    throw InvalidInput("minimum samples must be >= 2 (a variance needs two), got " +
-                       std::to_string(s.min_samples));
-  }
-  // A budget no larger than the minimum leaves nothing to allocate: the render would be
-  // uniform while its metadata says adaptive.
-  if (s.adaptive && asks_sample_count(s) && s.samples_per_pixel <= s.min_samples) {
-    throw InvalidInput("--adaptive: a budget of " + std::to_string(s.samples_per_pixel) +
-                       " spp leaves nothing to allocate after every pixel's minimum of " +
-                       std::to_string(s.min_samples) +
-                       " (--min-spp); give --spp above it, or leave out --adaptive for a "
-                       "uniform render");
+  if (s.first_sample > 0 && !fixed) {
+    throw InvalidInput("a share of a render (its first sample above 0) has a fixed sample count");
   }
 }
 

@@ -12,6 +12,7 @@
 #include "core/film/film.h"
 #include "core/film/pixel_variance.h"
 #include "core/film/sample_sum.h"
+#include "core/render/sample_budget.h"
 #include "core/sampling/sampler.h"
 #include "core/scene/scene.h"
 
@@ -25,7 +26,8 @@ AccelKind parse_accel(const std::string& name);  // throws InvalidInput
 struct RenderSettings {
   int width = 0;
   int height = 0;
-  int samples_per_pixel = 1;       // how many samples to render per pixel...
+  // How many samples per pixel and what ends the render (core/render/sample_budget.h)...
+  SampleBudget samples = FixedSamples{1};
   std::uint64_t first_sample = 0;  // ...starting at this sample index (a share of a render)
   int max_depth = 50;
   std::uint64_t seed = 1;
@@ -35,30 +37,11 @@ struct RenderSettings {
   // Sobol: at equal time 2.3-5.4x lower relMSE than independent sampling on every built-in
   // scene (docs/accuracy.md); the book's sampler is Independent.
   SamplerKind sampler = SamplerKind::Sobol;
-  // Adaptive sampling when > 0: a pixel stops once its relative standard error is below
-  // this, after at least `min_samples` and at most `samples_per_pixel` samples.
-  double target_error = 0.0;
-  int min_samples = 16;
-  // Adaptive sampling by the image's error (core/render/sample_allocation.h): pixels get
-  // samples in proportion to sqrt(relative variance / rays per sample), which gives the
-  // lowest mean relMSE for the time. `adaptive`: spend the cost of `samples_per_pixel` uniform
-  // samples (or the time limit). `image_error` > 0: until the image's estimated relative RMS
-  // error is below it, at most `samples_per_pixel` per pixel.
-  bool adaptive = false;
-  double image_error = 0.0;
 };
-
-// samples_per_pixel when no count was asked and only the time limit ends the render.
-inline constexpr int kSamplesUntilTimeLimit = std::numeric_limits<int>::max();
-
-// Whether the settings ask for a sample count (or, with `adaptive`, a budget of one).
-inline bool asks_sample_count(const RenderSettings& s) {
-  return s.samples_per_pixel != kSamplesUntilTimeLimit;
-}
 
 // Whether pixels get different sample counts (any adaptive mode).
 inline bool is_adaptive(const RenderSettings& s) {
-  return s.target_error > 0.0 || s.image_error > 0.0 || s.adaptive;
+  return is_adaptive(s.samples);
 }
 
 // Throws InvalidInput naming the setting: non-positive size or spp, negative depth,

@@ -219,13 +219,14 @@ std::uint64_t render_pixel_list(const RenderContext<Accel>& ctx,
   return rays.load();
 }
 
-// Renders every pixel of `film` (already sized) at all samples in one pass and returns the
-// number of rays traced.
+// Renders every pixel of `film` (already sized) at `samples_per_pixel` in one pass and returns
+// the number of rays traced.
 template <typename Accel>
-std::uint64_t render_tiles(const RenderContext<Accel>& ctx, Film& film, RenderProgress* progress) {
+std::uint64_t render_tiles(const RenderContext<Accel>& ctx, std::uint32_t samples_per_pixel,
+                           Film& film, RenderProgress* progress) {
   const RenderSettings& settings = ctx.settings;
   PixelAccumulators pixels(std::size_t(settings.width) * std::size_t(settings.height));
-  const auto n = std::uint32_t(settings.samples_per_pixel);
+  const std::uint32_t n = samples_per_pixel;
   const std::uint64_t rays = render_pass(ctx, n, pixels, progress);
   resolve(pixels.sums, n, film);
   return rays;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <string>
+#include <variant>
 
 #include "core/limits/input_limits.h"
 #include "core/render/render_statistics.h"
@@ -24,35 +25,35 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
   if (is_adaptive(s)) {
     // Each pixel has its own count: the range and the mean, not one "spp".
     const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
-    if (s.target_error > 0) {
-      metadata.emplace_back(key::kTargetError, s.target_error);
+    std::uint32_t limit = limits::kMostAdaptiveSamples;
+    if (const auto* t = std::get_if<PixelErrorTarget>(&s.samples)) {
+      metadata.emplace_back(key::kTargetError, t->error);
       metadata.emplace_back(key::kPixelsAboveTarget, std::int64_t(r.pixels_above_target));
+      limit = std::uint32_t(t->most);
     }
-    if (s.image_error > 0) {
-      metadata.emplace_back(key::kImageError, s.image_error);
+    if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) {
+      metadata.emplace_back(key::kImageError, i->error);
       metadata.emplace_back(key::kEstimatedImageError, r.estimated_image_error);
+      limit = std::uint32_t(i->most);
     }
-    if (s.adaptive) {
+    if (const auto* a = std::get_if<AdaptiveBudget>(&s.samples)) {
       metadata.emplace_back(key::kAdaptive, std::string("sqrt(variance/cost)"));
-      if (asks_sample_count(s)) {  // else the time limit's
-        metadata.emplace_back(key::kSppBudget, std::int64_t(s.samples_per_pixel));
+      if (a->per_pixel) {  // else the time limit's
+        metadata.emplace_back(key::kSppBudget, std::int64_t(*a->per_pixel));
       }
     }
-    metadata.insert(
-        metadata.end(),
-        {
-            {key::kSppMin, std::int64_t(*least)},
-            {key::kSppMax, std::int64_t(*most)},
-            {key::kSppMean, mean_samples(r)},
-            {key::kSppLimit, std::int64_t(s.adaptive ? limits::kMostAdaptiveSamples
-                                                     : std::uint32_t(s.samples_per_pixel))},
-        });
+    metadata.insert(metadata.end(), {
+                                        {key::kSppMin, std::int64_t(*least)},
+                                        {key::kSppMax, std::int64_t(*most)},
+                                        {key::kSppMean, mean_samples(r)},
+                                        {key::kSppLimit, std::int64_t(limit)},
+                                    });
   } else {
     metadata.emplace_back(key::kSpp, std::int64_t(r.samples_completed));
   }
   if (r.stopped) {
-    if (!is_adaptive(s))
-      metadata.emplace_back(key::kSppRequested, std::int64_t(s.samples_per_pixel));
+    if (const auto* fixed = std::get_if<FixedSamples>(&s.samples))
+      metadata.emplace_back(key::kSppRequested, std::int64_t(fixed->per_pixel));
     metadata.emplace_back(key::kStopped, std::string("interrupted by a signal"));
   } else if (r.time_limited) {
     char limit[64];

@@ -41,11 +41,39 @@ void apply_fresnel(FresnelModel model, Scene& scene) {
   }
 }
 
-int samples_asked(const RenderRequest& r, const ImageSettings& image) {
-  if (r.samples_per_pixel) return *r.samples_per_pixel;
-  if (r.target_error > 0 || r.image_error > 0) return kDefaultErrorDrivenMaxSpp;
-  if (r.time_limit_seconds > 0) return kSamplesUntilTimeLimit;
-  return image.samples_per_pixel;
+// What --spp means is decided here, once: a count, a budget or a cap, by the mode beside it.
+SampleBudget budget_asked(const RenderRequest& r, const ImageSettings& image) {
+  const auto error_option = [](double error, const char* what) {
+    if (!(error >= 0.0) || !std::isfinite(error)) {
+      throw InvalidInput(std::string(what) + " must be a finite number >= 0 (0: off)");
+    }
+    return error > 0.0;
+  };
+  const bool by_pixel = error_option(r.target_error, "target error");
+  const bool by_image = error_option(r.image_error, "image error");
+  if (int(by_pixel) + int(by_image) + int(r.adaptive) > 1) {
+    throw InvalidInput(
+        "choose one adaptive mode: --target-error (per pixel), --image-error or --adaptive (a "
+        "budget)");
+  }
+  if (r.min_samples < 2) {
+    throw InvalidInput("minimum samples must be >= 2 (a variance needs two), got " +
+                       std::to_string(r.min_samples));
+  }
+  const int cap = r.spp.value_or(kDefaultErrorDrivenMaxSpp);
+  if (by_pixel) return PixelErrorTarget{r.target_error, cap, r.min_samples};
+  if (by_image) return ImageErrorTarget{r.image_error, cap, r.min_samples};
+  const bool timed = r.time_limit_seconds > 0.0;
+  if (r.adaptive) {
+    // With only a time limit, the time is the budget; with neither, the scene's count.
+    return AdaptiveBudget{r.spp   ? r.spp
+                          : timed ? std::nullopt
+                                  : std::optional<int>(image.samples_per_pixel),
+                          r.min_samples};
+  }
+  if (r.spp) return FixedSamples{*r.spp};
+  if (timed) return UntilTimeLimit{};
+  return FixedSamples{image.samples_per_pixel};
 }
 
 }  // namespace
@@ -67,17 +95,13 @@ ResolvedRender resolve(Scene scene, const RenderRequest& r) {
     s.height =
         derived_side(s.width, height_for_width(s.width, image.aspect_ratio), "height", "--width");
   }
-  s.samples_per_pixel = samples_asked(r, image);
+  s.samples = budget_asked(r, image);
   s.max_depth = r.max_depth.value_or(image.max_depth);
   s.seed = r.seed;
   s.threads = r.threads;
   s.time_limit_seconds = r.time_limit_seconds;
   s.accel = r.accel;
   s.sampler = r.sampler;
-  s.target_error = r.target_error;
-  s.image_error = r.image_error;
-  s.adaptive = r.adaptive;
-  s.min_samples = r.min_samples;
   validate(s);
   return {std::move(scene), s};
 }

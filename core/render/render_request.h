@@ -25,9 +25,11 @@ inline constexpr int kDefaultErrorDrivenMaxSpp = 8192;
 struct RenderRequest {
   // Empty: the scene's. With only one side given, the other follows the scene's aspect ratio.
   std::optional<int> width, height;
-  // Empty: the scene's count; with an error target, at most kDefaultErrorDrivenMaxSpp per
-  // pixel; with only a time limit, as many as the time allows.
-  std::optional<int> samples_per_pixel;
+  // As --spp: with an error target the most a pixel takes (empty: kDefaultErrorDrivenMaxSpp),
+  // with `adaptive` a budget of that many uniform samples (empty: the time limit's, or the
+  // scene's count), otherwise every pixel's count (empty: as the time limit allows, or the
+  // scene's count). resolve() turns it into a typed SampleBudget.
+  std::optional<int> spp;
   std::optional<int> max_depth;  // empty: the scene's
   CameraOverrides camera;
   std::optional<FresnelModel> fresnel;  // empty: as each glass says
@@ -37,10 +39,11 @@ struct RenderRequest {
   std::uint64_t seed = RenderSettings{}.seed;
   int threads = RenderSettings{}.threads;
   double time_limit_seconds = RenderSettings{}.time_limit_seconds;
-  double target_error = RenderSettings{}.target_error;
-  double image_error = RenderSettings{}.image_error;
-  bool adaptive = RenderSettings{}.adaptive;
-  int min_samples = RenderSettings{}.min_samples;
+  // The adaptive modes, at most one (0 and false: off), and their minimum per pixel.
+  double target_error = 0.0;  // --target-error: each pixel's relative standard error
+  double image_error = 0.0;   // --image-error: the image's relative RMS error
+  bool adaptive = false;      // --adaptive: spend the budget where the variance is
+  int min_samples = kDefaultLeastSamples;
 };
 
 // The scene with the request's changes, and the settings that render it.

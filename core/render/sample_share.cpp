@@ -3,6 +3,7 @@
 #include <charconv>
 #include <optional>
 #include <utility>
+#include <variant>
 
 #include "core/film/sample_sum.h"
 #include "core/limits/error.h"
@@ -59,14 +60,24 @@ SampleShare parse_sample_range(const std::string& text, std::uint64_t total) {
   return {a, b - a};
 }
 
+std::uint64_t shareable_samples(const RenderSettings& settings, const char* option) {
+  const auto* fixed = std::get_if<FixedSamples>(&settings.samples);
+  if (!fixed) {
+    throw InvalidInput(std::string(option) +
+                       " shares a fixed number of samples per pixel: give --spp (and no "
+                       "adaptive mode)");
+  }
+  return std::uint64_t(fixed->per_pixel);
+}
+
 void restrict_to(const SampleShare& share, RenderSettings& settings) {
   settings.first_sample = share.first;
-  settings.samples_per_pixel = int(share.count);
+  settings.samples = FixedSamples{int(share.count)};
 }
 
 void restore_whole_job(std::uint64_t job_samples, RenderSettings& settings) {
   settings.first_sample = 0;
-  settings.samples_per_pixel = int(job_samples);
+  settings.samples = FixedSamples{int(job_samples)};
 }
 
 void complete_from_shares(std::uint64_t samples, RenderResult& result) {

@@ -14,6 +14,10 @@ struct SampleShare {
   std::uint64_t first = 0, count = 0;
 };
 
+// The samples per pixel of a job that is to be shared: its fixed count. Throws InvalidInput
+// for any other budget (`option` names what asked to share it).
+std::uint64_t shareable_samples(const RenderSettings& settings, const char* option);
+
 // The index-th of `shares` equal shares of `total` samples (sizes differ by at most one).
 // Needs index < shares <= total.
 SampleShare equal_share(std::uint64_t total, std::uint64_t index, std::uint64_t shares);

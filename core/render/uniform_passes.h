@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
+#include <variant>
 
 #include "core/render/render_loop.h"
 #include "core/render/render_state.h"
@@ -28,7 +30,9 @@ void render_uniform(const RenderContext<Accel>& ctx, RenderProgress* progress,
                     RenderJournal& journal, RenderResult& result) {
   const RenderSettings& settings = ctx.settings;
   PixelAccumulators& pixels = journal.state().pixels;
-  const auto total = std::uint64_t(settings.samples_per_pixel);
+  // Until the time limit, passes may go on to the most an int count holds.
+  const auto* fixed = std::get_if<FixedSamples>(&settings.samples);
+  const auto total = std::uint64_t(fixed ? fixed->per_pixel : std::numeric_limits<int>::max());
   const double limit = settings.time_limit_seconds;
   std::uint64_t done = pixels.samples.empty() ? 0 : pixels.samples[0], pass = 1;
   while (done < total) {

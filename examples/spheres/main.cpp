@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
     rtiow::RenderSettings settings;
     settings.width = 400;
     settings.height = 225;
-    settings.samples_per_pixel = 32;
+    settings.samples = rtiow::FixedSamples{32};
     settings.max_depth = 20;
     const rtiow::RenderResult result = rtiow::render(scene, settings);
     rtiow::write_image(output, result.film);
