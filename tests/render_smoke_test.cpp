@@ -2,12 +2,14 @@
 // image is bit-identical for 1 and 2 threads and for both accelerators.
 
 #include <gtest/gtest.h>
+#include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "core/accel/naive_accel.h"
@@ -18,6 +20,7 @@
 #include "core/render/sample_allocation.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/scene/camera.h"
+#include "core/scene/material_json.h"
 #include "tests/film_equality.h"
 
 namespace rtiow {
@@ -300,6 +303,32 @@ TEST(Render, SphereFieldHasExactlyNSmallSpheres) {
       }
     }
   }
+}
+
+// spheres:N is made in parallel, each sphere from its own stream: the same scene from one
+// thread as from several, and another scene from another seed.
+TEST(Render, SphereFieldIsTheSameForAnyThreadCount) {
+  const auto make_with = [](int threads, std::uint64_t seed) {
+    tbb::task_arena arena(threads);
+    return arena.execute([&] { return make_builtin_scene("spheres:30000", seed); });
+  };
+  const Scene one = make_with(1, 1), two = make_with(2, 1), other = make_with(2, 2);
+  EXPECT_EQ(one.spheres.center_x, two.spheres.center_x);
+  EXPECT_EQ(one.spheres.center_z, two.spheres.center_z);
+  EXPECT_EQ(one.spheres.material, two.spheres.material);
+  ASSERT_EQ(one.materials.size(), two.materials.size());
+  for (std::size_t i = 0; i < one.materials.size(); ++i) {
+    ASSERT_EQ(material_to_json(one.materials[i]), material_to_json(two.materials[i])) << i;
+  }
+  EXPECT_NE(one.spheres.center_x, other.spheres.center_x);
+  // The cover's mix of materials: 80% diffuse, 15% metal, 5% glass (3 sigma of 30000 draws).
+  std::size_t diffuse = 0, metal = 0;
+  for (std::size_t i = 1; i <= 30000; ++i) {
+    diffuse += std::holds_alternative<Lambertian>(one.materials[i]);
+    metal += std::holds_alternative<Metal>(one.materials[i]);
+  }
+  EXPECT_NEAR(double(diffuse) / 30000, 0.80, 0.007);
+  EXPECT_NEAR(double(metal) / 30000, 0.15, 0.006);
 }
 
 TEST(Render, RefusesInvalidSettingsBeforeWork) {

@@ -1,12 +1,16 @@
 #include "core/scene/builtin_scenes.h"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <numbers>
 #include <optional>
+#include <vector>
 
 #include "core/limits/error.h"
+#include "core/parallel/huge_pages.h"
+#include "core/parallel/parallel_for_range.h"
 #include "core/sampling/rng.h"
 
 namespace rtiow {
@@ -120,29 +124,64 @@ Scene cover_scene(std::uint64_t scene_seed) {
 // The scaling family: the cover's ground, big spheres and camera, and exactly N small
 // spheres (radius 0.2, one per unit cell, the cover's material mix) filling cells outwards
 // from the origin, so density stays the cover's while the field grows as sqrt(N).
-Scene sphere_field_scene(std::uint64_t count, std::uint64_t scene_seed) {
-  Scene s;
-  Pcg32 rng(mix64(scene_seed), 0xf1e1d);
-  s.spheres.reserve(count + 4);
-  s.materials.reserve(count + 4);
-  s.spheres.add({0.0f, -1000.0f, 0.0f}, 1000.0f, s.add_material(Lambertian{{0.5f, 0.5f, 0.5f}}));
-
-  // Cells in rings of growing Chebyshev radius; skip those under the three big spheres.
+// The cells of the field, in rings of growing Chebyshev radius around the origin, leaving out
+// those under the three big spheres: the first `count` of them. Ring r is the border of the
+// square [-r-1, r]^2, walked by rows of a, then b: its first and last rows whole, the
+// others at their two ends.
+std::vector<std::array<int, 2>> field_cells(std::uint64_t count) {
   auto blocked = [](int a, int b) { return b >= -2 && b <= 1 && (a >= -6 && a <= 5); };
-  std::uint64_t placed = 0;
-  for (int ring = 0; placed < count; ++ring) {
-    for (int a = -ring - 1; a <= ring && placed < count; ++a) {
-      for (int b = -ring - 1; b <= ring && placed < count; ++b) {
-        const bool on_ring = a == -ring - 1 || a == ring || b == -ring - 1 || b == ring;
-        if (!on_ring || blocked(a, b)) continue;
-        const float choose = rng.next_float();
-        const float x = float(a) + 0.1f + 0.8f * rng.next_float();
-        const float z = float(b) + 0.1f + 0.8f * rng.next_float();
-        s.spheres.add({x, 0.2f, z}, 0.2f, s.add_material(cover_material(choose, rng)));
-        ++placed;
+  std::vector<std::array<int, 2>> cells;
+  cells.reserve(count);
+  advise_huge_pages(cells);
+  const auto take = [&](int a, int b) {
+    if (cells.size() < count && !blocked(a, b)) cells.push_back({a, b});
+  };
+  for (int ring = 0; cells.size() < count; ++ring) {
+    for (int a = -ring - 1; a <= ring; ++a) {
+      if (a == -ring - 1 || a == ring) {
+        for (int b = -ring - 1; b <= ring; ++b) take(a, b);
+      } else {
+        take(a, -ring - 1);
+        take(a, ring);
       }
     }
   }
+  return cells;
+}
+
+Scene sphere_field_scene(std::uint64_t count, std::uint64_t scene_seed) {
+  Scene s;
+  s.spheres.add({0.0f, -1000.0f, 0.0f}, 1000.0f, s.add_material(Lambertian{{0.5f, 0.5f, 0.5f}}));
+  const std::vector<std::array<int, 2>> cells = field_cells(count);
+  // Every sphere draws from its own stream, keyed by its index, so the spheres are made in
+  // parallel and the scene is the same for any thread count.
+  const std::size_t first = s.spheres.size();
+  SphereSet& spheres = s.spheres;
+  spheres.reserve(first + count + 3);  // the big three follow
+  s.materials.reserve(first + count + 3);
+  for (const auto* v : {&spheres.center_x, &spheres.center_y, &spheres.center_z, &spheres.radius})
+    advise_huge_pages(*v);
+  advise_huge_pages(spheres.material);
+  advise_huge_pages(s.materials);
+  spheres.center_x.resize(first + count), spheres.center_y.resize(first + count);
+  spheres.center_z.resize(first + count), spheres.radius.resize(first + count);
+  spheres.material.resize(first + count);
+  s.materials.resize(first + count);
+  const std::uint64_t stream = mix64(scene_seed);
+  parallel_for_range(count, 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      Pcg32 rng(stream, hash_combine(0xf1e1d, k));
+      const float choose = rng.next_float();
+      const auto [a, b] = cells[k];
+      const std::size_t i = first + k;
+      spheres.center_x[i] = float(a) + 0.1f + 0.8f * rng.next_float();
+      spheres.center_y[i] = 0.2f;
+      spheres.center_z[i] = float(b) + 0.1f + 0.8f * rng.next_float();
+      spheres.radius[i] = 0.2f;
+      spheres.material[i] = std::uint32_t(i);
+      s.materials[i] = cover_material(choose, rng);
+    }
+  });
   add_cover_big_spheres_and_camera(s);
   return s;
 }

@@ -1,0 +1,27 @@
+#pragma once
+// tbb::parallel_for over an index range with its fork and join stated for ThreadSanitizer:
+// for work outside a render (building a scene), in the calling arena, whose results must not
+// depend on how TBB splits the range.
+
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/parallel_for.h>
+
+#include <cstddef>
+
+#include "core/parallel/thread_sanitizer.h"
+
+namespace rtiow {
+
+// Calls body(begin, end) on disjoint chunks of [0, n) of about `grain` indices, in parallel.
+template <typename Body>
+void parallel_for_range(std::size_t n, std::size_t grain, const Body& body) {
+  const auto chunk = [&](const tbb::blocked_range<std::size_t>& part) {
+    body(part.begin(), part.end());
+  };
+  tsan_release(&tsan_fork_sync);  // what the chunks read was written before this
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
+                    TsanOrderedBody<decltype(chunk)>(chunk));
+  tsan_acquire(&tsan_join_sync);  // every chunk's writes before the caller goes on
+}
+
+}  // namespace rtiow
