@@ -7,6 +7,7 @@
 // for bit, as one render.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -21,11 +22,9 @@ namespace rtiow {
 // in fixed point, so 2^31 of them still fit.
 class SquareSum : public PixelSum {
  public:
-  void add(const Color& c) {
-    for (int i = 0; i < 3; ++i) {
-      const double v = counted_value(i == 0 ? c.x : i == 1 ? c.y : c.z);
-      set_channel(i, channel(i) + fixed_square(v));
-    }
+  void add(const Color& c) { add_counted(counted_values(c)); }
+  void add_counted(const std::array<double, 3>& v) {
+    for (int i = 0; i < 3; ++i) set_channel(i, channel(i) + fixed_square(v[std::size_t(i)]));
   }
 
   double value(int i) const { return double(channel(i)) / kScale; }
@@ -44,8 +43,11 @@ struct PixelSpread {
   PixelSum odd;  // the samples of odd index
 
   void add(const Color& c, std::uint64_t sample_index) {
-    squares.add(c);
-    if (sample_index & 1u) odd.add(c);
+    add_counted(PixelSum::counted_values(c), sample_index);
+  }
+  void add_counted(const std::array<double, 3>& v, std::uint64_t sample_index) {
+    squares.add_counted(v);
+    if (sample_index & 1u) odd.add_counted(v);
   }
 
   PixelSpread& operator+=(const PixelSpread& other) {
@@ -56,6 +58,14 @@ struct PixelSpread {
 
   bool operator==(const PixelSpread&) const = default;
 };
+
+// Adds one sample to a pixel's sum and spread, its value converted to what they count once.
+inline void add_sample(PixelSum& sum, PixelSpread& spread, const Color& c,
+                       std::uint64_t sample_index) {
+  const std::array<double, 3> v = PixelSum::counted_values(c);
+  sum.add_counted(v);
+  spread.add_counted(v, sample_index);
+}
 
 // The pixel's sample variance over n, per channel, after `n` samples: the variance of its
 // mean for independent samples, an overestimate for the Sobol samplers (whose honest

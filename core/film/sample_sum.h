@@ -5,6 +5,7 @@
 // and adding the parts gives the same bits as one sequential render.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -24,15 +25,22 @@ class PixelSum {
   // albedos <= 1 under a finite sky produces, and it keeps 2^31 samples from overflowing.
   static constexpr double kMaxSample = 1073741824.0;
 
-  void add(const Color& c) {
-    channel_[0] += to_fixed(c.x);
-    channel_[1] += to_fixed(c.y);
-    channel_[2] += to_fixed(c.z);
-  }
+  void add(const Color& c) { add_counted(counted_values(c)); }
 
   // A sample's value as the sum counts it: NaN and infinities as 0, clamped to kMaxSample.
   static double counted_value(float v) {
     return std::isfinite(v) ? std::clamp(double(v), 0.0, kMaxSample) : 0.0;
+  }
+  static std::array<double, 3> counted_values(const Color& c) {
+    return {counted_value(c.x), counted_value(c.y), counted_value(c.z)};
+  }
+
+  // Adds a sample already made counted_values: a pixel's sum and its spread take the same
+  // sample, converted once (core/film/pixel_variance.h add_sample).
+  void add_counted(const std::array<double, 3>& v) {
+    channel_[0] += to_fixed(v[0]);
+    channel_[1] += to_fixed(v[1]);
+    channel_[2] += to_fixed(v[2]);
   }
 
   // Added as unsigned words: the same bits for sums that fit, and no undefined behaviour
@@ -57,8 +65,8 @@ class PixelSum {
 
  private:
   // Round to nearest (values are >= 0, so + 0.5 and truncation do it without a libm call).
-  static int128 to_fixed(float v) {
-    return int128(static_cast<std::int64_t>(counted_value(v) * kScale + 0.5));
+  static int128 to_fixed(double counted) {
+    return int128(static_cast<std::int64_t>(counted * kScale + 0.5));
   }
 
   int128 channel_[3]{};

@@ -110,8 +110,7 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
                                 : continue_path(ctx.scene, ctx.accel, rays_out[std::size_t(j)],
                                                 hits[std::size_t(j)], settings.max_depth,
                                                 *streams[std::size_t(k)], path_rays);
-      out.sums[o].add(value);
-      out.spreads[o].add(value, index[std::size_t(k)]);
+      add_sample(out.sums[o], out.spreads[o], value, index[std::size_t(k)]);
       out.rays[o] += path_rays;
       total_rays += path_rays;
     }
