@@ -24,6 +24,7 @@
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/parallel/thread_count.h"
 #include "core/render/render.h"
 #include "core/render/render_loop.h"
 #include "core/render/render_metadata.h"
@@ -231,7 +232,10 @@ Job prepare_job(const RenderOptions& o, bool scene_option_given, bool output_giv
   if (output_given) check_output_path(output_path(o, output_given, Scene{}), input_files(o));
   Job job;
   const RenderRequest request = request_of(o);  // a bad --sampler or --accel before the load
-  Scene scene = load_scene(o, scene_option_given);
+  // A generated scene is built in parallel: within --threads, as the render is (a count out
+  // of range is refused by name once the request is resolved).
+  const int threads = o.threads >= 0 && o.threads <= limits::kMaxThreads ? o.threads : 0;
+  Scene scene = with_threads(threads, [&] { return load_scene(o, scene_option_given); });
   job.output = output_path(o, output_given, scene);
   // The whole job, resolved and checked before it is cut into a share.
   ResolvedRender resolved = resolve(std::move(scene), request);

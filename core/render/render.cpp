@@ -15,6 +15,7 @@
 #include "core/limits/error.h"
 #include "core/limits/image_size.h"
 #include "core/limits/input_limits.h"
+#include "core/parallel/thread_count.h"
 #include "core/render/adaptive_sampling.h"
 #include "core/render/render_loop.h"
 #include "core/render/render_state.h"
@@ -185,13 +186,12 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, RenderPr
   validate(scene, settings);
   if (checkpointing && checkpointing->resume) check_resumable(*checkpointing->resume, settings);
   const Camera camera(scene.camera, settings.width, settings.height);
-  switch (settings.accel) {
-    case AccelKind::Embree:
-      return render_with<EmbreeAccel>(scene, camera, settings, progress, checkpointing);
-    case AccelKind::Naive:
-      return render_with<NaiveAccel>(scene, camera, settings, progress, checkpointing);
-  }
-  throw InvalidInput("unknown accelerator");
+  // The accelerator's build inside the render's thread count too.
+  return with_threads(settings.threads, [&] {
+    return settings.accel == AccelKind::Naive
+               ? render_with<NaiveAccel>(scene, camera, settings, progress, checkpointing)
+               : render_with<EmbreeAccel>(scene, camera, settings, progress, checkpointing);
+  });
 }
 
 void start_parallel_runtime() {

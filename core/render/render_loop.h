@@ -20,6 +20,7 @@
 #include "core/film/film.h"
 #include "core/film/pixel_variance.h"
 #include "core/film/sample_sum.h"
+#include "core/parallel/thread_count.h"
 #include "core/parallel/thread_sanitizer.h"
 #include "core/render/integrator.h"
 #include "core/render/pixel_accumulators.h"
@@ -122,8 +123,7 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
 // count. The fork and the join are annotated for TSan, which does not see TBB's own.
 template <typename Range, typename Body>
 void parallel_over(const RenderSettings& settings, const Range& range, const Body& body) {
-  const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
-  tbb::task_arena arena(threads);
+  tbb::task_arena arena(thread_count(settings.threads));
   tsan_release(&tsan_fork_sync);  // what the tasks read was written before this
   arena.execute(
       [&] { tbb::parallel_for(range, TsanOrderedBody<Body>(body), tbb::simple_partitioner()); });

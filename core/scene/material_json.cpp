@@ -55,19 +55,23 @@ M read_fields(const Reader& r, const JsonValue& v, const Place& p) {
   return m;
 }
 
-// Parameters as JSON values: the shortest decimals that read back to the same floats.
-template <typename M>
-nlohmann::ordered_json value_json(const ColorParameter<M>& d, const M& m) {
-  const Color& c = m.*d.member;
-  return {shortest(c.x), shortest(c.y), shortest(c.z)};
+// Parameters as JSON text (as nlohmann writes them: the shortest decimals that read back to
+// the same floats), built directly: a million materials are written for a scene's digest.
+std::string number_text(float v) {
+  return nlohmann::ordered_json(shortest(v)).dump();
 }
 template <typename M>
-nlohmann::ordered_json value_json(const NumberParameter<M>& d, const M& m) {
-  return shortest(m.*d.member);
+std::string value_text(const ColorParameter<M>& d, const M& m) {
+  const Color& c = m.*d.member;
+  return "[" + number_text(c.x) + "," + number_text(c.y) + "," + number_text(c.z) + "]";
+}
+template <typename M>
+std::string value_text(const NumberParameter<M>& d, const M& m) {
+  return number_text(m.*d.member);
 }
 template <typename M, typename E, std::size_t N>
-nlohmann::ordered_json value_json(const ChoiceParameter<M, E, N>& d, const M& m) {
-  return to_string(m.*d.member);
+std::string value_text(const ChoiceParameter<M, E, N>& d, const M& m) {
+  return nlohmann::ordered_json(to_string(m.*d.member)).dump();
 }
 
 template <typename M>
@@ -140,11 +144,12 @@ Material read_material(const Reader& r, const JsonValue& v, const Place& p) {
 std::string material_to_json(const Material& material) {
   return visit_material(material, [](const auto& m) {
     using M = std::decay_t<decltype(m)>;
-    nlohmann::ordered_json j = {{"type", M::kType}};
+    std::string text = "{\"type\":" + nlohmann::ordered_json(M::kType).dump();
     for_each_parameter<M>([&](const auto& d) {
-      if (!is_default(d, m)) j[d.name] = value_json(d, m);
+      if (!is_default(d, m))
+        text.append(",\"").append(d.name).append("\":").append(value_text(d, m));
     });
-    return j.dump();
+    return text.append("}");
   });
 }
 
