@@ -164,7 +164,8 @@ std::function<int()> add_diff_command(CLI::App& app) {
       ->check(kFiniteNotNegative)
       ->capture_default_str();
   cmd->add_option("--alpha", o->alpha,
-                  "Noise-aware: the chance that noise alone fails a block or the image mean")
+                  "Noise-aware: the chance that noise alone fails the comparison (half for the "
+                  "image mean, half over the blocks)")
       ->check(kFiniteNotNegative)
       ->check(CLI::Range(1e-12, 0.5))
       ->capture_default_str();

@@ -53,10 +53,14 @@ TEST(ImageDiff, CriticalValuesAreTheNormalOnes) {
   EXPECT_NEAR(normal_critical_value(0.05), 1.959964, 1e-5);
   EXPECT_NEAR(normal_critical_value(0.01), 2.575829, 1e-5);
   EXPECT_NEAR(normal_critical_value(0.01 / 100), 3.890592, 1e-5);
+  // alpha is the whole comparison's: half for the image mean, half over the blocks.
+  const NoiseDiff d = noise_diff(synthetic_render(2), synthetic_render(1), 16, 0.01);
+  EXPECT_NEAR(d.image_critical_z, 2.807034, 1e-5);
+  EXPECT_NEAR(d.block_critical_z, normal_critical_value(0.01 / 2 / d.blocks), 1e-9);
 }
 
 // Renders with other seeds pass: at alpha = 0.01 noise alone fails a pair with a chance of
-// about 2%, so 3 failures in 40 pairs would already be unlikely (p ~ 0.05). (On the cover at
+// at most 1%, so 3 failures in 40 pairs would already be unlikely (p ~ 0.01). (On the cover at
 // 32 spp, a first version that took R, G and B as independent failed 4 pairs of seeds of 4.)
 TEST(ImageDiff, RendersWithOtherSeedsPassTheNoiseAwareComparison) {
   int failures = 0;
@@ -153,9 +157,10 @@ TEST(StudentT, CriticalValuesMatchTables) {
 TEST(SeedsDiff, CriticalValuesAreStudentsT) {
   const NoiseDiff d = seeds_diff(renders(10, 8), synthetic_render(1), 16, 0.01);
   EXPECT_EQ(d.renders, 8);
-  EXPECT_NEAR(d.image_critical_z, 3.4995, 1e-3);  // t(7), two-sided 1%
+  // alpha split in two: half for the image mean, half over the blocks.
+  EXPECT_NEAR(d.image_critical_z, 4.0293, 1e-3);  // t(7), two-sided 0.5%
   EXPECT_EQ(d.blocks, 6 * 4);
-  EXPECT_NEAR(d.block_critical_z, student_t_critical_value(0.01 / 24, 7), 1e-9);
+  EXPECT_NEAR(d.block_critical_z, student_t_critical_value(0.01 / 48, 7), 1e-9);
 }
 
 // The renders' spread is the noise: sets of other seeds pass (family-wise chance of a false

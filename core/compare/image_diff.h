@@ -7,13 +7,13 @@
 //  - noise-aware, when both images carry the variance of each pixel's mean (rtiow's
 //    --stats-channels EXR): the mean difference of each block of pixels is divided by its
 //    standard error (a z-score; see noise_diff for the estimate), and the image fails when any
-//    block's |z| exceeds the two-sided critical value at level alpha / blocks (Bonferroni), or when
-//    the image-wide mean difference does at level alpha. Noise alone fails with probability <= ~2
-//    alpha.
+//    block's |z| exceeds the two-sided critical value at level alpha / (2 blocks) (Bonferroni), or
+//    when the image-wide mean difference does at level alpha / 2. Noise alone fails with
+//    probability <= alpha.
 //  - several seeds: k >= 2 renders of the same job with different seeds, against one
 //    reference. The renders' spread measures the noise, so no model of it is needed: each
 //    block's mean over the k renders gets a Student t with k - 1 degrees of freedom (the
-//    reference's own variance added where it has variance channels), Bonferroni again.
+//    reference's own variance added where it has variance channels), alpha split the same way.
 //
 // Values are compared as stored: linear for float files, display-referred for 8-bit ones.
 
