@@ -403,10 +403,12 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
   const std::optional<OutputLock> lock =
       mpi.rank() == 0 ? std::make_optional<OutputLock>(job.output) : std::nullopt;
   const std::unique_ptr<CheckpointSession> checkpoint = open_checkpoint(o, job, mpi);
-  // The image writer loads on a second thread while the render runs (rank 0 writes).
+  // The image library loads on a second thread while the render runs (rank 0 writes), unless
+  // rtiow encodes the format itself (PNG): then it is never loaded.
   if (mpi.rank() == 0) {
     start_parallel_runtime();
-    preload_image_backend();
+    const ImageFormat* format = image_format(job.output);
+    if (!format || !format->own_encoder) preload_image_backend();
   }
   RenderResult result =
       render_with_progress(o, job, mpi, checkpoint ? checkpoint->checkpointing() : nullptr);

@@ -11,6 +11,8 @@ endmacro()
 rtiow_require(embree libembree-dev 3)
 rtiow_require(TBB libtbb-dev)
 rtiow_require(OpenImageIO libopenimageio-dev)
+# libpng writes PNG, the default output, without loading the image library (core/io/png_encoder.h).
+rtiow_require(PNG libpng-dev)
 rtiow_require(CLI11 libcli11-dev)
 rtiow_require(nlohmann_json nlohmann-json3-dev)
 # RapidJSON reads scene files (its SAX reader is 2.7x faster than nlohmann's on a big scene);

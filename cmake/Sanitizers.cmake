@@ -20,7 +20,8 @@ function(rtiow_add_sanitized_test kind name)
   target_link_libraries(${target} PRIVATE rtiow_core_${kind} OpenImageIO::OpenImageIO
                                           GTest::gtest_main)
   target_compile_options(${target} PRIVATE ${RTIOW_SANITIZER_FLAGS_${kind}})
-  target_compile_definitions(${target} PRIVATE RTIOW_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  target_compile_definitions(${target} PRIVATE RTIOW_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+                                                RTIOW_TEST_OUTPUT_DIR="${CMAKE_CURRENT_BINARY_DIR}/output")
   rtiow_set_warnings(${target})
   rtiow_set_codegen(${target})
   add_test(NAME ${target} COMMAND ${target})

@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools
+  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libpng-dev
   libcli11-dev nlohmann-json3-dev rapidjson-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev

@@ -1,9 +1,11 @@
 #include "core/io/image_output.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/file_bytes.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
 #include "core/io/output_path.h"
+#include "core/io/png_encoder.h"
 
 #include <algorithm>
 #include <cmath>
@@ -79,7 +81,6 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
   if (!image || (!extra.empty() && !image->extra_channels)) {
     throw std::invalid_argument("cannot write '" + path + "': not a format for this image");
   }
-  const ImageBackend& backend = image_backend();
   const bool linear_float = image->linear_float;
   const int channels = 3 + int(extra.size());
   ImageHeader header;
@@ -112,6 +113,19 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
     data = bytes.data();
   }
 
+  if (image->own_encoder) {
+    // Encoded here, its bytes written with every failure checked: nothing to read back.
+    std::vector<unsigned char> encoded;
+    std::string reason;
+    if (!encode_png(header, bytes.data(), encoded, reason)) {
+      throw std::runtime_error("cannot write '" + path + "': " + reason);
+    }
+    write_atomically(path, [&](const std::string& temporary, std::string& why) {
+      return write_file_bytes(temporary, encoded, why);
+    });
+    return;
+  }
+  const ImageBackend& backend = image_backend();
   write_atomically(path, [&](const std::string& temporary, std::string& reason) {
     return backend.write(temporary, header, data, reason) && reads_back(temporary, reason);
   });

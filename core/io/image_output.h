@@ -1,6 +1,7 @@
 #pragma once
-// Writing a film through OpenImageIO. The format follows the file extension (the list is in
-// core/io/output_path.h): float formats (.exr, .hdr) get linear values, 8-bit formats (.png,
+// Writing a film: PNG by rtiow's own encoder (core/io/png_encoder.h), every other format through
+// the image library (core/io/image_backend.h). The format follows the file extension (the list is
+// in core/io/output_path.h): float formats (.exr, .hdr) get linear values, 8-bit formats (.png,
 // .jpg, .ppm, .tif, ...) the book's gamma 2. Writes go to a temporary file in the target directory
 // that is renamed over the target only when complete, so a failed write never leaves a truncated
 // image.
@@ -29,7 +30,8 @@ struct ExtraChannel {
   std::vector<float> values;  // one per pixel, row major
 };
 
-// Throws std::runtime_error with OIIO's reason on failure; the target is then untouched.
+// Throws std::runtime_error with the encoder's or the system's reason on failure; the target is
+// then untouched.
 // The format must be one of image_format()'s, and extra channels need one that holds them
 // (throws std::invalid_argument otherwise): check_image_output() refuses both before work.
 void write_image(const std::string& path, const Film& film, const Metadata& metadata = {},
@@ -37,8 +39,8 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
 
 // True if the image file at `path` opens and all its pixels read; otherwise sets `reason`.
 // Some writers (PNG in OpenImageIO 2.4) do not report a failed write, so a disk that
-// fills up would leave a truncated image: every file is read back before it replaces
-// the target.
+// fills up would leave a truncated image: every file the image library writes is read back
+// before it replaces the target.
 bool reads_back(const std::string& path, std::string& reason);
 
 // The book's gamma 2 and 8-bit quantisation, applied to one linear value.

@@ -7,12 +7,11 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include <cerrno>
-#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "core/io/file_bytes.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
 
@@ -172,34 +171,6 @@ class OiioImageReader final : public ImageReader {
   ImageHeader header_;
 };
 
-// Writes `bytes` to a new file at `path` and flushes it to the disk; false with the
-// system's reason on failure.
-bool write_bytes(const std::string& path, const std::vector<unsigned char>& bytes,
-                 std::string& reason) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    reason = std::strerror(errno);
-    return false;
-  }
-  errno = 0;
-  const unsigned char* data = bytes.data();
-  std::size_t left = bytes.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, data, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    data += n;
-    left -= std::size_t(n);
-  }
-  const bool written = left == 0 && ::fsync(fd) == 0;
-  if (!written) reason = errno == 0 ? "the write stopped short" : std::strerror(errno);
-  if (::close(fd) != 0 && written) {
-    reason = std::strerror(errno);
-    return false;
-  }
-  return written;
-}
-
 class OiioImageBackend final : public ImageBackend {
  public:
   bool write(const std::string& path, const ImageHeader& header, const void* pixels,
@@ -212,7 +183,7 @@ class OiioImageBackend final : public ImageBackend {
     }
     // The image is encoded in memory and written by write_bytes: a codec never touches the
     // disk, so a full disk or a file-size limit is an error to report, not a library's
-    // exit(1) (libjpeg's default on a failed write).
+    // exit(1) (libjpeg's default on a failed write). See core/io/file_bytes.h.
     std::vector<unsigned char> bytes;
     OIIO::Filesystem::IOVecOutput memory(bytes);
     OIIO::ImageSpec spec = to_spec(header);
@@ -225,7 +196,7 @@ class OiioImageBackend final : public ImageBackend {
       reason = take_error(out->geterror());
       return false;
     }
-    return write_bytes(path, bytes, reason);
+    return write_file_bytes(path, bytes, reason);
   }
 
   std::unique_ptr<ImageReader> open(const std::string& path, std::string& reason) const override {

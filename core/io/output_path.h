@@ -15,6 +15,7 @@ struct ImageFormat {
   const char* extension;
   bool linear_float;    // linear float pixels; otherwise 8-bit with the book's gamma 2
   bool extra_channels;  // can hold channels beyond R, G, B (--stats-channels, part files)
+  bool own_encoder;     // encoded by rtiow itself (core/io/png_encoder.h), not the image library
 };
 
 // The format of `path`, or nullptr when rtiow does not write that extension.
