@@ -42,7 +42,8 @@ TEST(ImageError, TheReferencesNoiseIsTakenOut) {
   EXPECT_NEAR(e.rmse, std::sqrt(0.01 - 0.006), 1e-6);
   EXPECT_NEAR(e.rms_bias, 0.0, 1e-4);
   EXPECT_NEAR(e.rms_noise, std::sqrt(0.004), 1e-9);
-  EXPECT_NEAR(e.mean_difference_error, std::sqrt(12 * 0.01) / (12 * 0.5), 1e-6);
+  // A pixel's three channels at their bound, fully correlated: 4 pixels of (3 * 0.1)^2.
+  EXPECT_NEAR(e.mean_difference_error, std::sqrt(4 * 9 * 0.01) / (12 * 0.5), 1e-6);
 }
 
 TEST(ImageError, RefusesImagesOfDifferentSizes) {

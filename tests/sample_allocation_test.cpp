@@ -97,5 +97,23 @@ TEST(SampleAllocation, NeighbourhoodMeanLeavesThePixelOut) {
   EXPECT_EQ(neighbourhood_mean(1, 1, {7}), std::vector<double>{7}) << "no neighbours: its own";
 }
 
+TEST(SampleAllocation, NeighbourhoodMedianLeavesThePixelOutAndIgnoresOneNoisyNeighbour) {
+  // One noisy neighbour (90) beside the centre: the mean of the centre's neighbours moves to
+  // 12.25, their median stays at the typical pixel's 1 (even count: the middle two's mean).
+  const std::vector<double> own{1, 1, 1, 90, 50, 1, 1, 1, 1};
+  const std::vector<double> pooled = neighbourhood_median(3, 3, own);
+  EXPECT_DOUBLE_EQ(neighbourhood_mean(3, 3, own)[4], 97.0 / 8.0);
+  EXPECT_DOUBLE_EQ(pooled[4], 1.0);
+  // A corner's three neighbours {1, 90, 50}: the middle one.
+  EXPECT_DOUBLE_EQ(pooled[0], 50.0);
+  // The top edge's middle pixel has five {1, 1, 90, 50, 1}.
+  EXPECT_DOUBLE_EQ(pooled[1], 1.0);
+  // The left edge's middle (90 itself) has {1, 1, 50, 1, 1}.
+  EXPECT_DOUBLE_EQ(pooled[3], 1.0);
+  EXPECT_EQ(neighbourhood_median(1, 1, {7}), std::vector<double>{7}) << "no neighbours: its own";
+  // Two neighbours: their mean.
+  EXPECT_EQ(neighbourhood_median(2, 1, {3, 5}), (std::vector<double>{5, 3}));
+}
+
 }  // namespace
 }  // namespace rtiow

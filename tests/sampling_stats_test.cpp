@@ -5,12 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "core/film/image_error.h"
+#include "core/film/pixel_variance.h"
 #include "core/render/render.h"
 #include "core/render/render_statistics.h"
 #include "core/scene/builtin_scenes.h"
@@ -49,6 +51,22 @@ ImageError error_of(const RenderSettings& s) {
   return measure_error(to_estimate(render(cover(), s)), reference());
 }
 
+// The standard error of the image mean's difference is calibrated: over seeds, the z-scores of
+// unbiased renders have an RMS near 1 (1.14-1.18 measured over 40 seeds; 1.9-2.0 while a pixel's
+// three channels were summed as if independent).
+TEST(ImageError, TheImageMeansStandardErrorIsCalibratedOverSeeds) {
+  constexpr int kSeeds = 30;
+  double squares = 0;
+  for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+    const ImageError e = error_of(settings(cover(), 16, 100 + seed));
+    const double z = e.mean_difference / e.mean_difference_error;
+    squares += z * z / kSeeds;
+  }
+  std::printf("RMS z over %d seeds: %.2f\n", kSeeds, std::sqrt(squares));
+  EXPECT_GT(std::sqrt(squares), 0.7) << "the standard error is too large";
+  EXPECT_LT(std::sqrt(squares), 1.45) << "the standard error is too small";
+}
+
 TEST(AdaptiveSampling, AgreesInTheMeanWithTheReferenceAndReachesItsTarget) {
   for (const double target : {0.2, 0.1}) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
@@ -67,9 +85,11 @@ TEST(AdaptiveSampling, SpendsSamplesWhereTheNoiseIs) {
   RenderSettings s = settings(cover(), 1024, 4);
   s.samples = PixelErrorTarget{0.1, 1024};
   const RenderResult r = render(cover(), s);
-  // The sky (top row) is smooth and stops at the minimum; the image as a whole needs more.
+  // The sky (top row) is smooth and stops at the minimum; the image as a whole needs more
+  // (29.5 on average, and some pixels several times the minimum).
   for (int x = 0; x < s.width; ++x) EXPECT_EQ(r.pixel_samples[std::size_t(x)], 16u) << x;
-  EXPECT_GT(mean_samples(r), 32.0);
+  EXPECT_GT(mean_samples(r), 24.0);
+  EXPECT_GT(*std::max_element(r.pixel_samples.begin(), r.pixel_samples.end()), 64u);
 }
 
 // Measured 2.8x (sobol) and 2.1x (padded-sobol) at 160x107 and spp >= 16 (rtiow accuracy);
@@ -118,8 +138,7 @@ TEST(AdaptiveOnABudget, AgreesInTheMeanAndBeatsUniformSamplingPerRay) {
 // and never above it (it aims at 0.92 of it; it stopped at 0.54-0.70 of it while the sample
 // variance stood for the Sobol mean's).
 // The bias check takes the sample variance's standard error, an upper bound for a Sobol
-// render's: on this 48x32 image an adaptive render's honest image-mean error is itself noisy
-// (the z-scores of eight seeds spread 2.4 where 1 is honest; docs/accuracy.md).
+// render's.
 TEST(ImageError, AgreesInTheMeanAndDeliversTheErrorAskedFor) {
   for (const double target : {0.1, 0.05}) {
     // A bias is the same in every seed: the seeds' mean difference against its standard error.
@@ -144,6 +163,48 @@ TEST(ImageError, AgreesInTheMeanAndDeliversTheErrorAskedFor) {
       EXPECT_GT(delivered, 0.8 * target) << "not wastefully below it";
     }
     EXPECT_LT(std::abs(difference), kMaxZ * std::sqrt(error_squared)) << "target " << target;
+  }
+}
+
+// --target-error E: each pixel whose count the target decided (above the minimum, below the
+// cap) ends with its true relative error, the RMS over eight seeds against the reference, at
+// 0.85-1.0 E at the median (measured 0.89-0.93 on the cover at 160x107 and 0.91-0.93 here;
+// 0.80-0.84 while the neighbours' mean judged a pixel, docs/accuracy.md).
+TEST(TargetError, TheMedianPixelStopsAtTheErrorAskedFor) {
+  constexpr int kSeeds = 8;
+  const std::vector<Color>& ref = reference().film.pixels();
+  for (const SamplerKind sampler : {SamplerKind::Sobol, SamplerKind::Independent}) {
+    for (const double target : {0.1, 0.05}) {
+      std::vector<double> squared(ref.size(), 0.0);
+      std::vector<bool> decided(ref.size(), true);
+      for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+        RenderSettings s = settings(cover(), 4096, seed);
+        s.sampler = sampler;
+        s.samples = PixelErrorTarget{target, 4096};
+        const RenderResult r = render(cover(), s);
+        for (std::size_t p = 0; p < ref.size(); ++p) {
+          const Vec3d ref_variance = reference().variance[p];
+          for (std::size_t c = 0; c < 3; ++c) {
+            const double d = double(r.film.pixels()[p][c]) - double(ref[p][c]);
+            const double scale = double(ref[p][c]) + kRelativeErrorOffset;
+            squared[p] += (d * d - ref_variance[c]) / (scale * scale) / (3.0 * kSeeds);
+          }
+          if (r.pixel_samples[p] <= 16 || r.pixel_samples[p] >= 4096) decided[p] = false;
+        }
+      }
+      std::vector<double> delivered;
+      for (std::size_t p = 0; p < ref.size(); ++p) {
+        if (decided[p]) delivered.push_back(std::sqrt(std::max(squared[p], 0.0)) / target);
+      }
+      ASSERT_GT(delivered.size(), ref.size() / 5) << "the target decides a fifth of the pixels";
+      std::nth_element(delivered.begin(), delivered.begin() + std::ptrdiff_t(delivered.size() / 2),
+                       delivered.end());
+      const double median = delivered[delivered.size() / 2];
+      std::printf("%s, target %.2f: the median pixel at %.3f of it (%zu pixels decided)\n",
+                  to_string(sampler).c_str(), target, median, delivered.size());
+      EXPECT_GT(median, 0.85) << to_string(sampler) << " " << target << ": wastefully below it";
+      EXPECT_LT(median, 1.0) << to_string(sampler) << " " << target;
+    }
   }
 }
 

@@ -22,6 +22,7 @@ ImageError measure_error(const ImageEstimate& image, const ImageEstimate& refere
   for (std::size_t p = 0; p < pixels; ++p) {
     const Color v = image.film.pixels()[p], r = reference.film.pixels()[p];
     const Vec3d var_v = variance(image, p), var_r = variance(reference, p);
+    double deviation = 0;  // of the pixel's channel sum: see mean_difference_error
     for (std::size_t c = 0; c < 3; ++c) {
       const double d = double(v[c]) - double(r[c]);
       const double offset = double(r[c]) + kRelativeErrorOffset;
@@ -31,8 +32,9 @@ ImageError measure_error(const ImageEstimate& image, const ImageEstimate& refere
       noise += var_v[c];
       sum_image += v[c];
       sum_reference += r[c];
-      sum_variance += var_v[c] + var_r[c];
+      deviation += std::sqrt(var_v[c] + var_r[c]);
     }
+    sum_variance += deviation * deviation;
   }
   const double n = 3.0 * double(pixels);
   ImageError e;

@@ -22,7 +22,11 @@ struct ImageError {
   // pbrt-v4's relMSE: the mean of (v - ref)^2 / (ref + 0.01)^2, corrected the same way.
   double rel_mse = 0.0;
   // The signed relative difference of the image sums, (sum v - sum ref) / sum ref, and its
-  // standard error from both images' variances: a bias shows as |difference| >> error.
+  // standard error from both images' variances: a bias shows as |difference| >> error. One
+  // path gives a pixel all three channels, so they are correlated and the variance of their
+  // sum is not the sum of theirs: it is taken at its bound, (sum of their deviations)^2, which
+  // an image of grey-ish paths nearly reaches (the sum of the three variances made the cover's
+  // z-scores spread 1.9-2.0 over seeds where 1 is honest; with the bound 1.1-1.2).
   double mean_difference = 0.0;
   double mean_difference_error = 0.0;
   // sqrt of the mean of (v - ref)^2 - var(v) - var(ref): the per-pixel bias with both

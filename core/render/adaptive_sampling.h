@@ -141,7 +141,8 @@ void render_adaptive(const RenderContext<Accel>& ctx, const PixelErrorTarget& ta
   for (bool first = start_rounds(state, least);; first = false) {
     render_round(ctx, first, deadline, journal, progress, result);
     if (deadline.ended()) break;
-    const std::vector<double> judged = neighbourhood_relative_variance(settings, pixels);
+    const std::vector<double> judged =
+        neighbourhood_relative_variance(settings, pixels, Pooling::Median);
     result.pixels_above_target = 0;
     for (std::size_t p = 0; p < targets.size(); ++p) {
       const std::uint32_t n = pixels.samples[p];

@@ -29,8 +29,36 @@ std::vector<double> neighbourhood_mean(int width, int height, const std::vector<
   return pooled;
 }
 
+std::vector<double> neighbourhood_median(int width, int height, const std::vector<double>& own) {
+  std::vector<double> pooled(own.size());
+  std::vector<double> around;
+  around.reserve(8);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      around.clear();
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+          around.push_back(own[std::size_t(ny) * std::size_t(width) + std::size_t(nx)]);
+        }
+      }
+      const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+      if (around.empty()) {
+        pooled[p] = own[p];
+        continue;
+      }
+      std::sort(around.begin(), around.end());
+      const std::size_t m = around.size();
+      pooled[p] = m % 2 == 1 ? around[m / 2] : 0.5 * (around[m / 2 - 1] + around[m / 2]);
+    }
+  }
+  return pooled;
+}
+
 std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
-                                                    const PixelAccumulators& pixels) {
+                                                    const PixelAccumulators& pixels,
+                                                    Pooling pooling) {
   // Each pixel's relative variance per sample scaled to what its mean really has: the
   // sampler's gain over independent samples, from its neighbours' replicates.
   const std::vector<double> ratio =
@@ -41,7 +69,8 @@ std::vector<double> neighbourhood_relative_variance(const RenderSettings& settin
     own[p] =
         relative_sample_variance(pixels.sums[p], pixels.spreads[p], pixels.samples[p]) * ratio[p];
   }
-  return neighbourhood_mean(settings.width, settings.height, own);
+  return pooling == Pooling::Median ? neighbourhood_median(settings.width, settings.height, own)
+                                    : neighbourhood_mean(settings.width, settings.height, own);
 }
 
 PixelEstimates pooled_estimates(const RenderSettings& settings, const PixelAccumulators& pixels) {

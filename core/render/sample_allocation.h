@@ -20,9 +20,21 @@ namespace rtiow {
 // 1x1 image has none and keeps its own).
 std::vector<double> neighbourhood_mean(int width, int height, const std::vector<double>& own);
 
+// The median of `own` over the same neighbours (the mean of the middle two of an even count).
+std::vector<double> neighbourhood_median(int width, int height, const std::vector<double>& own);
+
+// How the neighbours' estimates are pooled. The mean is unbiased for the image's relMSE, which
+// --image-error and --adaptive's allocation add up. The median is what a single pixel is
+// judged by under --target-error: near an edge or a highlight the variance across the window
+// is skewed, and the mean of the neighbours then sits above the typical pixel's own, which
+// stopped the median pixel at 0.80-0.84 of the target on the cover (0.89-0.91 with the median;
+// docs/accuracy.md).
+enum class Pooling { Mean, Median };
+
 // The relative variance per sample each pixel is judged by (pixel_variance.h), pooled.
 std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
-                                                    const PixelAccumulators& pixels);
+                                                    const PixelAccumulators& pixels,
+                                                    Pooling pooling = Pooling::Mean);
 
 struct PixelEstimates {
   std::vector<double> variance;  // relative variance per sample, pooled
