@@ -58,9 +58,9 @@ Calibration two_seeds(const Scene& scene, RenderSettings s) {
   return calibration(a, render(scene, s));
 }
 
-// Measured at 160x107 (per pixel / image): independent 1.04 / 0.99, sobol 1.03 / 1.02,
-// padded-sobol 1.01 / 1.02 at 64 spp; 1.10 / 0.99 at 16 spp, where a pixel's own 15 degrees of
-// freedom alone put the per-pixel mean near 1.07.
+// Measured at 160x107 (per pixel / image): independent 1.00 / 1.00, sobol 0.98 / 0.99,
+// padded-sobol 0.95 / 1.02 at 64 spp; at 16 spp 1.04 / 0.99, 1.02 / 0.99, 1.01 / 1.00, where a
+// pixel's own 15 degrees of freedom alone put the per-pixel mean near 1.04-1.07.
 TEST(VarianceCalibration, TwoSeedsDifferByWhatTheVarianceChannelsSayForEverySampler) {
   const Scene cover = make_builtin_scene("cover", 1);
   for (const SamplerKind sampler :
@@ -76,8 +76,8 @@ TEST(VarianceCalibration, TwoSeedsDifferByWhatTheVarianceChannelsSayForEverySamp
 }
 
 // Beyond the cover: a glass, a diffuse and a metal sphere filling the frame (materials), and a
-// lens (defocus). Measured (per pixel / image, 160 px wide, 64 spp): materials sobol 1.05 /
-// 1.01, padded-sobol 1.07 / 1.02; defocus sobol 1.05 / 1.02, padded-sobol 1.06 / 1.05.
+// lens (defocus). Measured (per pixel / image, 160 px wide, 64 spp): materials sobol 0.94 /
+// 1.01, padded-sobol 0.96 / 1.02; defocus sobol 1.02 / 1.02, padded-sobol 1.02 / 1.04.
 TEST(VarianceCalibration, HoldsOnTheOtherScenesForBothSobolSamplers) {
   for (const char* name : {"materials", "defocus"}) {
     const Scene scene = make_builtin_scene(name, 1);
@@ -89,6 +89,18 @@ TEST(VarianceCalibration, HoldsOnTheOtherScenesForBothSobolSamplers) {
       EXPECT_NEAR(c.image, 1.0, 0.1) << where;
     }
   }
+}
+
+// At 1024 spp the sampler's gain differs between channels: on the blue diffuse sphere of
+// `materials` red and green converge faster than blue. With one ratio for all three channels
+// the per-pixel figure was 1.23 (red and green understated 2.5x on the sphere); per channel
+// 1.06 (padded-sobol 1.26 -> 1.04, docs/accuracy.md). The band is 1 +- 0.1.
+TEST(VarianceCalibration, HoldsAt1024SppWhereTheChannelsConvergeDifferently) {
+  const Scene scene = make_builtin_scene("materials", 1);
+  const Calibration c = two_seeds(scene, settings(scene, 160, 1024, SamplerKind::Sobol));
+  std::printf("materials sobol at 1024 spp: per pixel %.3f, image %.3f\n", c.per_pixel, c.image);
+  EXPECT_NEAR(c.per_pixel, 1.0, 0.1);
+  EXPECT_NEAR(c.image, 1.0, 0.1);
 }
 
 TEST(VarianceCalibration, AdaptiveRendersReportTheirVarianceHonestly) {

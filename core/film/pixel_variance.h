@@ -94,9 +94,10 @@ inline constexpr double kRelativeErrorOffset = 0.01;
 // The pixel's relative variance per sample: the sample variance over (mean + 0.01)^2,
 // averaged over R, G, B. Over n samples the pixel's expected relMSE is this over n, so
 // sqrt(this / n) is its relative standard error.
+// `scale` multiplies each channel's variance first (the sampler's gain, replicate_variance.h).
 inline double relative_sample_variance(const PixelSum& sum, const PixelSpread& spread,
-                                       std::uint64_t n) {
-  const Vec3d variance = variance_of_mean(sum, spread, n);
+                                       std::uint64_t n, const Vec3d& scale = {1, 1, 1}) {
+  const Vec3d variance = variance_of_mean(sum, spread, n) * scale;
   const Color mean = sum.mean(n);
   double total = 0.0;
   for (std::size_t c = 0; c < 3; ++c) {

@@ -10,8 +10,9 @@
 //
 //   variance(p) = 3/4 sample variance over n (p) * ratio(window around p, p left out)
 //               + 1/4 replicate estimate (p),
-//   ratio = sum of replicate estimates / sum of sample variances over n, over the window
-//           (in an adaptive render, over the window's pixels of about the same count),
+//   ratio = sum of replicate estimates / sum of sample variances over n, over the window,
+//           per channel (in an adaptive render, over the window's pixels of about the same
+//           count),
 //
 // which keeps each pixel's own shape (its sample variance, n - 1 degrees of freedom) and takes
 // the sampler's gain over independent sampling from the replicates of its neighbours, where it
@@ -19,8 +20,9 @@
 // are unbiased) brings in what the gain does differently at this pixel. It assumes that gain
 // changes slowly across the image (measured: the ratio is near 0 in the sky and 0.2-0.5 on the
 // ground), and is weakest where it does not: a window straddling the horizon lends the
-// ground's ratio to sky pixels, and at 1024 spp the gain varies from pixel to pixel on the
-// smooth spheres of `materials` more than a quarter of one degree of freedom can follow.
+// ground's ratio to sky pixels. The ratio is per channel: the gain differs between them (on
+// the blue diffuse sphere of `materials` at 1024 spp one ratio for all three understated red's
+// and green's variance 2.5x).
 // docs/accuracy.md has the calibration measured against independent renders.
 
 #include <cstdint>
@@ -58,13 +60,13 @@ constexpr std::uint64_t odd_samples(std::uint64_t first, std::uint64_t n) {
 Vec3d replicate_estimate(const PixelSum& sum, const PixelSpread& spread, std::uint64_t first,
                          std::uint64_t n);
 
-// Each pixel's ratio of honest to sample variance (row major, width x height), from the
-// pixels' sums, spreads and counts, all of which start at sample index `first`; 1 for the
+// Each pixel's ratio of honest to sample variance per channel (row major, width x height), from
+// the pixels' sums, spreads and counts, all of which start at sample index `first`; 1 for the
 // independent sampler.
-std::vector<double> replicate_ratios(int width, int height, const std::vector<PixelSum>& sums,
-                                     const std::vector<PixelSpread>& spreads,
-                                     const std::vector<std::uint32_t>& samples, std::uint64_t first,
-                                     SamplerKind sampler);
+std::vector<Vec3d> replicate_ratios(int width, int height, const std::vector<PixelSum>& sums,
+                                    const std::vector<PixelSpread>& spreads,
+                                    const std::vector<std::uint32_t>& samples, std::uint64_t first,
+                                    SamplerKind sampler);
 
 // The variance of each pixel's mean, per channel: its sample variance over n times its ratio,
 // or, for the independent sampler, for which it is exact, the sample variance over n alone.

@@ -18,6 +18,7 @@ struct Vec3T {
   constexpr explicit Vec3T(const Vec3T<U>& v) : x(T(v.x)), y(T(v.y)), z(T(v.z)) {}
 
   constexpr T operator[](std::size_t i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : z); }
   constexpr Vec3T operator-() const { return {-x, -y, -z}; }
   constexpr Vec3T& operator+=(const Vec3T& v) {
     x += v.x, y += v.y, z += v.z;

@@ -61,13 +61,13 @@ std::vector<double> neighbourhood_relative_variance(const RenderSettings& settin
                                                     Pooling pooling) {
   // Each pixel's relative variance per sample scaled to what its mean really has: the
   // sampler's gain over independent samples, from its neighbours' replicates.
-  const std::vector<double> ratio =
+  const std::vector<Vec3d> ratio =
       replicate_ratios(settings.width, settings.height, pixels.sums, pixels.spreads, pixels.samples,
                        settings.first_sample, settings.sampler);
   std::vector<double> own(pixels.samples.size());
   for (std::size_t p = 0; p < own.size(); ++p) {
     own[p] =
-        relative_sample_variance(pixels.sums[p], pixels.spreads[p], pixels.samples[p]) * ratio[p];
+        relative_sample_variance(pixels.sums[p], pixels.spreads[p], pixels.samples[p], ratio[p]);
   }
   return pooling == Pooling::Median ? neighbourhood_median(settings.width, settings.height, own)
                                     : neighbourhood_mean(settings.width, settings.height, own);
