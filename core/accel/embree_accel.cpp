@@ -53,9 +53,11 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
 // The distance at which sphere i replaces the hit found so far (tfar, and `prim` when
 // `has_hit`), or infinity. Up to and including tfar: a sphere at exactly the distance of the
 // hit so far (coincident spheres) wins if its index is lower, as in the naive loop, whatever
-// order the traversal visits them in.
-float replacing_hit(const SphereSet& s, unsigned i, const Ray& ray, float tnear, float tfar,
-                    bool has_hit, unsigned prim) {
+// order the traversal visits them in. Forced inline into the callback: GCC kept it out of
+// line (18% of a render's profile as its own symbol), and inlined it is 1% faster.
+[[gnu::always_inline]] inline float replacing_hit(const SphereSet& s, unsigned i, const Ray& ray,
+                                                  float tnear, float tfar, bool has_hit,
+                                                  unsigned prim) {
   const float t = sphere_hit_distance(s.center(i), s.radius[i], ray, tnear, next_float_up(tfar));
   const bool closer = t < tfar;
   const bool tie_won = t == tfar && has_hit && i < prim;
