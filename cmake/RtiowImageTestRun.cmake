@@ -19,8 +19,10 @@ if("$ENV{RTIOW_UPDATE_REFERENCES}" AND EXPECT_FAILURE)
 elseif("$ENV{RTIOW_UPDATE_REFERENCES}")
   get_filename_component(directory ${reference} DIRECTORY)
   file(MAKE_DIRECTORY ${directory})
+  # No checkpoint: a reference is kept in a source tree, and a finished render's checkpoint
+  # (kept for refining it with --resume) would land beside it.
   run_rtiow("rendering the reference" render -q ${render_args} --spp ${REFERENCE_SPP} --seed 0
-            --stats-channels -o ${reference})
+            --stats-channels --checkpoint 0 -o ${reference})
   message(STATUS "wrote the reference ${reference} (${REFERENCE_SPP} spp, seed 0)")
   return()
 endif()
