@@ -172,7 +172,7 @@ TEST(ImageError, AgreesInTheMeanAndDeliversTheErrorAskedFor) {
 
 // --target-error E: each pixel whose count the target decided (above the minimum, below the
 // cap) ends with its true relative error, the RMS over eight seeds against the reference, at
-// 0.85-1.0 E at the median (measured 0.88-0.91 on the cover at 160x107 and 0.90-0.92 here;
+// 0.85-1.0 E at the median (measured 0.88-0.90 on the cover at 160x107 and 0.89-0.92 here;
 // 0.80-0.84 while the neighbours' mean judged a pixel, docs/accuracy.md).
 TEST(TargetError, TheMedianPixelStopsAtTheErrorAskedFor) {
   constexpr int kSeeds = 8;

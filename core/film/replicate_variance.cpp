@@ -4,6 +4,8 @@
 #include <bit>
 #include <cmath>
 
+#include "core/parallel/parallel_for_range.h"
+
 namespace rtiow {
 
 Vec3d replicate_estimate(const PixelSum& sum, const PixelSpread& spread, std::uint64_t first,
@@ -87,6 +89,56 @@ double ratio_of(double replicate, double sample) {
   return sample > 0.0 ? std::max(0.0, replicate) / sample : 1.0;
 }
 
+// The mean of one channel's sample variance over p's 3x3 neighbours, p left out (0 when none
+// has one): what p's own level of noise is judged by, without p's own samples.
+double neighbours_sample_variance(int width, int height, const std::vector<Vec3d>& sample,
+                                  const std::vector<int>& classes, std::size_t channel, int x,
+                                  int y) {
+  double total = 0;
+  int count = 0;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int nx = x + dx, ny = y + dy;
+      if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+      const std::size_t q = std::size_t(ny) * std::size_t(width) + std::size_t(nx);
+      if (classes[q] < 0) continue;
+      total += sample[q][channel];
+      ++count;
+    }
+  }
+  return count > 0 ? total / count : 0.0;
+}
+
+// For a render whose pixels all have one count: each pixel's ratio over the window's
+// neighbours whose sample variance is at most kReplicateTrimFactor times its neighbours' level,
+// where at least kReplicateMinNeighbours remain (else the whole window's, already in `ratios`).
+void trimmed_ratios(int width, int height, const std::vector<Vec3d>& replicate,
+                    const std::vector<Vec3d>& sample, const std::vector<int>& classes,
+                    std::size_t channel, std::vector<Vec3d>& ratios) {
+  const int r = kReplicateWindowRadius;
+  parallel_for_range(std::size_t(height), 1, [&](std::size_t row_begin, std::size_t row_end) {
+    for (auto y = int(row_begin); y < int(row_end); ++y) {
+      for (int x = 0; x < width; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+        if (classes[p] < 0) continue;
+        const double limit =
+            kReplicateTrimFactor *
+            neighbours_sample_variance(width, height, sample, classes, channel, x, y);
+        double replicates = 0, samples = 0;
+        int kept = 0;
+        for (int ny = std::max(0, y - r); ny <= std::min(height - 1, y + r); ++ny) {
+          for (int nx = std::max(0, x - r); nx <= std::min(width - 1, x + r); ++nx) {
+            const std::size_t q = std::size_t(ny) * std::size_t(width) + std::size_t(nx);
+            if (q == p || classes[q] < 0 || sample[q][channel] > limit) continue;
+            replicates += replicate[q][channel], samples += sample[q][channel], ++kept;
+          }
+        }
+        if (kept >= kReplicateMinNeighbours) ratios[p][channel] = ratio_of(replicates, samples);
+      }
+    }
+  });
+}
+
 }  // namespace
 
 std::vector<Vec3d> replicate_ratios(int width, int height, const std::vector<PixelSum>& sums,
@@ -119,7 +171,10 @@ std::vector<Vec3d> replicate_ratios(int width, int height, const std::vector<Pix
     const WindowTotals all = class_windows(width, height, replicate, sample, channel, classes, -1);
     for (std::size_t p = 0; p < sums.size(); ++p)
       ratios[p][channel] = ratio_of(all.replicate[p], all.sample[p]);
-    if (uniform_counts) continue;
+    if (uniform_counts) {
+      trimmed_ratios(width, height, replicate, sample, classes, channel, ratios);
+      continue;
+    }
     for (int c = 0; c <= most; ++c) {
       if (std::find(classes.begin(), classes.end(), c) == classes.end()) continue;
       const WindowTotals own = class_windows(width, height, replicate, sample, channel, classes, c);

@@ -8,22 +8,21 @@
 // their means is an unbiased estimate of the variance of the pixel's mean whatever the sampler,
 // but with one degree of freedom. The estimate used everywhere is therefore
 //
-//   variance(p) = 3/4 sample variance over n (p) * ratio(window around p, p left out)
-//               + 1/4 replicate estimate (p),
+//   variance(p) = 7/8 sample variance over n (p) * ratio(window around p, p left out)
+//               + 1/8 replicate estimate (p),
 //   ratio = sum of replicate estimates / sum of sample variances over n, over the window,
-//           per channel (in an adaptive render, over the window's pixels of about the same
-//           count),
+//           per channel, without the neighbours far noisier than p's own (kReplicateTrimFactor;
+//           in an adaptive render, over the window's pixels of about the same count instead),
 //
 // which keeps each pixel's own shape (its sample variance, n - 1 degrees of freedom) and takes
 // the sampler's gain over independent sampling from the replicates of its neighbours, where it
-// has some hundred degrees of freedom; a quarter of the pixel's own replicate estimate (both
+// has some hundred degrees of freedom; an eighth of the pixel's own replicate estimate (both
 // are unbiased) brings in what the gain does differently at this pixel. It assumes that gain
 // changes slowly across the image (measured: the ratio is near 0 in the sky and 0.2-0.5 on the
-// ground), and is weakest where it does not: a window straddling the horizon lends the
-// ground's ratio to sky pixels. The ratio is per channel: the gain differs between them (on
-// the blue diffuse sphere of `materials` at 1024 spp one ratio for all three understated red's
-// and green's variance 2.5x).
-// docs/accuracy.md has the calibration measured against independent renders.
+// ground), and is weakest where it does not. The ratio is per channel: the gain differs between
+// them (on the blue diffuse sphere of `materials` at 1024 spp one ratio for all three understated
+// red's and green's variance 2.5x). docs/accuracy.md has the calibration measured against
+// independent renders.
 
 #include <cstdint>
 #include <vector>
@@ -42,12 +41,22 @@ inline constexpr int kReplicateWindowRadius = 7;
 // a factor of two of its own (the gain grows with the count) where at least this many are.
 inline constexpr double kReplicateMinNeighbours = 32;
 
+// In a render whose pixels share one count, a pixel's ratio leaves out the window's neighbours
+// whose sample variance is above this many times its own neighbours' level (the mean over its
+// 3x3 neighbours, itself left out), where at least kReplicateMinNeighbours remain. A ratio of
+// sums is dominated by its noisiest pixels: a sky pixel whose window reaches the spheres took
+// their ratio, some hundred times its own, and overstated its variance 5-50x (padded-sobol on
+// the cover at 1024 spp: per-pixel calibration 0.89, docs/accuracy.md). With the trim it is
+// 0.95, and the 16x16 blocks' 10th percentile rises from 0.45-0.62 to 0.62-0.87.
+inline constexpr double kReplicateTrimFactor = 16;
+
 // The weight of a pixel's own replicate estimate in its variance (the rest is its sample
 // variance scaled by its neighbours' ratio). Measured on cover, materials and defocus at 16,
-// 64 and 1024 spp (docs/accuracy.md): 1/4 brings the per-pixel calibration of materials at 1024
-// spp from 1.43 to 1.25 and changes no other case by more than 0.05; 1/2 adds so much noise
-// that the cover at 16 spp goes from 1.06 to 1.19.
-inline constexpr double kOwnReplicateWeight = 0.25;
+// 64 and 1024 spp (docs/accuracy.md): with per-channel, trimmed ratios 1/8 keeps every case
+// within 0.95-1.08 per pixel; 1/4 (chosen when one ratio served all channels) gives 1.09-1.10
+// on materials at 1024 spp and the cover at 16 (one degree of freedom, a quarter of the
+// estimate: E[1/estimate] grows), and 0 gives 1.10 on materials at 1024.
+inline constexpr double kOwnReplicateWeight = 0.125;
 
 // How many of the n samples from `first` have an odd index (the second replicate).
 constexpr std::uint64_t odd_samples(std::uint64_t first, std::uint64_t n) {

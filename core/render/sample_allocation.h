@@ -27,7 +27,7 @@ std::vector<double> neighbourhood_median(int width, int height, const std::vecto
 // --image-error and --adaptive's allocation add up. The median is what a single pixel is
 // judged by under --target-error: near an edge or a highlight the variance across the window
 // is skewed, and the mean of the neighbours then sits above the typical pixel's own, which
-// stopped the median pixel at 0.80-0.84 of the target on the cover (0.88-0.91 with the median;
+// stopped the median pixel at 0.80-0.84 of the target on the cover (0.88-0.90 with the median;
 // docs/accuracy.md).
 enum class Pooling { Mean, Median };
 
