@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 
+#include "core/film/pixel_neighbours.h"
 #include "core/parallel/parallel_for_range.h"
 
 namespace rtiow {
@@ -96,16 +97,11 @@ double neighbours_sample_variance(int width, int height, const std::vector<Vec3d
                                   int y) {
   double total = 0;
   int count = 0;
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      const int nx = x + dx, ny = y + dy;
-      if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
-      const std::size_t q = std::size_t(ny) * std::size_t(width) + std::size_t(nx);
-      if (classes[q] < 0) continue;
-      total += sample[q][channel];
-      ++count;
-    }
-  }
+  for_each_neighbour(width, height, x, y, [&](std::size_t q) {
+    if (classes[q] < 0) return;
+    total += sample[q][channel];
+    ++count;
+  });
   return count > 0 ? total / count : 0.0;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/film/pixel_neighbours.h"
 #include "core/film/pixel_variance.h"
 #include "core/film/replicate_variance.h"
 
@@ -14,14 +15,10 @@ std::vector<double> neighbourhood_mean(int width, int height, const std::vector<
     for (int x = 0; x < width; ++x) {
       double total = 0;
       int count = 0;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int nx = x + dx, ny = y + dy;
-          if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
-          total += own[std::size_t(ny) * std::size_t(width) + std::size_t(nx)];
-          ++count;
-        }
-      }
+      for_each_neighbour(width, height, x, y, [&](std::size_t q) {
+        total += own[q];
+        ++count;
+      });
       const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
       pooled[p] = count > 0 ? total / count : own[p];
     }
@@ -36,13 +33,7 @@ std::vector<double> neighbourhood_median(int width, int height, const std::vecto
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       around.clear();
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int nx = x + dx, ny = y + dy;
-          if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
-          around.push_back(own[std::size_t(ny) * std::size_t(width) + std::size_t(nx)]);
-        }
-      }
+      for_each_neighbour(width, height, x, y, [&](std::size_t q) { around.push_back(own[q]); });
       const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
       if (around.empty()) {
         pooled[p] = own[p];
