@@ -4,6 +4,7 @@
 
 #include <csetjmp>
 #include <cstring>
+#include <new>
 #include <variant>
 
 namespace rtiow {
@@ -17,7 +18,12 @@ struct Encoding {
 
 void append_bytes(png_structp png, png_bytep data, png_size_t length) {
   auto* e = static_cast<Encoding*>(png_get_io_ptr(png));
-  e->bytes->insert(e->bytes->end(), data, data + length);
+  try {
+    e->bytes->insert(e->bytes->end(), data, data + length);
+  } catch (const std::bad_alloc&) {
+    // No C++ exception may cross libpng's C frames: its own error path unwinds them.
+    png_error(png, "out of memory for the encoded image");
+  }
 }
 
 void no_flush(png_structp) {}
