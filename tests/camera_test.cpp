@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <vector>
+
 #include "core/limits/error.h"
+#include "core/sampling/rng.h"
 
 namespace rtiow {
 namespace {
@@ -48,6 +52,37 @@ TEST(Camera, LensRaysConvergeOnTheFocusPlane) {
     EXPECT_GT(length(r.origin - pinhole.origin), 0.0f);
     const Vec3 focus_point = r.at(1.0f), pinhole_focus = pinhole.at(1.0f);
     EXPECT_LT(length(focus_point - pinhole_focus), 1e-4f * length(pinhole_focus));
+  }
+}
+
+// The render loop makes its camera rays eight at a time; they must be generate_ray's, bit
+// for bit, for a lens and a pinhole, at the lens's centre, its edges and its diagonals
+// (where the concentric map switches sides) and at random points.
+TEST(Camera, RaysMadeEightAtATimeAreGenerateRaysBitForBit) {
+  Pcg32 rng(5, 11);
+  for (const double aperture : {0.0, 0.1, 3.0}) {
+    CameraSettings c = cover_like();
+    c.aperture = aperture;
+    const Camera camera(c, 400, 225);
+    const std::vector<float> special = {0.0f, 0.5f, 1.0f - 0x1p-24f, 0.25f, 0.75f};
+    for (int round = 0; round < 200; ++round) {
+      Camera::Lanes lanes{};
+      for (int k = 0; k < Camera::kLanes; ++k) {
+        const bool edge = round < 25;
+        lanes.s[k] = rng.next_float(), lanes.t[k] = rng.next_float();
+        lanes.lens_u[k] = edge ? special[std::size_t(round % 5)] : rng.next_float();
+        lanes.lens_v[k] = edge ? special[std::size_t((round / 5 + k) % 5)] : rng.next_float();
+      }
+      Ray rays[Camera::kLanes];
+      camera.generate_rays(lanes, rays);
+      for (int k = 0; k < Camera::kLanes; ++k) {
+        const Ray one =
+            camera.generate_ray(lanes.s[k], lanes.t[k], lanes.lens_u[k], lanes.lens_v[k]);
+        ASSERT_EQ(std::memcmp(&one, &rays[k], sizeof(Ray)), 0)
+            << "aperture " << aperture << ", lens (" << lanes.lens_u[k] << ", " << lanes.lens_v[k]
+            << ")";
+      }
+    }
   }
 }
 

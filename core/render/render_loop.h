@@ -85,22 +85,30 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
   std::uint64_t total_rays = 0;
   int pixel = run.first < run.last ? 0 : run.length;  // where the next packet starts ...
   std::uint64_t i = run.first;                        // ... and at which sample
+  static_assert(Camera::kLanes == kRayPacketSize);
+  Camera::Lanes lanes{};
+  std::array<Ray, kRayPacketSize> camera_rays;
   while (pixel < run.length) {
     int count = 0, traced = 0;  // the packet holds the samples whose first ray is traced
     for (; count < kRayPacketSize && pixel < run.length; ++count) {
-      SampleStream& rng = streams[std::size_t(count)].emplace(*samplers[std::size_t(pixel)], i);
+      const auto k = std::size_t(count);
+      SampleStream& rng = streams[k].emplace(*samplers[std::size_t(pixel)], i);
       const std::array<float, 4> u = rng.next_camera();  // a pinhole ignores the lens's two
-      const float s = (float(run.x + pixel) + u[0]) * inv_w;
-      const float t = (float(run.y) + u[1]) * inv_h;
-      const Ray ray = camera.generate_ray(s, t, u[2], u[3]);
-      owner[std::size_t(count)] = pixel;
-      index[std::size_t(count)] = i;
-      slot[std::size_t(count)] = starts_path(ray, settings.max_depth) ? traced : -1;
-      if (slot[std::size_t(count)] >= 0) rays_out[std::size_t(traced++)] = ray;
+      lanes.s[k] = (float(run.x + pixel) + u[0]) * inv_w;
+      lanes.t[k] = (float(run.y) + u[1]) * inv_h;
+      lanes.lens_u[k] = u[2], lanes.lens_v[k] = u[3];
+      owner[k] = pixel;
+      index[k] = i;
       if (++i == run.last) {  // the pixel is done: the next one from its first sample
         i = run.first;
         ++pixel;
       }
+    }
+    camera.generate_rays(lanes, camera_rays.data());
+    for (int k = 0; k < count; ++k) {
+      const Ray& ray = camera_rays[std::size_t(k)];
+      slot[std::size_t(k)] = starts_path(ray, settings.max_depth) ? traced : -1;
+      if (slot[std::size_t(k)] >= 0) rays_out[std::size_t(traced++)] = ray;
     }
     intersect_packet(ctx.accel, rays_out.data(), traced, hits.data());
     for (int k = 0; k < count; ++k) {

@@ -10,6 +10,7 @@
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
 #include "core/sampling/sampling.h"
+#include "core/sampling/unit_circle.h"
 
 namespace rtiow {
 namespace {
@@ -116,6 +117,46 @@ Ray Camera::generate_ray(float s, float t, float lens_u, float lens_v) const {
   const Vec3 disk = lens_radius_ * sample_in_unit_disk(lens_u, lens_v);
   const Vec3 offset = disk.x * u_ + disk.y * v_;
   return Ray{origin_ + offset, film - offset};
+}
+
+void Camera::generate_rays(const Lanes& in, Ray* out) const {
+  alignas(32) float ox[kLanes], oy[kLanes], oz[kLanes], dx[kLanes], dy[kLanes], dz[kLanes];
+  const bool lens = lens_radius_ != 0.0f;
+  for (int k = 0; k < kLanes; ++k) {
+    const float s = in.s[k], t = in.t[k];
+    const float film_x = upper_left_.x + s * horizontal_.x + t * vertical_.x;
+    const float film_y = upper_left_.y + s * horizontal_.y + t * vertical_.y;
+    const float film_z = upper_left_.z + s * horizontal_.z + t * vertical_.z;
+    // sample_in_unit_disk's operations in its order, its branches as selects.
+    const float a = 2.0f * in.lens_u[k] - 1.0f, b = 2.0f * in.lens_v[k] - 1.0f;
+    const bool centre = a == 0.0f && b == 0.0f;
+    const bool along_a = std::abs(a) > std::abs(b);
+    // Every operation unconditional and only the values selected: GCC speculates no floating
+    // point operation (it might trap), so a conditional one would keep the loop scalar.
+    const float radius = along_a ? a : b;
+    const float ratio = (along_a ? b : a) / radius;
+    const float eighth = 0.125f * ratio;
+    const float turns = along_a ? eighth : 0.25f - eighth;
+    const CirclePoint angle = circle_point(turns);
+    const float disk_cos = radius * angle.cos, disk_sin = radius * angle.sin;
+    const float disk_x = lens_radius_ * (centre ? 0.0f : disk_cos);
+    const float disk_y = lens_radius_ * (centre ? 0.0f : disk_sin);
+    const float offset_x = disk_x * u_.x + disk_y * v_.x;
+    const float offset_y = disk_x * u_.y + disk_y * v_.y;
+    const float offset_z = disk_x * u_.z + disk_y * v_.z;
+    // A pinhole's rays as generate_ray makes them, without the (zero) offset's signed zeros.
+    const float lens_ox = origin_.x + offset_x, lens_oy = origin_.y + offset_y,
+                lens_oz = origin_.z + offset_z;
+    const float lens_dx = film_x - offset_x, lens_dy = film_y - offset_y,
+                lens_dz = film_z - offset_z;
+    ox[k] = lens ? lens_ox : origin_.x;
+    oy[k] = lens ? lens_oy : origin_.y;
+    oz[k] = lens ? lens_oz : origin_.z;
+    dx[k] = lens ? lens_dx : film_x;
+    dy[k] = lens ? lens_dy : film_y;
+    dz[k] = lens ? lens_dz : film_z;
+  }
+  for (int k = 0; k < kLanes; ++k) out[k] = Ray{{ox[k], oy[k], oz[k]}, {dx[k], dy[k], dz[k]}};
 }
 
 }  // namespace rtiow

@@ -36,6 +36,16 @@ class Camera {
   // top-left corner; (lens_u, lens_v) in [0,1)^2 pick the point on the lens.
   Ray generate_ray(float s, float t, float lens_u, float lens_v) const;
 
+  // The same for kLanes rays at once, lane by lane in arrays (film s and t, lens u and v),
+  // written without branches so the compiler runs the lanes in SIMD: the rays are those of
+  // generate_ray, bit for bit (tested), at a fraction of its cost per ray. Every lane is
+  // computed; the caller reads the ones it filled.
+  static constexpr int kLanes = 8;
+  struct Lanes {
+    alignas(32) float s[kLanes], t[kLanes], lens_u[kLanes], lens_v[kLanes];
+  };
+  void generate_rays(const Lanes& in, Ray* out) const;
+
   bool has_lens() const { return lens_radius_ > 0.0f; }
 
   // A bound on the magnitude of any component of any ray's origin or direction.
