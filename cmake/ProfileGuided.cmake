@@ -39,7 +39,9 @@ elseif(RTIOW_PGO AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU"
             -DCMAKE_BUILD_TYPE=${CMAKE_BUILD_TYPE} -DCMAKE_CXX_COMPILER=${CMAKE_CXX_COMPILER}
             -DRTIOW_NATIVE=${RTIOW_NATIVE} -DRTIOW_MPI=${RTIOW_MPI} -DRTIOW_PGO=OFF
             -DRTIOW_BUILD_TESTS=OFF -DRTIOW_PGO_GENERATE=${RTIOW_PGO_DIR}/data
-    COMMAND ${CMAKE_COMMAND} --build ${RTIOW_PGO_DIR}/build --target rtiow -j ${rtiow_pgo_jobs}
+    # Its own make, not a part of the outer one's job slots (so none of make's warnings).
+    COMMAND ${CMAKE_COMMAND} -E env --unset=MAKEFLAGS --unset=MFLAGS
+            ${CMAKE_COMMAND} --build ${RTIOW_PGO_DIR}/build --target rtiow -j ${rtiow_pgo_jobs}
     COMMAND ${CMAKE_COMMAND} -DRTIOW=${RTIOW_PGO_DIR}/build/bin/rtiow -DWORK_DIR=${RTIOW_PGO_DIR}
             -P ${PROJECT_SOURCE_DIR}/cmake/ProfileTraining.cmake
     COMMAND ${CMAKE_COMMAND} -E touch ${RTIOW_PGO_STAMP}
