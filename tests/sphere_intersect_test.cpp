@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/geometry/sphere_bounds.h"
@@ -119,6 +121,54 @@ TEST(SphereIntersect, FloatStaysAccurateForSmallDistantSpheres) {
               64 * double(std::numeric_limits<float>::epsilon()) * distance);
   }
   EXPECT_GT(hits, 15000);
+}
+
+// The SIMD lanes of a camera packet give each ray what the scalar test (with its float
+// pre-test) gives it, bit for bit: from outside, inside, on the surface, grazing, behind,
+// for hollow, tiny and huge spheres, and with t ranges that cut the roots.
+TEST(SphereIntersect, LanesGiveTheScalarTestBitForBit) {
+  Pcg32 rng(31, 7);
+  auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * rng.next_float(); };
+  constexpr int kLanes = 8;
+  int hits = 0, cases = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const float scale = std::pow(10.0f, uniform(-3.0f, 6.0f));
+    const Vec3 center{uniform(-1, 1) * scale, uniform(-1, 1) * scale, uniform(-1, 1) * scale};
+    const float radius = (trial % 5 == 0 ? -1.0f : 1.0f) * scale * uniform(0.01f, 1.5f);
+    float ox[kLanes], oy[kLanes], oz[kLanes], dx[kLanes], dy[kLanes], dz[kLanes];
+    float t_min[kLanes], t_max[kLanes], t[kLanes];
+    for (int k = 0; k < kLanes; ++k) {
+      // Origins anywhere near the sphere, on its surface, or in it; directions at its
+      // centre, past it, or away.
+      const Vec3 spread{uniform(-2, 2), uniform(-2, 2), uniform(-2, 2)};
+      const float r = std::abs(radius);
+      const Vec3 origin = k % 3 == 0 ? center + (r / length(spread)) * spread
+                                     : center + (k % 3 == 1 ? 0.5f : 3.0f) * r * spread;
+      const Vec3 aim =
+          center + r * Vec3{uniform(-1.2f, 1.2f), uniform(-1.2f, 1.2f), uniform(-1.2f, 1.2f)};
+      const Vec3 direction = (trial + k) % 7 == 0 ? origin - aim : aim - origin;
+      ox[k] = origin.x, oy[k] = origin.y, oz[k] = origin.z;
+      dx[k] = direction.x, dy[k] = direction.y, dz[k] = direction.z;
+      t_min[k] = k % 4 == 0 ? uniform(0.0f, 1.0f) : 0.0f;
+      t_max[k] = k % 2 == 0 ? kInf : uniform(0.2f, 2.0f);
+      // Bounds exactly at a root, where the strict comparisons decide.
+      const float root = sphere_hit_distance(center, radius, Ray{origin, direction}, 0.0f, kInf);
+      if (k % 4 == 1 && root < kInf) t_min[k] = root;
+      if (k % 4 == 3 && root < kInf) t_max[k] = root;
+    }
+    const RayLanes<kLanes> lanes{{ox, oy, oz}, {dx, dy, dz}, t_min, t_max};
+    sphere_hit_distances_exact(center, radius, lanes, t);
+    for (int k = 0; k < kLanes; ++k) {
+      const Ray ray{{ox[k], oy[k], oz[k]}, {dx[k], dy[k], dz[k]}};
+      const float scalar = sphere_hit_distance(center, radius, ray, t_min[k], t_max[k]);
+      ASSERT_EQ(std::bit_cast<std::uint32_t>(t[k]), std::bit_cast<std::uint32_t>(scalar))
+          << "trial " << trial << " lane " << k << ": " << t[k] << " against " << scalar;
+      hits += scalar < kInf;
+      ++cases;
+    }
+  }
+  EXPECT_GT(hits, cases / 4);
+  EXPECT_LT(hits, cases * 3 / 4);
 }
 
 }  // namespace

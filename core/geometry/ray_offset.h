@@ -23,14 +23,23 @@ constexpr float float_error_gamma(int n) {
   return float(n) * u / (1.0f - float(n) * u);
 }
 
-// The next representable float above v (pbrt-v4 NextFloatUp), inline: std::nextafter is a
-// library call on the per-bounce path.
+// The float next to v toward +infinity (`up`) or -infinity (pbrt-v4 NextFloatUp/Down), as
+// selects on the bits: a spawned ray's offset points up or down at random per component, and
+// as branches (std::nextafter is also a library call) they were mispredicted about half the
+// time. An infinity already at the end it moves to stays.
+inline float next_float_toward(float v, bool up) {
+  const std::uint32_t bits = std::bit_cast<std::uint32_t>(v);
+  const bool negative = (bits >> 31) != 0;
+  const std::uint32_t magnitude = bits << 1;
+  const bool zero = magnitude == 0;  // +0 or -0: to the smallest subnormal of that side
+  const bool at_end = magnitude == 0xff000000u && negative != up;
+  const std::uint32_t moved =
+      zero ? (up ? 1u : 0x80000001u) : (up != negative ? bits + 1 : bits - 1);
+  return std::bit_cast<float>(at_end ? bits : moved);
+}
+
 inline float next_float_up(float v) {
-  if (std::isinf(v) && v > 0.0f) return v;
-  if (v == -0.0f) v = 0.0f;  // also catches +0: step from +0 to the smallest subnormal
-  std::uint32_t bits = std::bit_cast<std::uint32_t>(v);
-  bits = v >= 0.0f ? bits + 1 : bits - 1;
-  return std::bit_cast<float>(bits);
+  return next_float_toward(v, true);
 }
 
 inline SurfaceHit make_surface_hit(const SphereSet& spheres, const Ray& ray, const Hit& hit) {
@@ -72,14 +81,12 @@ inline bool leaves_outward(const SurfaceHit& s, const Vec3& direction, float rad
 // A ray leaving the surface in `direction`, with an origin outside the hit point's error box.
 inline Ray spawn_ray(const SurfaceHit& s, const Vec3& direction) {
   const float d = dot(abs(s.normal), s.point_error);
-  Vec3 offset = d * s.normal;
-  if (dot(direction, s.normal) < 0.0f) offset = -offset;
+  // The side is a select, not a branch: a dielectric picks it at random.
+  const Vec3 offset = (dot(direction, s.normal) < 0.0f ? -d : d) * s.normal;
   Vec3 origin = s.point + offset;
   // Round away from the surface so rounding in the addition cannot pull the origin back.
   auto away = [](float p, float o) {
-    if (o > 0.0f) return next_float_up(p);
-    if (o < 0.0f) return -next_float_up(-p);
-    return p;
+    return o > 0.0f || o < 0.0f ? next_float_toward(p, o > 0.0f) : p;
   };
   origin = {away(origin.x, offset.x), away(origin.y, offset.y), away(origin.z, offset.z)};
   return Ray{origin, direction};
