@@ -15,9 +15,10 @@ namespace rtiow {
 CheckpointSession::CheckpointSession(const std::string& output, const Scene& scene,
                                      const RenderSettings& settings, double interval_seconds,
                                      bool resume, bool quiet)
-    : path_(checkpoint_path(output)),
-      identity_(checkpoint_identity(scene, settings)),
-      enabled_(interval_seconds > 0.0) {
+    : path_(checkpoint_path(output)), enabled_(interval_seconds > 0.0) {
+  // The identity digests the scene's whole text (seconds for a million spheres): only a
+  // render that writes or reads a checkpoint needs it.
+  if (enabled_ || resume) identity_ = checkpoint_identity(scene, settings);
   if (resume) {
     resumed_ = read_checkpoint(path_, identity_);
     if (!resumed_) {

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -15,7 +16,10 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <sstream>
+#include <string_view>
 #include <vector>
+
+#include <oneapi/tbb/parallel_for.h>
 
 #include "core/io/input_file.h"
 #include "core/limits/input_limits.h"
@@ -294,6 +298,26 @@ ordered_json double3(const Vec3d& v) {
   return {v.x, v.y, v.z};
 }
 
+// Hands `sink` the text of items [0, n) in order, each item's written by `format(i, text)`:
+// blocks of items are formatted on every core (a million spheres' numbers are most of a big
+// scene's writing time), a bounded batch of blocks at a time, and passed on in order.
+template <typename Format>
+void write_lines_in_parallel(std::size_t n, const std::function<void(std::string_view)>& sink,
+                             const Format& format) {
+  constexpr std::size_t kBlock = 2048, kBlocksPerBatch = 64;
+  std::vector<std::string> blocks(kBlocksPerBatch);
+  for (std::size_t first = 0; first < n; first += kBlock * kBlocksPerBatch) {
+    const std::size_t count = std::min(kBlocksPerBatch, (n - first + kBlock - 1) / kBlock);
+    tbb::parallel_for(std::size_t(0), count, [&](std::size_t b) {
+      std::string& text = blocks[b];
+      text.clear();
+      const std::size_t begin = first + b * kBlock, end = std::min(n, begin + kBlock);
+      for (std::size_t i = begin; i < end; ++i) format(i, text);
+    });
+    for (std::size_t b = 0; b < count; ++b) sink(blocks[b]);
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source) {
@@ -335,7 +359,7 @@ Scene load_scene_file(const std::string& path) {
       limits::kMaxSceneFileBytes, path);
 }
 
-std::string scene_to_json(const Scene& scene) {
+void write_scene_json(const Scene& scene, const std::function<void(std::string_view)>& sink) {
   // Written line by line rather than as one document: one material or sphere per line is
   // readable and diffable, and a million spheres take seconds, not a DOM of gigabytes.
   ordered_json head;
@@ -352,24 +376,23 @@ std::string scene_to_json(const Scene& scene) {
                    {"depth", scene.image.max_depth}};
   head["background"] = {{"horizon", float3(scene.background.horizon)},
                         {"zenith", float3(scene.background.zenith)}};
-  std::string out = "{\n";
-  // Under 96 characters a material or a sphere: one allocation, not a copy per doubling.
-  out.reserve(1024 + 96 * (scene.materials.size() + scene.spheres.size()));
+  std::string text = "{\n";
   for (const auto& item : head.items()) {
-    out.append("  ").append(ordered_json(item.key()).dump()).append(": ");
-    out.append(item.value().dump()).append(",\n");
+    text.append("  ").append(ordered_json(item.key()).dump()).append(": ");
+    text.append(item.value().dump()).append(",\n");
   }
-  out.append("  \"materials\": {");
-  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+  text.append("  \"materials\": {");
+  sink(text);
+  write_lines_in_parallel(scene.materials.size(), sink, [&](std::size_t i, std::string& out) {
     out.append(i ? ",\n    \"" : "\n    \"").append(material_key(i)).append("\": ");
     out.append(material_to_json(scene.materials[i]));
-  }
-  out.append("\n  },\n  \"spheres\": [");
+  });
+  sink("\n  },\n  \"spheres\": [");
   const SphereSet& s = scene.spheres;
   // Each sphere as nlohmann writes {"center":[x,y,z],"radius":r,"material":"mN"}, built
   // without a JSON object per sphere (most of a million-sphere scene's time).
   const auto number = [](float v) { return ordered_json(shortest(v)).dump(); };
-  for (std::size_t i = 0; i < s.size(); ++i) {
+  write_lines_in_parallel(s.size(), sink, [&](std::size_t i, std::string& out) {
     out.append(i ? ",\n    " : "\n    ")
         .append("{\"center\":[")
         .append(number(s.center_x[i]))
@@ -382,8 +405,15 @@ std::string scene_to_json(const Scene& scene) {
         .append(",\"material\":\"")
         .append(material_key(s.material[i]))
         .append("\"}");
-  }
-  out.append("\n  ]\n}\n");
+  });
+  sink("\n  ]\n}\n");
+}
+
+std::string scene_to_json(const Scene& scene) {
+  std::string out;
+  // Under 96 characters a material or a sphere: one allocation, not a copy per doubling.
+  out.reserve(1024 + 96 * (scene.materials.size() + scene.spheres.size()));
+  write_scene_json(scene, [&](std::string_view piece) { out.append(piece); });
   return out;
 }
 

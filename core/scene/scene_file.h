@@ -18,7 +18,9 @@
 // Unknown fields are errors (a typo must not silently change a render). Every error names
 // the file and the place: "line L, column C" for syntax, a JSON pointer for content.
 
+#include <functional>
 #include <string>
+#include <string_view>
 
 #include "core/limits/error.h"
 #include "core/scene/scene.h"
@@ -35,5 +37,9 @@ Scene load_scene_file(const std::string& path);
 // The scene as version-1 JSON. Floats are written in their shortest form that reads back
 // to the same bits, so a written scene renders the identical image.
 std::string scene_to_json(const Scene& scene);
+
+// The same text, handed to `sink` piece by piece in order (for a digest of a large scene
+// without holding its text); formatted on every core of the calling thread's arena.
+void write_scene_json(const Scene& scene, const std::function<void(std::string_view)>& sink);
 
 }  // namespace rtiow
