@@ -214,6 +214,29 @@ TEST(Render, PacketsOfSeveralPixelsGiveEachPixelItsOwnSamples) {
   EXPECT_EQ(rays, whole.rays_traced);
 }
 
+// A small image on many threads is cut into 8x8 tiles instead of 16x16, and renders the
+// same bits as one thread with 16x16 tiles.
+TEST(Render, FinerTilesForManyThreadsGiveTheSameImage) {
+  EXPECT_EQ(tile_size(400, 225, 2), 16);
+  EXPECT_EQ(tile_size(400, 225, 64), 8);
+  EXPECT_EQ(tile_size(48, 32, 1), 8);  // 6 tiles of 16: fewer than 8 for even one thread
+  const Scene scene = make_builtin_scene("cover", 1);
+  RenderSettings settings = tiny(scene);
+  settings.width = 144, settings.height = 96;  // 54 tiles of 16x16
+  settings.threads = 1;
+  ASSERT_EQ(tile_size(settings.width, settings.height, 1), 16);
+  const RenderResult one = render(scene, settings);
+  settings.threads = 8;
+  ASSERT_EQ(tile_size(settings.width, settings.height, 8), 8);
+  const RenderResult many = render(scene, settings);
+  ASSERT_EQ(one.sums.size(), many.sums.size());
+  for (std::size_t p = 0; p < one.sums.size(); ++p) {
+    ASSERT_TRUE(one.sums[p] == many.sums[p]) << "pixel " << p;
+    ASSERT_TRUE(one.spreads[p] == many.spreads[p]) << "pixel " << p;
+  }
+  EXPECT_EQ(one.rays_traced, many.rays_traced);
+}
+
 TEST(PixelSum, RoundsEachSampleOnceAndClampsTheAbsurd) {
   PixelSum s;
   s.add({0.25f, 1.0f, 0.0f});

@@ -31,6 +31,16 @@ namespace rtiow {
 
 inline constexpr int kTileSize = 16;
 
+// The tile size a pass splits the image into: kTileSize, or half of it when that would give
+// fewer than eight tiles a thread (a small image on many cores), so that the last tiles do not
+// leave threads idle. Any tiling gives the same image (a pixel's samples, their order and
+// its exact sum do not depend on it).
+inline int tile_size(int width, int height, int threads) {
+  const long tiles =
+      long((width + kTileSize - 1) / kTileSize) * long((height + kTileSize - 1) / kTileSize);
+  return tiles < 8L * threads ? kTileSize / 2 : kTileSize;
+}
+
 // What every per-pixel function needs, passed as one: the scene, its camera, the
 // accelerator built over it and the render's settings.
 template <typename Accel>
@@ -185,20 +195,20 @@ std::uint64_t render_pass(const RenderContext<Accel>& ctx, std::uint32_t samples
                           PixelAccumulators& pixels, RenderProgress* progress) {
   const RenderSettings& settings = ctx.settings;
   std::atomic<std::uint64_t> rays{0};
-  parallel_over(
-      settings,
-      tbb::blocked_range2d<int>(0, settings.height, kTileSize, 0, settings.width, kTileSize),
-      [&](const tbb::blocked_range2d<int>& tile) {
-        std::uint64_t tile_rays = 0, tile_samples = 0;
-        const auto x0 = std::size_t(tile.cols().begin());
-        for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
-          const std::size_t row = std::size_t(y) * std::size_t(settings.width) + x0;
-          tile_samples += advance_pixels(
-              ctx, tile.cols().size(), [&](std::size_t k) { return row + k; },
-              [&](std::size_t) { return samples; }, pixels, tile_rays);
-        }
-        count_work(tile_rays, tile_samples, rays, progress);
-      });
+  const int side = tile_size(settings.width, settings.height, thread_count(settings.threads));
+  parallel_over(settings,
+                tbb::blocked_range2d<int>(0, settings.height, side, 0, settings.width, side),
+                [&](const tbb::blocked_range2d<int>& tile) {
+                  std::uint64_t tile_rays = 0, tile_samples = 0;
+                  const auto x0 = std::size_t(tile.cols().begin());
+                  for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+                    const std::size_t row = std::size_t(y) * std::size_t(settings.width) + x0;
+                    tile_samples += advance_pixels(
+                        ctx, tile.cols().size(), [&](std::size_t k) { return row + k; },
+                        [&](std::size_t) { return samples; }, pixels, tile_rays);
+                  }
+                  count_work(tile_rays, tile_samples, rays, progress);
+                });
   return rays.load();
 }
 
