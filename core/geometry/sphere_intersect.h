@@ -93,8 +93,8 @@ inline float sphere_hit_distance_exact(const Vec3& center, float radius, const R
                                        Rayd{Vec3d(ray.origin), Vec3d(ray.direction)}, double(t_min),
                                        double(t_max));
   const float rounded = float(t);
-  if (rounded > t_min && rounded < t_max) return rounded;
-  return std::numeric_limits<float>::infinity();
+  // A select, not a branch, so the lanes of sphere_hit_distances_exact vectorise.
+  return rounded > t_min && rounded < t_max ? rounded : std::numeric_limits<float>::infinity();
 }
 
 // The same, after the float pre-test has turned away the certain misses (a quarter of the
@@ -105,11 +105,7 @@ inline float sphere_hit_distance(const Vec3& center, float radius, const Ray& ra
   return sphere_hit_distance_exact(center, radius, ray, t_min, t_max);
 }
 
-// The exact test for kLanes rays at once, given as arrays of their components (a packet's
-// layout): lane k gets what sphere_hit_distance_exact gives ray k, bit for bit (the same IEEE
-// operations in the same order, no contraction), written as a branch-free loop over the
-// lanes so GCC computes them side by side in SIMD registers. No pre-test: it changes no
-// answer, and lanes pay for the whole test anyway.
+// kLanes rays as arrays of their components (a packet's layout).
 template <int kLanes>
 struct RayLanes {
   const float* origin[3];
@@ -118,18 +114,17 @@ struct RayLanes {
   const float* t_max;
 };
 
+// The exact test for kLanes rays at once: lane k is sphere_hit_distance_exact of ray k, in a
+// branch-free loop over the lanes that GCC computes side by side in SIMD registers (the same
+// IEEE operations, no contraction). No pre-test: it changes no answer, and lanes pay for the
+// whole test anyway.
 template <int kLanes>
 inline void sphere_hit_distances_exact(const Vec3& center, float radius,
                                        const RayLanes<kLanes>& rays, float* t_out) {
-  const Vec3d c(center);
-  const double r = radius;
   for (int k = 0; k < kLanes; ++k) {
-    const Rayd ray{{rays.origin[0][k], rays.origin[1][k], rays.origin[2][k]},
-                   {rays.direction[0][k], rays.direction[1][k], rays.direction[2][k]}};
-    const float t_min = rays.t_min[k], t_max = rays.t_max[k];
-    const float rounded = float(sphere_hit_distance(c, r, ray, double(t_min), double(t_max)));
-    t_out[k] =
-        rounded > t_min && rounded < t_max ? rounded : std::numeric_limits<float>::infinity();
+    const Ray ray{{rays.origin[0][k], rays.origin[1][k], rays.origin[2][k]},
+                  {rays.direction[0][k], rays.direction[1][k], rays.direction[2][k]}};
+    t_out[k] = sphere_hit_distance_exact(center, radius, ray, rays.t_min[k], rays.t_max[k]);
   }
 }
 
