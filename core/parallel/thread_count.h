@@ -1,7 +1,7 @@
 #pragma once
 // The thread count a user asked for (--threads), for all of the work it covers: the render's
-// passes, and before them the scene's construction and Embree's build, which use TBB's
-// parallel loops of whatever arena calls them.
+// passes, and before them the scene's construction (or a big scene file's parse) and
+// Embree's build, which use TBB's parallel loops of whatever arena calls them.
 
 #include <oneapi/tbb/info.h>
 #include <oneapi/tbb/task_arena.h>

@@ -1,6 +1,7 @@
 #include "core/scene/scene_file.h"
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -15,15 +16,21 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <vector>
 
+#include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/parallel_pipeline.h>
+#include <oneapi/tbb/task_arena.h>
 
 #include "core/io/input_file.h"
 #include "core/limits/input_limits.h"
+#include "core/parallel/thread_sanitizer.h"
 #include "core/scene/json_reader.h"
+#include "core/scene/json_split.h"
 #include "core/scene/json_stream.h"
 #include "core/scene/material_json.h"
 #include "core/scene/name_index.h"
@@ -120,18 +127,26 @@ class MaterialTable {
  public:
   MaterialTable(const Reader& r, SphereSet& spheres) : r_(r), spheres_(spheres) {}
 
-  void define(std::string_view name, const Material& m) {
+  void define(std::string_view name, const Material& m) { define(name, NameIndex::hash(name), m); }
+  void define(std::string_view name, std::uint64_t hash, const Material& m) {
     resolve_pending();
-    pending_ = {Pending::kDefine, std::string(name), NameIndex::hash(name), m, 0};
-    names_.prefetch(pending_.hash);
+    pending_ = {Pending::kDefine, std::string(name), hash, m, 0};
+    names_.prefetch(hash);
   }
 
   // Sets the material of sphere `sphere` (already added) to the one named.
   void refer(std::string_view name, std::size_t sphere) {
-    resolve_pending();
-    pending_ = {Pending::kRefer, std::string(name), NameIndex::hash(name), {}, sphere};
-    names_.prefetch(pending_.hash);
+    refer(name, NameIndex::hash(name), sphere);
   }
+  void refer(std::string_view name, std::uint64_t hash, std::size_t sphere) {
+    resolve_pending();
+    pending_ = {Pending::kRefer, std::string(name), hash, {}, sphere};
+    names_.prefetch(hash);
+  }
+
+  // Starts loading where a name of this hash will be looked up (a caller with many names at
+  // hand hides the miss better than the one-element delay can).
+  void prefetch(std::uint64_t hash) const { names_.prefetch(hash); }
 
   // Resolves the name read last. Call it before reading the next element, so that its error
   // (a duplicate name) comes before any error of the next.
@@ -204,8 +219,20 @@ class MaterialTable {
   Pending pending_;
 };
 
-void read_sphere(const Reader& r, const JsonValue& s, const Place& p, std::size_t i,
-                 MaterialTable& table, SphereSet& spheres) {
+// A sphere as read, its material still a name.
+struct SphereRecord {
+  Vec3 center;
+  float radius;
+  std::string material;
+};
+
+// A material as read, with its name.
+struct MaterialRecord {
+  std::string name;
+  Material material;
+};
+
+SphereRecord read_sphere(const Reader& r, const JsonValue& s, const Place& p) {
   r.object(s, p);
   r.only(s, p, {"center", "radius", "material"});
   const Vec3 center(r.vec3(r.require(s, p, "center"), Place(p, "center")));
@@ -214,29 +241,40 @@ void read_sphere(const Reader& r, const JsonValue& s, const Place& p, std::size_
   if (radius == 0.0f) r.fail(radius_at, "must not be 0 (negative makes a hollow sphere)");
   const std::string_view material =
       r.string(r.require(s, p, "material"), Place(p, "material"), "a material name");
-  spheres.add(center, radius, 0);
-  table.refer(material, i);
+  return {center, radius, std::string(material)};
 }
 
-// Reads a scene from a stream: materials and spheres are converted as they are parsed and
-// their text dropped; the rest (camera, image, background) is small and read at the end.
-Scene read_scene(const Reader& r, JsonInput& input) {
-  Scene scene;
-  MaterialTable table(r, scene.spheres);
-  const Place root_at;
-  const Place materials_at(root_at, "materials"), spheres_at(root_at, "spheres");
+void add_sphere(const SphereRecord& s, MaterialTable& table, SphereSet& spheres) {
+  spheres.add(s.center, s.radius, 0);
+  table.refer(s.material, spheres.size() - 1);
+}
+
+const Place kRootAt;
+const Place kMaterialsAt(kRootAt, "materials"), kSpheresAt(kRootAt, "spheres");
+
+// The streamed containers: materials and spheres are converted as they are parsed and their
+// text dropped.
+std::map<std::string, StreamedMember, std::less<>> streamed_members(const Reader& r,
+                                                                    MaterialTable& table,
+                                                                    SphereSet& spheres) {
   std::map<std::string, StreamedMember, std::less<>> streamed;
   streamed["materials"] = {true, [&](std::string_view key, std::size_t, const JsonValue& v) {
                              table.resolve_pending();
-                             table.define(key, read_material(r, v, Place(materials_at, key)));
+                             table.define(key, read_material(r, v, Place(kMaterialsAt, key)));
                            }};
   streamed["spheres"] = {false, [&](std::string_view, std::size_t i, const JsonValue& v) {
                            table.resolve_pending();
-                           read_sphere(r, v, Place(spheres_at, i), i, table, scene.spheres);
+                           add_sphere(read_sphere(r, v, Place(kSpheresAt, i)), table, spheres);
                          }};
-  JsonDocument root;
-  parse_json_stream(input, r.source(), streamed, root);
+  return streamed;
+}
 
+// The rest of a parsed scene (camera, image, background: small), read at the end into
+// `scene`, whose spheres `table` refers to.
+void finish_scene(const Reader& r, const JsonDocument& root, Scene& scene, MaterialTable& table) {
+  const Place& root_at = kRootAt;
+  const Place& materials_at = kMaterialsAt;
+  const Place& spheres_at = kSpheresAt;
   r.object(root, root_at);
   r.only(
       root, root_at,
@@ -272,8 +310,189 @@ Scene read_scene(const Reader& r, JsonInput& input) {
   }
   if (scene.spheres.size() == 0) r.fail(spheres_at, "the scene has no spheres");
   scene.materials = table.take();
+}
+
+// Reads a scene from a stream, in one piece.
+Scene read_scene(const Reader& r, JsonInput& input) {
+  Scene scene;
+  MaterialTable table(r, scene.spheres);
+  JsonDocument root;
+  parse_json_stream(input, r.source(), streamed_members(r, table, scene.spheres), root);
+  finish_scene(r, root, scene, table);
   return scene;
 }
+
+// What one window's runs read to, before the names are resolved in document order: the
+// records and their names' hashes, in document order.
+struct WindowRecords {
+  std::shared_ptr<const std::string> text;  // the window, kept until its runs are read
+  std::vector<MemberRun> runs;
+  std::vector<MaterialRecord> materials;
+  std::vector<SphereRecord> spheres;
+  std::vector<std::uint64_t> hashes;  // of each member's name, in document order
+};
+
+// Reads the run's members into `records`; false unless the run is exactly the members the
+// scan counted, each valid.
+bool read_run(const Reader& r, const MemberRun& run, WindowRecords& records) {
+  std::string text;
+  text.reserve(run.text.size() + 2);
+  text += run.is_object ? '{' : '[';
+  text += run.text;
+  text += run.is_object ? '}' : ']';
+  std::size_t offset = 0;
+  JsonInput input(
+      [&](char* buffer, std::size_t size) {
+        const std::size_t n = std::min(size, text.size() - offset);
+        std::memcpy(buffer, text.data() + offset, n);
+        offset += n;
+        return n;
+      },
+      limits::kMaxSceneFileBytes, r.source());
+  StreamedMember members{run.is_object, {}};
+  if (run.key == "materials") {
+    members.on_member = [&](std::string_view key, std::size_t, const JsonValue& v) {
+      records.materials.push_back(
+          {std::string(key), read_material(r, v, Place(kMaterialsAt, key))});
+      records.hashes.push_back(NameIndex::hash(key));
+    };
+  } else {
+    members.on_member = [&](std::string_view, std::size_t i, const JsonValue& v) {
+      records.spheres.push_back(read_sphere(r, v, Place(kSpheresAt, run.first + i)));
+      records.hashes.push_back(NameIndex::hash(records.spheres.back().material));
+    };
+  }
+  try {
+    return parse_json_members(input, r.source(), members) == run.members;
+  } catch (const InvalidInput&) {
+    return false;
+  }
+}
+
+// Adds a window's records to the table and the spheres in document order, prefetching the
+// table's slots some names ahead.
+void add_records(const WindowRecords& records, MaterialTable& table, SphereSet& spheres) {
+  constexpr std::size_t kAhead = 16;
+  const std::vector<std::uint64_t>& hashes = records.hashes;
+  std::size_t name = 0, material = 0, sphere = 0;
+  for (const MemberRun& run : records.runs) {
+    const bool materials = run.key == "materials";
+    for (std::size_t k = 0; k < run.members; ++k, ++name) {
+      if (name + kAhead < hashes.size()) table.prefetch(hashes[name + kAhead]);
+      if (materials) {
+        const MaterialRecord& m = records.materials[material++];
+        table.define(m.name, hashes[name], m.material);
+      } else {
+        const SphereRecord& s = records.spheres[sphere++];
+        spheres.add(s.center, s.radius, 0);
+        table.refer(s.material, hashes[name], spheres.size() - 1);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, const std::string& name,
+                                        std::size_t run_bytes, std::size_t window_bytes) {
+  const Reader r(one_line(name, 120));
+  Scene scene;
+  MaterialTable table(r, scene.spheres);
+  JsonSplitter splitter({{"materials", '{'}, {"spheres", '['}}, run_bytes, window_bytes);
+  std::string skeleton;
+  try {
+    // Three stages with windows in flight between them: cut (in order), read (on any core),
+    // resolve the names (in order, as the one-piece read does). A failure is a flag rather
+    // than an exception, which would leave the windows in flight undestroyed: the stages
+    // after it pass their windows on untouched, and the cut stops.
+    // (TSan cannot see TBB's own ordering of the stages: the annotations state it.)
+    bool done = false;
+    std::atomic<bool> failed{false};
+    char cut_order = 0, read_order = 0, resolve_order = 0;
+    // Windows pass between the stages as plain pointers (TBB's copies of them are its own
+    // business), owned by the stage that holds them.
+    using Window = WindowRecords*;
+    const auto cut = tbb::make_filter<void, Window>(
+        tbb::filter_mode::serial_in_order, [&](tbb::flow_control& control) {
+          tsan_acquire(&tsan_fork_sync);
+          tsan_acquire(&cut_order);
+          std::unique_ptr<WindowRecords> records;
+          if (done || failed) {
+            control.stop();
+          } else {
+            SplitWindow window;
+            if (!splitter.next(source, limits::kMaxSceneFileBytes, window, done, skeleton)) {
+              failed = true;
+            }
+            records = std::make_unique<WindowRecords>();
+            records->text = std::move(window.text);
+            records->runs = std::move(window.runs);
+          }
+          tsan_release(&cut_order);
+          tsan_release(&tsan_join_sync);
+          return records.release();
+        });
+    const auto read =
+        tbb::make_filter<Window, Window>(tbb::filter_mode::parallel, [&](Window records) {
+          tsan_acquire(&cut_order);
+          for (const MemberRun& run : records->runs) {
+            if (failed || !read_run(r, run, *records)) {
+              failed = true;
+              break;
+            }
+          }
+          records->text.reset();
+          tsan_release(&read_order);
+          return records;
+        });
+    const auto resolve =
+        tbb::make_filter<Window, void>(tbb::filter_mode::serial_in_order, [&](Window window) {
+          const std::unique_ptr<WindowRecords> records(window);
+          tsan_acquire(&read_order);
+          tsan_acquire(&resolve_order);
+          if (!failed) {
+            try {
+              add_records(*records, table, scene.spheres);  // refuses a material named twice
+            } catch (const InvalidInput&) {
+              failed = true;
+            }
+          }
+          tsan_release(&resolve_order);
+          tsan_release(&tsan_join_sync);
+        });
+    const auto tokens = std::size_t(2 * tbb::this_task_arena::max_concurrency());
+    tsan_release(&tsan_fork_sync);
+    tbb::parallel_pipeline(tokens, cut & read & resolve);
+    tsan_acquire(&tsan_join_sync);
+    if (failed) return std::nullopt;
+    // The skeleton's split containers are empty: a member there means the scan was wrong.
+    std::map<std::string, StreamedMember, std::less<>> streamed;
+    for (const char* key : {"materials", "spheres"}) {
+      streamed[key] = {std::string_view(key) == "materials",
+                       [](std::string_view, std::size_t, const JsonValue&) {
+                         throw InvalidInput("a member left in the skeleton");
+                       }};
+    }
+    std::size_t offset = 0;
+    JsonInput input(
+        [&](char* buffer, std::size_t size) {
+          const std::size_t n = std::min(size, skeleton.size() - offset);
+          std::memcpy(buffer, skeleton.data() + offset, n);
+          offset += n;
+          return n;
+        },
+        limits::kMaxSceneFileBytes, r.source());
+    JsonDocument root;
+    parse_json_stream(input, r.source(), streamed, root);
+    finish_scene(r, root, scene, table);
+    if (scene.name.empty()) scene.name = std::filesystem::path(name).stem().string();
+    return scene;
+  } catch (const InvalidInput&) {
+    return std::nullopt;
+  }
+}
+
+namespace {
 
 Scene read_scene_from(JsonInput::Source source, std::uint64_t max_bytes, const std::string& name) {
   const std::string shown = one_line(name, 120);
@@ -308,12 +527,20 @@ void write_lines_in_parallel(std::size_t n, const std::function<void(std::string
   std::vector<std::string> blocks(kBlocksPerBatch);
   for (std::size_t first = 0; first < n; first += kBlock * kBlocksPerBatch) {
     const std::size_t count = std::min(kBlocksPerBatch, (n - first + kBlock - 1) / kBlock);
-    tbb::parallel_for(std::size_t(0), count, [&](std::size_t b) {
-      std::string& text = blocks[b];
-      text.clear();
-      const std::size_t begin = first + b * kBlock, end = std::min(n, begin + kBlock);
-      for (std::size_t i = begin; i < end; ++i) format(i, text);
-    });
+    const auto format_blocks = [&](const tbb::blocked_range<std::size_t>& part) {
+      for (std::size_t b = part.begin(); b < part.end(); ++b) {
+        std::string& text = blocks[b];
+        text.clear();
+        const std::size_t begin = first + b * kBlock, end = std::min(n, begin + kBlock);
+        for (std::size_t i = begin; i < end; ++i) format(i, text);
+      }
+    };
+    // TSan cannot see TBB's fork and join: the annotations state them.
+    tsan_release(&tsan_fork_sync);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count),
+                      TsanOrderedBody<decltype(format_blocks)>(format_blocks),
+                      tbb::simple_partitioner());
+    tsan_acquire(&tsan_join_sync);
     for (std::size_t b = 0; b < count; ++b) sink(blocks[b]);
   }
 }
@@ -344,19 +571,28 @@ Scene load_scene_file(const std::string& path) {
         },
         limits::kMaxSceneFileBytes, "standard input");
   }
-  check_input_file(path, limits::kMaxSceneFileBytes, "scene file");
+  const std::uint64_t bytes = check_input_file(path, limits::kMaxSceneFileBytes, "scene file");
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (!file) throw InvalidInput("scene file " + quote_value(path) + ": cannot open it");
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(file, &std::fclose);
-  return read_scene_from(
-      [&](char* buffer, std::size_t size) {
-        const std::size_t n = std::fread(buffer, 1, size, file);
-        if (n == 0 && std::ferror(file)) {
-          throw InvalidInput("scene file " + quote_value(path) + ": cannot read it");
-        }
-        return n;
-      },
-      limits::kMaxSceneFileBytes, path);
+  const auto read = [&](char* buffer, std::size_t size) {
+    const std::size_t n = std::fread(buffer, 1, size, file);
+    if (n == 0 && std::ferror(file)) {
+      throw InvalidInput("scene file " + quote_value(path) + ": cannot read it");
+    }
+    return n;
+  };
+  // A big file is parsed on every core; if that fails, or the file is not one it can cut,
+  // it is read again in one piece, which says what is wrong and where.
+  if (bytes >= kSplitFileBytes && tbb::this_task_arena::max_concurrency() > 1) {
+    if (std::optional<Scene> scene =
+            read_scene_in_runs(read, path, kSplitRunBytes, kSplitWindowBytes)) {
+      return std::move(*scene);
+    }
+    std::rewind(file);
+    std::clearerr(file);
+  }
+  return read_scene_from(read, limits::kMaxSceneFileBytes, path);
 }
 
 void write_scene_json(const Scene& scene, const std::function<void(std::string_view)>& sink) {

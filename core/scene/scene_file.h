@@ -18,7 +18,10 @@
 // Unknown fields are errors (a typo must not silently change a render). Every error names
 // the file and the place: "line L, column C" for syntax, a JSON pointer for content.
 
+#include <cstddef>
+#include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -33,6 +36,20 @@ Scene parse_scene(const std::string& text, const std::string& source);
 // Reads and parses a scene file, or standard input for "-". Throws InvalidInput (including
 // for unreadable files).
 Scene load_scene_file(const std::string& path);
+
+// A scene file this big or bigger is parsed on every core (read_scene_in_runs), read
+// kSplitWindowBytes at a time, each window's members in one run per container.
+inline constexpr std::uint64_t kSplitFileBytes = std::uint64_t(4) << 20;
+inline constexpr std::size_t kSplitWindowBytes = std::size_t(4) << 20;
+inline constexpr std::size_t kSplitRunBytes = kSplitWindowBytes;
+
+// Scene JSON from `source` (named `name` in errors) parsed in runs of members on every core of
+// the calling thread's arena (core/scene/json_split.h), to the same scene as parse_scene; or
+// nothing when that fails for any reason, including every error in the text (parse it in one
+// piece then, for the error's message).
+std::optional<Scene> read_scene_in_runs(
+    const std::function<std::size_t(char*, std::size_t)>& source, const std::string& name,
+    std::size_t run_bytes, std::size_t window_bytes);
 
 // The scene as version-1 JSON. Floats are written in their shortest form that reads back
 // to the same bits, so a written scene renders the identical image.

@@ -1,0 +1,223 @@
+// A big scene file parsed on every core (read_scene_in_runs, core/scene/json_split.h) gives
+// the scene the one-piece parse gives, bit for bit, whatever the windows and runs it is cut
+// into; and it gives nothing (so the caller parses in one piece, for the message) for every
+// text the one-piece parse refuses, including thousands of random corruptions of a valid one.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/limits/error.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/scene/scene_file.h"
+
+namespace rtiow {
+namespace {
+
+// `text` in reads of at most `chunk` bytes.
+std::function<std::size_t(char*, std::size_t)> reader(const std::string& text, std::size_t chunk) {
+  return [&text, chunk, offset = std::size_t(0)](char* buffer, std::size_t size) mutable {
+    const std::size_t n = std::min({size, chunk, text.size() - offset});
+    std::memcpy(buffer, text.data() + offset, n);
+    offset += n;
+    return n;
+  };
+}
+
+std::optional<Scene> in_runs(const std::string& text, std::size_t run, std::size_t window,
+                             std::size_t chunk = 1 << 20) {
+  return read_scene_in_runs(reader(text, chunk), "t.json", run, window);
+}
+
+std::optional<Scene> in_one_piece(const std::string& text) {
+  try {
+    return parse_scene(text, "t.json");
+  } catch (const InvalidInput&) {
+    return std::nullopt;
+  }
+}
+
+// Two scenes are the same when they write the same text: every float is written in its
+// shortest exact form, and materials by index, so the material order counts too.
+void expect_same(const Scene& a, const Scene& b, const std::string& what) {
+  EXPECT_EQ(scene_to_json(a), scene_to_json(b)) << what;
+  EXPECT_EQ(a.spheres.material, b.spheres.material) << what;
+  EXPECT_EQ(a.name, b.name) << what;
+}
+
+const std::vector<std::size_t> kSizes = {1, 2, 7, 64, 1000, std::size_t(1) << 20};
+
+TEST(SceneInRuns, GivesTheOnePieceSceneForAnyWindowsAndRuns) {
+  for (const char* name : {"cover", "materials", "spheres:600"}) {
+    const std::string text = scene_to_json(make_builtin_scene(name, 1));
+    const Scene whole = parse_scene(text, "t.json");
+    for (const std::size_t window : kSizes) {
+      for (const std::size_t run : {std::size_t(1), std::size_t(300), std::size_t(1) << 20}) {
+        const std::optional<Scene> split = in_runs(text, run, window, 3);
+        const std::string what = std::string(name) + ", window " + std::to_string(window) +
+                                 ", run " + std::to_string(run);
+        ASSERT_TRUE(split.has_value()) << what;
+        expect_same(*split, whole, what);
+      }
+    }
+  }
+}
+
+TEST(SceneInRuns, KeepsTheOrderInWhichNamesFirstAppear) {
+  // Spheres before materials, a name used before it is defined, names with escapes and
+  // nested values, laid out otherwise than rtiow writes them.
+  const std::string text = R"({"spheres": [
+      {"center": [0, -1000, 0], "radius": 1000, "material": "gro\"und"},
+      {"material": "b", "radius": 0.5, "center": [1, 0.5, 0]} ,
+      {"center": [2, 0.5, 0], "radius": -0.45, "material": "gro\"und"}],
+    "version": 1,
+    "materials": {"b": {"type": "metal", "albedo": [0.7, 0.6, 0.5], "fuzz": 0.1},
+                  "unused": {"type": "dielectric", "ior": 1.5},
+                  "gro\"und": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}},
+    "camera": {"lookfrom": [13, 2, 3], "lookat": [0, 0, 0], "vfov": 20},
+    "image": {"width": 40, "height": 20}})";
+  const Scene whole = parse_scene(text, "t.json");
+  for (const std::size_t window : kSizes) {
+    for (const std::size_t run : {std::size_t(1), std::size_t(1) << 20}) {
+      const std::optional<Scene> split = in_runs(text, run, window);
+      ASSERT_TRUE(split.has_value()) << "window " << window << ", run " << run;
+      expect_same(*split, whole, "window " + std::to_string(window));
+    }
+  }
+  // Pretty-printed by another writer: the same scene again.
+  const std::string pretty = nlohmann::ordered_json::parse(text).dump(4);
+  const std::optional<Scene> split = in_runs(pretty, 50, 64);
+  ASSERT_TRUE(split.has_value());
+  expect_same(*split, whole, "pretty-printed");
+}
+
+TEST(SceneInRuns, RefusesWhatTheOnePieceParseRefuses) {
+  const std::string base = R"({"version": 1, "name": "s",
+    "camera": {"lookfrom": [13, 2, 3], "lookat": [0, 0, 0], "vfov": 20},
+    "image": {"width": 40, "height": 20},
+    "materials": {"g": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]},
+                  "m": {"type": "metal", "albedo": [0.7, 0.6, 0.5], "fuzz": 0}},
+    "spheres": [{"center": [0, -1000, 0], "radius": 1000, "material": "g"},
+                {"center": [1, 0.5, 0], "radius": 0.5, "material": "m"},
+                {"center": [2, 0.5, 0], "radius": 0.5, "material": "g"}]})";
+  const std::vector<std::string> refused = {
+      R"({"version": 1, "materials": {}, "spheres": []})",
+      R"({"version": 1, "materials": {"a": 1, "a": 1}, "spheres": [1]})",
+      "[1, 2]",
+      "",
+      R"({"materials": {"a": {}}, "spheres": [1, ]})",
+      R"({"materials": {"a": {}}, "spheres": [ , 1]})",
+      R"({"materials": {"a": {}}, "spheres": [1 2]})",
+      R"({"materials": {"a": {}}, "spheres": [1,,2]})",
+      R"({"materials": {"a": {}, , "b": {}}, "spheres": [1]})",
+      R"({"materials": {"a": {}}, "spheres": [1]]})",
+      R"({"materials": {"a": {}}, "spheres": [[1]})",
+      R"({"materi\u0061ls": {}, "spheres": [1]})",
+  };
+  for (const std::string& text : refused) {
+    ASSERT_FALSE(in_one_piece(text).has_value()) << text;
+    for (const std::size_t window : kSizes) {
+      EXPECT_FALSE(in_runs(text, 1, window).has_value()) << "window " << window << ": " << text;
+    }
+  }
+
+  // Random corruptions: a byte deleted, replaced by a structural one or duplicated, a span
+  // cut out or repeated. Whatever the parse in runs accepts, the one-piece parse accepts as
+  // the same scene; whatever that accepts, so does the parse in runs.
+  std::mt19937 rng(2026);
+  const std::string structural = "{}[],:\"\\ 0e-.";
+  int accepted = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::string text = base;
+    const int edits = 1 + int(rng() % 3);
+    for (int e = 0; e < edits && !text.empty(); ++e) {
+      const std::size_t at = rng() % text.size();
+      switch (rng() % 5) {
+        case 0:
+          text.erase(at, 1);
+          break;
+        case 1:
+          text[at] = structural[rng() % structural.size()];
+          break;
+        case 2:
+          text.insert(at, 1, text[at]);
+          break;
+        case 3:
+          text.erase(at, std::min<std::size_t>(rng() % 12, text.size() - at));
+          break;
+        default: {
+          const std::size_t length = std::min<std::size_t>(rng() % 40, text.size() - at);
+          text.insert(at, text.substr(at, length));
+        }
+      }
+    }
+    const std::optional<Scene> whole = in_one_piece(text);
+    const std::size_t window = kSizes[rng() % kSizes.size()];
+    const std::optional<Scene> split = in_runs(text, 1 + rng() % 200, window, 1 + rng() % 64);
+    ASSERT_EQ(split.has_value(), whole.has_value()) << "window " << window << ": " << text;
+    if (whole) {
+      ++accepted;
+      expect_same(*split, *whole, text);
+    }
+  }
+  EXPECT_GT(accepted, 20);  // some corruptions keep a valid scene (spaces, digits)
+}
+
+TEST(SceneInRuns, LeavesAHugeMemberToTheOnePieceParse) {
+  // 2 MiB of spaces inside one sphere: valid, but carried from window to window it would be
+  // copied again each time (a hostile file's quadratic cost), so the scan gives up on it.
+  std::string text = scene_to_json(make_builtin_scene("materials", 1));
+  text.insert(text.find("\"radius\""), std::string(std::size_t(2) << 20, ' '));
+  ASSERT_TRUE(in_one_piece(text).has_value());
+  EXPECT_FALSE(in_runs(text, 1 << 20, 64 << 10).has_value());
+  // And a root value as big: the skeleton too.
+  std::string name_text = scene_to_json(make_builtin_scene("materials", 1));
+  name_text.insert(name_text.find("\"camera\""), std::string(std::size_t(2) << 20, '\n'));
+  ASSERT_TRUE(in_one_piece(name_text).has_value());
+  EXPECT_FALSE(in_runs(name_text, 1 << 20, 64 << 10).has_value());
+}
+
+TEST(SceneInRuns, ABigSceneFileLoadsAsTheOnePieceParseReadsIt) {
+  const std::string text = scene_to_json(make_builtin_scene("spheres:40000", 3));
+  ASSERT_GE(text.size(), kSplitFileBytes);  // so load_scene_file cuts it
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / "rtiow_scene_in_runs_test.json";
+  std::ofstream(path, std::ios::binary) << text;
+  const Scene loaded = load_scene_file(path.string());
+  expect_same(loaded, parse_scene(text, path.string()), "spheres:40000");
+
+  // A file refused deep inside: the one-piece parse's message, line and column.
+  std::string broken = text;
+  const std::size_t at = broken.rfind("\"radius\":");
+  broken.replace(at, 9, "\"radius\" ");
+  std::ofstream(path, std::ios::binary) << broken;
+  std::string message;
+  try {
+    load_scene_file(path.string());
+  } catch (const InvalidInput& e) {
+    message = e.what();
+  }
+  std::string expected;
+  try {
+    parse_scene(broken, path.string());
+  } catch (const InvalidInput& e) {
+    expected = e.what();
+  }
+  EXPECT_FALSE(expected.empty());
+  EXPECT_EQ(message, expected);
+  EXPECT_NE(message.find("expected ':' after a key"), std::string::npos) << message;
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace rtiow
