@@ -101,6 +101,29 @@ TEST(SceneInRuns, KeepsTheOrderInWhichNamesFirstAppear) {
   expect_same(*split, whole, "pretty-printed");
 }
 
+TEST(SceneInRuns, ReadsEscapesAtEveryPlaceInABlockAndAWindow) {
+  // The scan takes 64 bytes at a time where they hold no backslash: an escaped quote or
+  // backslash at each offset of a block, and a window ending on one, still split right.
+  const std::string head =
+      R"({"materials": {"a\\\"b": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]},
+      "c\"": {"type": "metal", "albedo": [0.7, 0.6, 0.5], "fuzz": 0}}, "spheres": [)";
+  const std::string tail = R"({"center": [0, -1000, 0], "radius": 1000, "material": "a\\\"b"},
+      {"center": [1, 0.5, 0], "radius": 0.5, "material": "c\""},
+      {"center": [2, 0.5, 0], "radius": 0.5, "material": "a\\\"b"}],
+    "camera": {"lookfrom": [13, 2, 3], "lookat": [0, 0, 0], "vfov": 20}, "version": 1,
+    "image": {"width": 40, "height": 20}})";
+  for (std::size_t pad = 0; pad < 140; ++pad) {
+    const std::string text = head + std::string(pad, ' ') + tail;
+    const Scene whole = parse_scene(text, "t.json");
+    ASSERT_EQ(whole.materials.size(), 2u);
+    for (const std::size_t window : {std::size_t(64), std::size_t(97), std::size_t(1) << 20}) {
+      const std::optional<Scene> split = in_runs(text, 1, window);
+      ASSERT_TRUE(split.has_value()) << "pad " << pad << ", window " << window;
+      expect_same(*split, whole, "pad " + std::to_string(pad));
+    }
+  }
+}
+
 TEST(SceneInRuns, RefusesWhatTheOnePieceParseRefuses) {
   const std::string base = R"({"version": 1, "name": "s",
     "camera": {"lookfrom": [13, 2, 3], "lookat": [0, 0, 0], "vfov": 20},

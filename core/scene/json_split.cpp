@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <mutex>
 #include <utility>
+
+#include "core/scene/json_byte_masks.h"
 
 namespace rtiow {
 namespace {
@@ -33,15 +37,44 @@ constexpr std::size_t kMaxPieceBytes = std::size_t(1) << 20;
 
 }  // namespace
 
+// Windows' buffers are used again once every run in them is read: a fresh buffer of a few
+// MiB costs its page faults each time, and that cost is on the one thread that cuts.
+struct JsonSplitter::BufferPool {
+  std::mutex mutex;
+  std::vector<std::unique_ptr<std::string>> free;
+};
+
+std::shared_ptr<std::string> JsonSplitter::take_buffer() {
+  std::unique_ptr<std::string> buffer;
+  {
+    const std::lock_guard lock(pool_->mutex);
+    if (!pool_->free.empty()) {
+      buffer = std::move(pool_->free.back());
+      pool_->free.pop_back();
+    }
+  }
+  if (!buffer) buffer = std::make_unique<std::string>();
+  return std::shared_ptr<std::string>(buffer.release(), [pool = pool_](std::string* text) {
+    std::unique_ptr<std::string> owned(text);
+    try {
+      const std::lock_guard lock(pool->mutex);
+      pool->free.push_back(std::move(owned));
+    } catch (...) {  // no room to keep it: it is freed
+    }
+  });
+}
+
 JsonSplitter::JsonSplitter(std::map<std::string, char, std::less<>> split, std::size_t run_bytes,
                            std::size_t window_bytes)
     : split_(std::move(split)),
       run_bytes_(std::max<std::size_t>(run_bytes, 1)),
-      window_bytes_(std::max<std::size_t>(window_bytes, 1)) {}
+      window_bytes_(std::max<std::size_t>(window_bytes, 1)),
+      pool_(std::make_shared<BufferPool>()) {}
 
 bool JsonSplitter::next(const Source& source, std::uint64_t max_bytes, SplitWindow& out, bool& done,
                         std::string& skeleton) {
-  auto window = std::make_shared<std::string>(std::move(carry_));
+  std::shared_ptr<std::string> window = take_buffer();
+  window->assign(carry_);
   carry_.clear();
   const std::size_t kept = window->size();
   window->resize(kept + window_bytes_);
@@ -98,12 +131,66 @@ void JsonSplitter::end_run(const std::string& window, std::size_t end, bool last
   run_commas_ = 0;
 }
 
+bool JsonSplitter::container_byte(const std::string& window, std::size_t at) {
+  const char c = window[at];
+  if (c == '{' || c == '[') {
+    ++inner_depth_;
+  } else if (c == '}' || c == ']') {
+    if (inner_depth_ > 0) {
+      --inner_depth_;
+      return false;
+    }
+    end_run(window, at, true);  // the container closes
+    splitting_ = false;
+    --depth_;
+    return true;
+  } else if (inner_depth_ == 0) {  // a comma between two members
+    if (at - run_start_ >= run_bytes_) {
+      end_run(window, at, false);
+    } else {
+      ++run_commas_;
+      last_comma_ = at;
+      commas_at_last_ = run_commas_;
+    }
+  }
+  return false;
+}
+
 bool JsonSplitter::scan(const std::string& window, std::size_t from, std::size_t to,
                         std::string& skeleton) {
   const char* data = window.data();
   std::size_t copied = from;  // the skeleton holds the window's bytes before this
   std::size_t i = from;
+  std::size_t bytewise_until = from;  // a block with an escape is scanned byte by byte
   while (i < to) {
+    if (splitting_ && !escaped_ && i >= bytewise_until && to - i >= 64) {
+      // 64 bytes at once, visiting only the structural bytes outside strings. A block with a
+      // backslash goes byte by byte (escapes are rare in a scene file), and so does the byte
+      // after one.
+      const JsonByteMasks block = classify_json_bytes(data + i);
+      if (block.backslash != 0) {
+        bytewise_until = i + 64;
+        continue;
+      }
+      const std::uint64_t strings = json_string_bytes(block.quote, in_string_);
+      std::uint64_t structural = (block.open | block.close | block.comma) & ~strings;
+      bool closed = false;
+      while (structural != 0 && !closed) {
+        const std::size_t at = i + std::size_t(std::countr_zero(structural));
+        structural &= structural - 1;
+        closed = container_byte(window, at);
+        if (closed) {
+          copied = at;
+          in_string_ = false;
+          i = at + 1;
+        }
+      }
+      if (!closed) {
+        in_string_ = (strings >> 63) != 0;
+        i += 64;
+      }
+      continue;
+    }
     if (escaped_) {  // the byte after a backslash in a string
       escaped_ = false;
       ++i;
@@ -126,28 +213,10 @@ bool JsonSplitter::scan(const std::string& window, std::size_t from, std::size_t
     if (splitting_) {
       i = skip_until(data, i, to, kContainerStops);
       if (i == to) break;
-      const char c = data[i];
-      if (c == '"') {
+      if (data[i] == '"') {
         in_string_ = true;
-      } else if (c == '{' || c == '[') {
-        ++inner_depth_;
-      } else if (c == '}' || c == ']') {
-        if (inner_depth_ == 0) {  // the container closes
-          end_run(window, i, true);
-          splitting_ = false;
-          --depth_;
-          copied = i;
-        } else {
-          --inner_depth_;
-        }
-      } else if (inner_depth_ == 0) {  // a comma between two members
-        if (i - run_start_ >= run_bytes_) {
-          end_run(window, i, false);
-        } else {
-          ++run_commas_;
-          last_comma_ = i;
-          commas_at_last_ = run_commas_;
-        }
+      } else if (container_byte(window, i)) {
+        copied = i;
       }
       ++i;
       continue;

@@ -63,9 +63,16 @@ class JsonSplitter {
   // Scans bytes [from, to) of the window; false when the document cannot be cut.
   bool scan(const std::string& window, std::size_t from, std::size_t to, std::string& skeleton);
   void end_run(const std::string& window, std::size_t end, bool last);
+  // A bracket or comma outside strings inside a split container; true when it closes it.
+  bool container_byte(const std::string& window, std::size_t at);
+
+  // A window's buffer, taken from those its readers have let go of.
+  std::shared_ptr<std::string> take_buffer();
 
   std::map<std::string, char, std::less<>> split_;
   std::size_t run_bytes_, window_bytes_;
+  struct BufferPool;
+  std::shared_ptr<BufferPool> pool_;
 
   std::string carry_;  // the open run's bytes at the end of the last window
   std::uint64_t total_ = 0;
