@@ -5,12 +5,13 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/scene/json_float.h"
+
 namespace rtiow {
 namespace {
 
 using scene_json::Place;
 using scene_json::Reader;
-using scene_json::shortest;
 
 template <typename M>
 void read_parameter(const Reader& r, const JsonValue& v, const Place& p, const ColorParameter<M>& d,
@@ -55,19 +56,23 @@ M read_fields(const Reader& r, const JsonValue& v, const Place& p) {
   return m;
 }
 
-// Parameters as JSON text (as nlohmann writes them: the shortest decimals that read back to
-// the same floats), built directly: a million materials are written for a scene's digest.
-std::string number_text(float v) {
-  return nlohmann::ordered_json(shortest(v)).dump();
-}
+// Parameters as JSON text, built directly: a million materials are written for a scene's
+// digest.
 template <typename M>
 std::string value_text(const ColorParameter<M>& d, const M& m) {
   const Color& c = m.*d.member;
-  return "[" + number_text(c.x) + "," + number_text(c.y) + "," + number_text(c.z) + "]";
+  std::string text = "[";
+  append_json_float(text, c.x);
+  text.push_back(',');
+  append_json_float(text, c.y);
+  text.push_back(',');
+  append_json_float(text, c.z);
+  text.push_back(']');
+  return text;
 }
 template <typename M>
 std::string value_text(const NumberParameter<M>& d, const M& m) {
-  return number_text(m.*d.member);
+  return json_float_text(m.*d.member);
 }
 template <typename M, typename E, std::size_t N>
 std::string value_text(const ChoiceParameter<M, E, N>& d, const M& m) {

@@ -29,6 +29,7 @@
 #include "core/io/input_file.h"
 #include "core/limits/input_limits.h"
 #include "core/parallel/thread_sanitizer.h"
+#include "core/scene/json_float.h"
 #include "core/scene/json_reader.h"
 #include "core/scene/json_split.h"
 #include "core/scene/json_stream.h"
@@ -502,12 +503,11 @@ Scene read_scene_from(JsonInput::Source source, std::uint64_t max_bytes, const s
   return scene;
 }
 
-// Materials written from a scene are named by index. (Built with append: GCC 12 warns
-// falsely, -Wrestrict, on "literal" + std::string.)
-std::string material_key(std::size_t index) {
-  std::string key = "m";
-  key.append(std::to_string(index));
-  return key;
+// Materials written from a scene are named by index: "m" and the index.
+void append_material_key(std::string& out, std::size_t index) {
+  char digits[24];
+  out.push_back('m');
+  out.append(digits, std::to_chars(digits, digits + sizeof digits, index).ptr);
 }
 
 ordered_json float3(const Vec3& v) {
@@ -620,27 +620,27 @@ void write_scene_json(const Scene& scene, const std::function<void(std::string_v
   text.append("  \"materials\": {");
   sink(text);
   write_lines_in_parallel(scene.materials.size(), sink, [&](std::size_t i, std::string& out) {
-    out.append(i ? ",\n    \"" : "\n    \"").append(material_key(i)).append("\": ");
+    out.append(i ? ",\n    \"" : "\n    \"");
+    append_material_key(out, i);
+    out.append("\": ");
     out.append(material_to_json(scene.materials[i]));
   });
   sink("\n  },\n  \"spheres\": [");
   const SphereSet& s = scene.spheres;
   // Each sphere as nlohmann writes {"center":[x,y,z],"radius":r,"material":"mN"}, built
   // without a JSON object per sphere (most of a million-sphere scene's time).
-  const auto number = [](float v) { return ordered_json(shortest(v)).dump(); };
   write_lines_in_parallel(s.size(), sink, [&](std::size_t i, std::string& out) {
-    out.append(i ? ",\n    " : "\n    ")
-        .append("{\"center\":[")
-        .append(number(s.center_x[i]))
-        .append(",")
-        .append(number(s.center_y[i]))
-        .append(",")
-        .append(number(s.center_z[i]))
-        .append("],\"radius\":")
-        .append(number(s.radius[i]))
-        .append(",\"material\":\"")
-        .append(material_key(s.material[i]))
-        .append("\"}");
+    out.append(i ? ",\n    " : "\n    ").append("{\"center\":[");
+    append_json_float(out, s.center_x[i]);
+    out.push_back(',');
+    append_json_float(out, s.center_y[i]);
+    out.push_back(',');
+    append_json_float(out, s.center_z[i]);
+    out.append("],\"radius\":");
+    append_json_float(out, s.radius[i]);
+    out.append(",\"material\":\"");
+    append_material_key(out, s.material[i]);
+    out.append("\"}");
   });
   sink("\n  ]\n}\n");
 }
