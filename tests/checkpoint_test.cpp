@@ -4,10 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/limits/error.h"
@@ -15,6 +18,7 @@
 #include "core/render/render.h"
 #include "core/render/render_state.h"
 #include "core/scene/builtin_scenes.h"
+#include "core/scene/scene_file.h"
 #include "tests/test_files.h"
 
 namespace rtiow {
@@ -188,6 +192,50 @@ TEST_F(CheckpointFile, RefusesAnotherRequestNamingWhatDiffers) {
   const Scene materials = make_builtin_scene("materials", 1);
   why = refusal(checkpoint_identity(materials, settings_));
   EXPECT_NE(why.find("scene"), std::string::npos) << why;
+}
+
+TEST_F(CheckpointFile, TheSceneDigestTellsApartAnyChangeToTheScene) {
+  // The digest takes the spheres and materials as bits, not as text: every field of them,
+  // and the settings, still count; a scene read back from its file is the same scene.
+  const std::string base = checkpoint_identity(scene_, settings_).scene;
+  EXPECT_EQ(checkpoint_identity(parse_scene(scene_to_json(scene_), "c.json"), settings_).scene,
+            base);
+  std::vector<std::pair<std::string, std::function<void(Scene&)>>> changes = {
+      {"a centre's x",
+       [](Scene& s) { s.spheres.center_x[7] = std::nextafter(s.spheres.center_x[7], 1e9f); }},
+      {"a centre's y", [](Scene& s) { s.spheres.center_y[7] += 1; }},
+      {"a centre's z", [](Scene& s) { s.spheres.center_z.back() = -s.spheres.center_z.back(); }},
+      {"a radius", [](Scene& s) { s.spheres.radius[0] = -s.spheres.radius[0]; }},
+      {"a sphere's material",
+       [](Scene& s) { std::swap(s.spheres.material[1], s.spheres.material[2]); }},
+      {"a sphere more",
+       [](Scene& s) {
+         s.spheres.add({0, 9, 0}, 1, 0);
+       }},
+      {"a material's kind",
+       [](Scene& s) {
+         s.materials[3] = Metal{{0.1f, 0.2f, 0.3f}, 0.05f};
+       }},
+      {"a glass's Fresnel model",
+       [](Scene& s) {
+         for (Material& m : s.materials) {
+           if (auto* glass = std::get_if<Dielectric>(&m)) {
+             glass->fresnel = FresnelModel::Exact;
+             return;
+           }
+         }
+       }},
+      {"an albedo", [](Scene& s) { std::get<Lambertian>(s.materials[0]).albedo.z = 0.25f; }},
+      {"a material more", [](Scene& s) { s.add_material(Dielectric{1.5f}); }},
+      {"the background", [](Scene& s) { s.background.zenith.x = 0.4f; }},
+      {"the camera", [](Scene& s) { s.camera.vfov_degrees += 1; }},
+      {"the name", [](Scene& s) { s.name += "'"; }},
+  };
+  for (const auto& [what, change] : changes) {
+    Scene changed = scene_;
+    change(changed);
+    EXPECT_NE(checkpoint_identity(changed, settings_).scene, base) << what;
+  }
 }
 
 TEST_F(CheckpointFile, RefusesDamagedFiles) {

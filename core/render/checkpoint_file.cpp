@@ -16,9 +16,9 @@
 #include <variant>
 #include <vector>
 
+#include "core/io/checksum.h"
 #include "core/limits/error.h"
-#include "core/parallel/thread_count.h"
-#include "core/scene/scene_file.h"
+#include "core/scene/scene_digest.h"
 #include "core/version.h"
 
 namespace rtiow {
@@ -29,52 +29,6 @@ namespace fs = std::filesystem;
 constexpr char kMagic[] = "rtiow-checkpoint 2\n";
 constexpr std::size_t kMaxHeaderBytes = 1 << 16;
 constexpr std::size_t kChunkBytes = 1 << 20;
-
-// A 64-bit checksum of a byte stream, eight bytes at a time (a multiply-xorshift over
-// words): it catches a torn or altered file, and costs little beside the write.
-class Checksum {
- public:
-  void update(const char* data, std::size_t n) {
-    std::size_t i = 0;
-    for (; i < n && filled_ != 0; ++i) add_byte(data[i]);
-    // Whole words at once (the same little-endian word the bytes would make).
-    for (; i + 8 <= n; i += 8) {
-      std::memcpy(&word_, data + i, 8);
-      flush_word();
-    }
-    for (; i < n; ++i) add_byte(data[i]);
-  }
-  std::uint64_t value() const {
-    std::uint64_t h = state_ ^ (word_ * 0x9e3779b97f4a7c15ull) ^ filled_;
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdull;
-    return h ^ (h >> 33);
-  }
-
- private:
-  void add_byte(char byte) {
-    word_ |= std::uint64_t(static_cast<unsigned char>(byte)) << (8 * filled_);
-    if (++filled_ == 8) flush_word();
-  }
-  void flush_word() {
-    state_ = (state_ ^ word_) * 0x100000001b3ull;
-    state_ ^= state_ >> 29;
-    word_ = 0;
-    filled_ = 0;
-  }
-  std::uint64_t state_ = 0xcbf29ce484222325ull, word_ = 0;
-  unsigned filled_ = 0;
-};
-
-// The digest of the scene's JSON text, taken as it is written (a million-sphere scene's
-// text is 150 MB, formatted on every core).
-std::string scene_digest(const Scene& scene) {
-  Checksum c;
-  write_scene_json(scene, [&](std::string_view piece) { c.update(piece.data(), piece.size()); });
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016" PRIx64, c.value());
-  return hex;
-}
 
 // Fixed-size little-endian records (x86-64 and the other targets rtiow builds on are
 // little-endian; the header's magic would not parse on a machine that disagreed).
@@ -299,7 +253,7 @@ CheckpointIdentity checkpoint_identity(const Scene& scene, const RenderSettings&
     mode = value + min_spp + spp;
   }
   return {version(),
-          with_threads(s.threads, [&] { return scene_digest(scene); }),
+          scene_digest(scene),
           std::to_string(s.width) + "x" + std::to_string(s.height),
           std::to_string(s.max_depth),
           std::to_string(s.seed),

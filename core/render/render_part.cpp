@@ -17,7 +17,7 @@
 #include "core/render/render_metadata.h"
 #include "core/render/sample_share.h"
 #include "core/sampling/rng.h"
-#include "core/scene/scene_file.h"
+#include "core/scene/scene_digest.h"
 
 namespace rtiow {
 namespace {
@@ -81,7 +81,7 @@ std::int64_t metadata_int(const Metadata& m, const std::string& key) {
 }  // namespace
 
 std::string render_digest(const Scene& scene, const RenderSettings& settings) {
-  std::string text = scene_to_json(scene);
+  std::string text = scene_digest(scene);
   for (const std::uint64_t v : {std::uint64_t(settings.width), std::uint64_t(settings.height),
                                 std::uint64_t(settings.max_depth), settings.seed}) {
     text.append("|").append(std::to_string(v));

@@ -595,9 +595,7 @@ Scene load_scene_file(const std::string& path) {
   return read_scene_from(read, limits::kMaxSceneFileBytes, path);
 }
 
-void write_scene_json(const Scene& scene, const std::function<void(std::string_view)>& sink) {
-  // Written line by line rather than as one document: one material or sphere per line is
-  // readable and diffable, and a million spheres take seconds, not a DOM of gigabytes.
+std::string scene_settings_json(const Scene& scene) {
   ordered_json head;
   head["version"] = kVersion;
   head["name"] = scene.name;
@@ -617,8 +615,13 @@ void write_scene_json(const Scene& scene, const std::function<void(std::string_v
     text.append("  ").append(ordered_json(item.key()).dump()).append(": ");
     text.append(item.value().dump()).append(",\n");
   }
-  text.append("  \"materials\": {");
-  sink(text);
+  return text;
+}
+
+void write_scene_json(const Scene& scene, const std::function<void(std::string_view)>& sink) {
+  // Written line by line rather than as one document: one material or sphere per line is
+  // readable and diffable, and a million spheres take seconds, not a DOM of gigabytes.
+  sink(scene_settings_json(scene).append("  \"materials\": {"));
   write_lines_in_parallel(scene.materials.size(), sink, [&](std::size_t i, std::string& out) {
     out.append(i ? ",\n    \"" : "\n    \"");
     append_material_key(out, i);

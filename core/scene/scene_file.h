@@ -55,6 +55,10 @@ std::optional<Scene> read_scene_in_runs(
 // to the same bits, so a written scene renders the identical image.
 std::string scene_to_json(const Scene& scene);
 
+// The scene's settings (all of it but its materials and spheres): the lines that begin that
+// text, up to its materials.
+std::string scene_settings_json(const Scene& scene);
+
 // The same text, handed to `sink` piece by piece in order (for a digest of a large scene
 // without holding its text); formatted on every core of the calling thread's arena.
 void write_scene_json(const Scene& scene, const std::function<void(std::string_view)>& sink);
