@@ -12,8 +12,10 @@
 //     memory grows with what the callbacks keep, not with the text.
 // Errors are InvalidInput "<source>: line L, column C: <what>".
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <map>
 #include <memory>
@@ -33,6 +35,16 @@ class JsonInput {
 
   JsonInput(Source source, std::uint64_t max_bytes, std::string name);
   JsonInput(const JsonInput&) = delete;
+
+  // A source that reads `text` (which must outlive it).
+  static Source from_text(std::string_view text) {
+    return [text, offset = std::size_t(0)](char* buffer, std::size_t size) mutable {
+      const std::size_t n = std::min(size, text.size() - offset);
+      std::memcpy(buffer, text.data() + offset, n);
+      offset += n;
+      return n;
+    };
+  }
   JsonInput& operator=(const JsonInput&) = delete;
 
   // "line L, column C" of a byte offset; "line L" alone if the offset is no longer buffered.

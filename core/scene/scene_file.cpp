@@ -341,15 +341,7 @@ bool read_run(const Reader& r, const MemberRun& run, WindowRecords& records) {
   text += run.is_object ? '{' : '[';
   text += run.text;
   text += run.is_object ? '}' : ']';
-  std::size_t offset = 0;
-  JsonInput input(
-      [&](char* buffer, std::size_t size) {
-        const std::size_t n = std::min(size, text.size() - offset);
-        std::memcpy(buffer, text.data() + offset, n);
-        offset += n;
-        return n;
-      },
-      limits::kMaxSceneFileBytes, r.source());
+  JsonInput input(JsonInput::from_text(text), limits::kMaxSceneFileBytes, r.source());
   StreamedMember members{run.is_object, {}};
   if (run.key == "materials") {
     members.on_member = [&](std::string_view key, std::size_t, const JsonValue& v) {
@@ -474,15 +466,7 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
                          throw InvalidInput("a member left in the skeleton");
                        }};
     }
-    std::size_t offset = 0;
-    JsonInput input(
-        [&](char* buffer, std::size_t size) {
-          const std::size_t n = std::min(size, skeleton.size() - offset);
-          std::memcpy(buffer, skeleton.data() + offset, n);
-          offset += n;
-          return n;
-        },
-        limits::kMaxSceneFileBytes, r.source());
+    JsonInput input(JsonInput::from_text(skeleton), limits::kMaxSceneFileBytes, r.source());
     JsonDocument root;
     parse_json_stream(input, r.source(), streamed, root);
     finish_scene(r, root, scene, table);
@@ -548,15 +532,7 @@ void write_lines_in_parallel(std::size_t n, const std::function<void(std::string
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source) {
-  std::size_t offset = 0;
-  return read_scene_from(
-      [&](char* buffer, std::size_t size) {
-        const std::size_t n = std::min(size, text.size() - offset);
-        std::memcpy(buffer, text.data() + offset, n);
-        offset += n;
-        return n;
-      },
-      limits::kMaxSceneFileBytes, source);
+  return read_scene_from(JsonInput::from_text(text), limits::kMaxSceneFileBytes, source);
 }
 
 Scene load_scene_file(const std::string& path) {
