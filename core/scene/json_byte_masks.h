@@ -7,8 +7,8 @@
 
 #include <cstdint>
 
-#if defined(__AVX2__) || defined(__SSE2__)
-#include <immintrin.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
 #endif
 
 namespace rtiow {
@@ -24,22 +24,7 @@ struct JsonByteMasks {
 // '[' and ']' are '{' and '}' without bit 5, and no other byte is: one compare finds both.
 inline JsonByteMasks classify_json_bytes(const char* block) {
   JsonByteMasks m;
-#if defined(__AVX2__)
-  for (int half = 0; half < 2; ++half) {
-    const __m256i bytes = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(block + 32 * half));
-    const __m256i folded = _mm256_or_si256(bytes, _mm256_set1_epi8(0x20));
-    const auto bits = [&](__m256i v, char c) {
-      return std::uint64_t(
-                 std::uint32_t(_mm256_movemask_epi8(_mm256_cmpeq_epi8(v, _mm256_set1_epi8(c)))))
-             << (32 * half);
-    };
-    m.quote |= bits(bytes, '"');
-    m.backslash |= bits(bytes, '\\');
-    m.open |= bits(folded, '{');
-    m.close |= bits(folded, '}');
-    m.comma |= bits(bytes, ',');
-  }
-#elif defined(__SSE2__)
+#if defined(__SSE2__)  // every x86-64 CPU: four 16-byte compares a class
   for (int part = 0; part < 4; ++part) {
     const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(block + 16 * part));
     const __m128i folded = _mm_or_si128(bytes, _mm_set1_epi8(0x20));

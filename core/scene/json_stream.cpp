@@ -428,9 +428,8 @@ std::size_t parse_json_members(JsonInput& input, const std::string& source,
   JsonDocument root;
   const auto builder = std::make_unique<BoundedBuilder>(members, root);
   parse_with(input, source, builder);
-  const bool is_object = root.IsObject();
-  if (!root.IsArray() && !is_object) throw InvalidInput(source + ": not a run of members");
-  if (is_object != members.is_object) throw InvalidInput(source + ": not a run of members");
+  const bool expected = members.is_object ? root.IsObject() : root.IsArray();
+  if (!expected) throw InvalidInput(source + ": not a run of members");
   return builder->streamed_count();
 }
 

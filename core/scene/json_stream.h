@@ -35,6 +35,7 @@ class JsonInput {
 
   JsonInput(Source source, std::uint64_t max_bytes, std::string name);
   JsonInput(const JsonInput&) = delete;
+  JsonInput& operator=(const JsonInput&) = delete;
 
   // A source that reads `text` (which must outlive it).
   static Source from_text(std::string_view text) {
@@ -45,7 +46,6 @@ class JsonInput {
       return n;
     };
   }
-  JsonInput& operator=(const JsonInput&) = delete;
 
   // "line L, column C" of a byte offset; "line L" alone if the offset is no longer buffered.
   std::string position(std::uint64_t offset) const;

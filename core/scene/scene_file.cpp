@@ -128,7 +128,7 @@ class MaterialTable {
  public:
   MaterialTable(const Reader& r, SphereSet& spheres) : r_(r), spheres_(spheres) {}
 
-  void define(std::string_view name, const Material& m) { define(name, NameIndex::hash(name), m); }
+  // `hash`: NameIndex::hash(name), which a caller may have computed on another core.
   void define(std::string_view name, std::uint64_t hash, const Material& m) {
     resolve_pending();
     pending_ = {Pending::kDefine, std::string(name), hash, m, 0};
@@ -136,9 +136,6 @@ class MaterialTable {
   }
 
   // Sets the material of sphere `sphere` (already added) to the one named.
-  void refer(std::string_view name, std::size_t sphere) {
-    refer(name, NameIndex::hash(name), sphere);
-  }
   void refer(std::string_view name, std::uint64_t hash, std::size_t sphere) {
     resolve_pending();
     pending_ = {Pending::kRefer, std::string(name), hash, {}, sphere};
@@ -245,9 +242,11 @@ SphereRecord read_sphere(const Reader& r, const JsonValue& s, const Place& p) {
   return {center, radius, std::string(material)};
 }
 
-void add_sphere(const SphereRecord& s, MaterialTable& table, SphereSet& spheres) {
+// `hash`: of the sphere's material name (NameIndex::hash).
+void add_sphere(const SphereRecord& s, std::uint64_t hash, MaterialTable& table,
+                SphereSet& spheres) {
   spheres.add(s.center, s.radius, 0);
-  table.refer(s.material, spheres.size() - 1);
+  table.refer(s.material, hash, spheres.size() - 1);
 }
 
 const Place kRootAt;
@@ -261,11 +260,13 @@ std::map<std::string, StreamedMember, std::less<>> streamed_members(const Reader
   std::map<std::string, StreamedMember, std::less<>> streamed;
   streamed["materials"] = {true, [&](std::string_view key, std::size_t, const JsonValue& v) {
                              table.resolve_pending();
-                             table.define(key, read_material(r, v, Place(kMaterialsAt, key)));
+                             table.define(key, NameIndex::hash(key),
+                                          read_material(r, v, Place(kMaterialsAt, key)));
                            }};
   streamed["spheres"] = {false, [&](std::string_view, std::size_t i, const JsonValue& v) {
                            table.resolve_pending();
-                           add_sphere(read_sphere(r, v, Place(kSpheresAt, i)), table, spheres);
+                           const SphereRecord sphere = read_sphere(r, v, Place(kSpheresAt, i));
+                           add_sphere(sphere, NameIndex::hash(sphere.material), table, spheres);
                          }};
   return streamed;
 }
@@ -273,43 +274,40 @@ std::map<std::string, StreamedMember, std::less<>> streamed_members(const Reader
 // The rest of a parsed scene (camera, image, background: small), read at the end into
 // `scene`, whose spheres `table` refers to.
 void finish_scene(const Reader& r, const JsonDocument& root, Scene& scene, MaterialTable& table) {
-  const Place& root_at = kRootAt;
-  const Place& materials_at = kMaterialsAt;
-  const Place& spheres_at = kSpheresAt;
-  r.object(root, root_at);
+  r.object(root, kRootAt);
   r.only(
-      root, root_at,
+      root, kRootAt,
       {"version", "name", "scene_seed", "camera", "image", "background", "materials", "spheres"});
-  const JsonValue& version = r.require(root, root_at, "version");
+  const JsonValue& version = r.require(root, kRootAt, "version");
   if (!version.IsNumber() || !version.IsInt() || version.GetInt() != kVersion) {
-    r.fail(Place(root_at, "version"), "this rtiow reads scene format version " +
+    r.fail(Place(kRootAt, "version"), "this rtiow reads scene format version " +
                                           std::to_string(kVersion) + ", got " +
                                           Reader::describe(version));
   }
   if (const JsonValue* name = r.find(root, "name")) {
-    scene.name = r.string(*name, Place(root_at, "name"), "a string");
+    scene.name = r.string(*name, Place(kRootAt, "name"), "a string");
   }
   if (const JsonValue* seed = r.find(root, "scene_seed")) {
-    if (!seed->IsUint64()) r.fail(Place(root_at, "scene_seed"), "must be a whole number >= 0");
+    if (!seed->IsUint64()) r.fail(Place(kRootAt, "scene_seed"), "must be a whole number >= 0");
     scene.layout_seed = seed->GetUint64();
   }
-  read_camera(r, r.require(root, root_at, "camera"), scene.camera);
-  read_image(r, r.require(root, root_at, "image"), scene.image);
+  read_camera(r, r.require(root, kRootAt, "camera"), scene.camera);
+  read_image(r, r.require(root, kRootAt, "image"), scene.image);
 
   if (const JsonValue* bg = r.find(root, "background")) {
-    const Place at(root_at, "background");
+    const Place at(kRootAt, "background");
     r.object(*bg, at);
     r.only(*bg, at, {"horizon", "zenith"});
     scene.background.horizon = r.color(r.require(*bg, at, "horizon"), Place(at, "horizon"));
     scene.background.zenith = r.color(r.require(*bg, at, "zenith"), Place(at, "zenith"));
   }
 
-  r.object(r.require(root, root_at, "materials"), materials_at);
-  const JsonValue& spheres = r.require(root, root_at, "spheres");
+  r.object(r.require(root, kRootAt, "materials"), kMaterialsAt);
+  const JsonValue& spheres = r.require(root, kRootAt, "spheres");
   if (!spheres.IsArray()) {
-    r.fail(spheres_at, "must be an array, got " + Reader::describe(spheres));
+    r.fail(kSpheresAt, "must be an array, got " + Reader::describe(spheres));
   }
-  if (scene.spheres.size() == 0) r.fail(spheres_at, "the scene has no spheres");
+  if (scene.spheres.size() == 0) r.fail(kSpheresAt, "the scene has no spheres");
   scene.materials = table.take();
 }
 
@@ -376,9 +374,7 @@ void add_records(const WindowRecords& records, MaterialTable& table, SphereSet& 
         const MaterialRecord& m = records.materials[material++];
         table.define(m.name, hashes[name], m.material);
       } else {
-        const SphereRecord& s = records.spheres[sphere++];
-        spheres.add(s.center, s.radius, 0);
-        table.refer(s.material, hashes[name], spheres.size() - 1);
+        add_sphere(records.spheres[sphere++], hashes[name], table, spheres);
       }
     }
   }
