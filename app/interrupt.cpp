@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include "core/io/removed_on_abort.h"
+
 namespace rtiow {
 namespace {
 
@@ -14,38 +16,56 @@ void write_stderr(const char* text, std::size_t size) {
   [[maybe_unused]] const ssize_t ignored = ::write(STDERR_FILENO, text, size);
 }
 
+// Async-signal-safe: no allocation, no stdio.
+[[noreturn]] void end_at_once(int signal) {
+  remove_files_now();
+  constexpr char kHead[] = "\nrtiow: ended by signal ";
+  constexpr char kTail[] = "; nothing more was written\n";
+  char number[3] = {char('0' + signal / 10 % 10), char('0' + signal % 10), 0};
+  write_stderr(kHead, sizeof kHead - 1);
+  write_stderr(signal < 10 ? number + 1 : number, signal < 10 ? 1 : 2);
+  write_stderr(kTail, sizeof kTail - 1);
+  ::_exit(128 + signal);
+}
+
 void on_signal(int signal) {
-  if (g_signal != 0) {
-    constexpr char kAbort[] = "\nrtiow: aborted\n";
-    write_stderr(kAbort, sizeof kAbort - 1);
-    ::_exit(128 + signal);
-  }
+  if (g_signal != 0) end_at_once(signal);
   g_signal = signal;
   if (g_stop) g_stop->store(true);
   constexpr char kStopping[] =
-      "\nrtiow: stopping after the current pass to write the samples done (again to abort)\n";
+      "\nrtiow: stopping: the samples done will be written (again to end at once)\n";
   write_stderr(kStopping, sizeof kStopping - 1);
+}
+
+void install(void (*handler)(int), struct sigaction* previous) {
+  struct sigaction action {};
+  action.sa_handler = handler;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  for (std::size_t i = 0; i < std::size(kHandledSignals); ++i) {
+    struct sigaction before {};
+    sigaction(kHandledSignals[i], nullptr, &before);
+    if (previous) previous[i] = before;
+    if (before.sa_handler == SIG_IGN) continue;  // ignored by whoever started us
+    sigaction(kHandledSignals[i], &action, nullptr);
+  }
 }
 
 }  // namespace
 
+void end_at_once_on_signals() {
+  install(end_at_once, nullptr);
+}
+
 InterruptGuard::InterruptGuard(std::atomic<bool>& stop) {
   g_stop = &stop;
   g_signal = 0;
-  struct sigaction action {};
-  action.sa_handler = on_signal;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESTART;
-  for (std::size_t i = 0; i < std::size(kSignals); ++i) {
-    sigaction(kSignals[i], nullptr, &previous_[i]);
-    if (previous_[i].sa_handler == SIG_IGN) continue;  // ignored by whoever started us
-    sigaction(kSignals[i], &action, nullptr);
-  }
+  install(on_signal, previous_);
 }
 
 InterruptGuard::~InterruptGuard() {
-  for (std::size_t i = 0; i < std::size(kSignals); ++i) {
-    sigaction(kSignals[i], &previous_[i], nullptr);
+  for (std::size_t i = 0; i < std::size(kHandledSignals); ++i) {
+    sigaction(kHandledSignals[i], &previous_[i], nullptr);
   }
   g_stop = nullptr;
 }

@@ -21,6 +21,7 @@
 #include "app/accuracy_command.h"
 #include "app/bench_command.h"
 #include "app/diff_command.h"
+#include "app/interrupt.h"
 #include "app/merge_command.h"
 #include "app/mpi_session.h"
 #include "app/render_command.h"
@@ -147,6 +148,9 @@ int check_standard_output(int code) {
 
 int main(int argc, char** argv) {
   hold_standard_descriptors();
+  // A signal ends rtiow in its own words, with no temporary left (a render stops gracefully
+  // first: app/interrupt.h).
+  rtiow::end_at_once_on_signals();
   std::set_terminate(on_terminate);
   // A closed pipe is an error to report (exit 1), not a signal that kills silently.
   std::signal(SIGPIPE, SIG_IGN);

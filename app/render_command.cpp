@@ -19,6 +19,7 @@
 #include "app/mpi_session.h"
 #include "app/output_lock.h"
 #include "app/progress_display.h"
+#include "core/io/atomic_file.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_output.h"
 #include "core/io/output_path.h"
@@ -60,6 +61,8 @@ struct RenderOptions {
   bool reproducible = false;
   double checkpoint_seconds = 60.0;  // 0: none
   bool resume = false;
+  bool restart = false;
+  bool keep_state = false;
   std::string sample_range;  // "A:B": render a share of the samples into a part file
   std::string part;          // "i/n": the i-th of n equal shares
   std::vector<double> lookfrom, lookat, vup;
@@ -257,9 +260,7 @@ Job prepare_job(const RenderOptions& o, bool scene_option_given, bool output_giv
 // Renders with Ctrl-C handling and, unless quiet, a progress display (under MPI on rank 0,
 // which shows its own share: it moves with the others').
 RenderResult render_with_progress(const RenderOptions& o, const Job& job, const MpiSession& mpi,
-                                  const Checkpointing* checkpointing) {
-  RenderProgress progress;
-  const InterruptGuard interrupt(progress.stop_requested);
+                                  RenderProgress& progress, const Checkpointing* checkpointing) {
   std::unique_ptr<ProgressDisplay> display;
   if (!o.quiet && mpi.rank() == 0) {
     // Adaptive sampling and an open-ended time limit have no total to show progress against.
@@ -288,7 +289,7 @@ bool gather_ranks(const MpiSession& mpi, Job& job, RenderResult& result, bool sp
   return true;
 }
 
-void write_result(const RenderOptions& o, const Job& job, RenderResult& result) {
+void write_result(const RenderOptions& o, const Job& job, const RenderResult& result) {
   const Metadata metadata = render_metadata(job.scene, job.settings, result, o.reproducible);
   if (!job.share) {
     write_image(job.output, result.film, metadata,
@@ -302,8 +303,8 @@ void write_result(const RenderOptions& o, const Job& job, RenderResult& result) 
   part.job_samples = job.samples_asked;
   part.digest = render_digest(job.scene, job.settings);
   part.metadata = metadata;
-  part.sums = std::move(result.sums);
-  part.spreads = std::move(result.spreads);
+  part.sums = result.sums;  // copied: kept in the result, should the write fail
+  part.spreads = result.spreads;
   write_part(job.output, part);
 }
 
@@ -311,7 +312,7 @@ void write_result(const RenderOptions& o, const Job& job, RenderResult& result) 
 void print_summary(const Job& job, const RenderResult& result, const MpiSession& mpi) {
   const RenderSettings& s = job.settings;
   const double rays = double(result.rays_traced);
-  const int threads = s.threads > 0 ? s.threads : int(std::thread::hardware_concurrency());
+  const int threads = thread_count(s.threads);  // the threads used (core/parallel/thread_count.h)
   const std::string ranks = mpi.distributed() ? std::to_string(mpi.size()) + " ranks x " : "";
   std::fprintf(stderr,
                "rendered %s %dx%d, %s, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
@@ -330,8 +331,15 @@ std::unique_ptr<CheckpointSession> open_checkpoint(const RenderOptions& o, const
     if (o.resume) throw InvalidInput("--resume is for a render in one process, not under mpirun");
     return nullptr;
   }
-  auto session = std::make_unique<CheckpointSession>(job.output, job.scene, job.settings,
-                                                     o.checkpoint_seconds, o.resume, o.quiet);
+  if (o.resume && o.restart) throw InvalidInput("give --resume or --restart, not both");
+  CheckpointOptions options;
+  options.interval_seconds = o.checkpoint_seconds;
+  options.resume = o.resume, options.restart = o.restart;
+  options.keep_state = o.keep_state, options.quiet = o.quiet;
+  if (o.keep_state && o.checkpoint_seconds <= 0.0) {
+    throw InvalidInput("--keep-state keeps the render's checkpoint: it needs --checkpoint above 0");
+  }
+  auto session = std::make_unique<CheckpointSession>(job.output, job.scene, job.settings, options);
   if (session->resumed_from() && !o.quiet) {
     std::fprintf(stderr, "rtiow: resuming from %s (%u spp done)\n",
                  quote_value(session->path()).c_str(), *session->resumed_from());
@@ -339,41 +347,32 @@ std::unique_ptr<CheckpointSession> open_checkpoint(const RenderOptions& o, const
   return session;
 }
 
-// Writes the image; if that fails after the render, says where the pixels are kept.
-void write_or_keep(const RenderOptions& o, const Job& job, RenderResult& result,
-                   const CheckpointSession* checkpoint) {
+// Writes the image; if that fails after the render, keeps the render's state and says where.
+void write_or_keep(const RenderOptions& o, const Job& job, const RenderResult& result,
+                   CheckpointSession* checkpoint) {
   try {
     write_result(o, job, result);
   } catch (const InvalidInput&) {
     throw;
   } catch (const std::exception& e) {
-    if (!checkpoint || !checkpoint->enabled()) throw;
+    if (!checkpoint || !checkpoint->checkpointing()) throw;  // --checkpoint 0: nothing kept
     const std::string what = dynamic_cast<const std::bad_alloc*>(&e)
                                  ? "out of memory writing " + quote_value(job.output, kWholePath)
                                  : std::string(e.what());
+    try {
+      checkpoint->image_lost(state_of(result));
+    } catch (const std::bad_alloc&) {  // no memory for a copy of the state: said below
+    }
     if (!checkpoint->holds_the_render()) {
-      throw std::runtime_error(what + "; and no checkpoint was kept (" + checkpoint->failure() +
-                               ")");
+      throw std::runtime_error(what + "; and the render's state could not be kept" +
+                               (checkpoint->failure().empty() ? std::string()
+                                                              : " (" + checkpoint->failure() + ")"));
     }
     throw std::runtime_error(what + "; the render is kept in " +
                              quote_value(checkpoint->kept_at(), kWholePath) + ": " +
                              checkpoint->how_to_continue() + " to write it");
   }
-}
-
-// A render whose image was written but whose last checkpoint was not where it belongs.
-void warn_if_not_kept(const CheckpointSession* checkpoint, bool quiet) {
-  if (!checkpoint || quiet || checkpoint->failure().empty()) return;
-  if (checkpoint->holds_the_render()) {
-    std::fprintf(stderr,
-                 "rtiow: warning: %s; the checkpoint is kept in %s instead (%s to refine)\n",
-                 one_line(checkpoint->failure()).c_str(),
-                 quote_value(checkpoint->kept_at(), kWholePath).c_str(),
-                 checkpoint->how_to_continue().c_str());
-    return;
-  }
-  std::fprintf(stderr, "rtiow: warning: %s (the image is written; --resume cannot continue it)\n",
-               one_line(checkpoint->failure()).c_str());
+  if (checkpoint) checkpoint->image_written();
 }
 
 // A uniform render that asks for more than a day of work on a 2-core machine (the cover runs
@@ -394,14 +393,41 @@ void note_long_request(const Job& job) {
                fixed->per_pixel, s.width, s.height, samples, days);
 }
 
+// A signal that arrived where the render could not stop for it (the scene's load, the final
+// writes) ends the command once they are done, in rtiow's words; 0 if none did.
+int interrupted_outside_render(const char* when) {
+  const int signal = InterruptGuard::signal_received();
+  if (signal == 0) return 0;
+  std::fprintf(stderr, "rtiow: interrupted (signal %d) %s\n", signal, when);
+  return 128 + signal;
+}
+
+// The work a killed render left beside the output: its temporaries (the lock is held, so no
+// live rtiow writes them).
+void remove_leftovers(const std::string& output, bool quiet) {
+  const int removed =
+      remove_stale_temporaries(output) + remove_stale_temporaries(checkpoint_path(output));
+  if (removed > 0 && !quiet) {
+    std::fprintf(stderr, "rtiow: removed %d temporar%s an interrupted rtiow left beside %s\n",
+                 removed, removed == 1 ? "y" : "ies", quote_value(output).c_str());
+  }
+}
+
 int run_render(const RenderOptions& o, bool scene_option_given, bool output_given,
                const MpiSession& mpi) {
   if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
+  // From the scene's load to the last write, a signal asks the command to stop gracefully.
+  RenderProgress progress;
+  const InterruptGuard interrupt(progress.stop_requested);
   Job job = prepare_job(o, scene_option_given, output_given, mpi);
+  if (const int code = interrupted_outside_render("before the render began; nothing was written")) {
+    return code;
+  }
   if (mpi.rank() == 0) note_long_request(job);
   // Rank 0 writes the output (and, alone, keeps a checkpoint).
   const std::optional<OutputLock> lock =
       mpi.rank() == 0 ? std::make_optional<OutputLock>(job.output) : std::nullopt;
+  if (lock) remove_leftovers(job.output, o.quiet);
   const std::unique_ptr<CheckpointSession> checkpoint = open_checkpoint(o, job, mpi);
   // The image library loads on a second thread while the render runs (rank 0 writes), unless
   // rtiow encodes the format itself (PNG): then it is never loaded.
@@ -410,10 +436,11 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
     const ImageFormat* format = image_format(job.output);
     if (!format || !format->own_encoder) preload_image_backend();
   }
-  RenderResult result =
-      render_with_progress(o, job, mpi, checkpoint ? checkpoint->checkpointing() : nullptr);
+  RenderResult result = render_with_progress(o, job, mpi, progress,
+                                             checkpoint ? checkpoint->checkpointing() : nullptr);
   if (mpi.distributed() && !gather_ranks(mpi, job, result, o.stats_channels)) return 0;
   write_or_keep(o, job, result, checkpoint.get());
+  if (checkpoint) checkpoint->warn_where_kept();  // even when quiet
   if (result.stopped) {
     // What was asked: a count, a budget (--adaptive), a cap, or nothing but a time limit.
     const RenderSettings& s = job.settings;
@@ -438,8 +465,7 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
     return 128 + InterruptGuard::signal_received();
   }
   if (!o.quiet) print_summary(job, result, mpi);
-  warn_if_not_kept(checkpoint.get(), o.quiet);
-  return 0;
+  return interrupted_outside_render("after the render ended; the image is complete");
 }
 
 }  // namespace
@@ -547,12 +573,20 @@ void add_run_options(CLI::App* cmd, RenderOptions& o) {
                   "file (.exr)");
   cmd->add_option("--checkpoint", o.checkpoint_seconds,
                   "Keep the render's state in <output>.rtiow-checkpoint, saved every this many "
-                  "seconds, when a signal stops it and when it ends (0: no checkpoint)")
+                  "seconds and when a signal stops it, and removed when the render finishes "
+                  "(0: no checkpoint)")
       ->check(kFiniteNotNegative)
       ->capture_default_str();
   cmd->add_flag("--resume", o.resume,
                 "Continue the render of the same request from its checkpoint (to more samples "
                 "with a larger --spp); without a checkpoint, render from the start");
+  cmd->add_flag("--restart", o.restart,
+                "Discard the checkpoint beside the output and render from the start (a render "
+                "never replaces a checkpoint unless told: --resume or --restart)");
+  cmd->add_flag("--keep-state", o.keep_state,
+                "Keep the checkpoint of a finished render (compact, about 60 bytes a pixel), so "
+                "--resume with a larger --spp refines it; without it, a finished render removes "
+                "its checkpoint");
   cmd->add_flag("--reproducible", o.reproducible,
                 "Leave wall-clock metadata (render time) out of the file, so the same scene, "
                 "settings and seed give a byte-identical file");

@@ -64,21 +64,33 @@ class BackgroundRender {
 
   void signal(int sig) const { ::kill(pid_, sig); }
 
-  // Waits (up to 20 s) until the render catches SIGINT, i.e. has installed its handler: a
-  // signal before that would just kill it, as it should, but would test nothing.
-  bool wait_until_catching_sigint() const {
+  // Waits (up to 20 s) until the render has begun: it holds its output's lock
+  // (`.<name>.rtiow-lock` beside the -o path), taken after the scene is loaded and just before
+  // the render starts. A signal before that ends the command before any work, as it should,
+  // but would test nothing of a render's stop. A render with no -o: until it catches SIGINT.
+  bool wait_until_rendering() const {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    std::string lock;
+    for (std::size_t i = 0; i + 1 < args_.size(); ++i) {
+      if (args_[i] == "-o" || args_[i] == "--output") {
+        const std::filesystem::path out(args_[i + 1]);
+        std::string name = ".";  // appended: GCC 12 warns falsely (-Wrestrict) on "." + ...
+        name.append(out.filename().string()).append(".rtiow-lock");
+        lock = (out.parent_path() / name).string();
+      }
+    }
     const std::string status_path = "/proc/" + std::to_string(pid_) + "/status";
     while (std::chrono::steady_clock::now() < deadline) {
+      if (!lock.empty() && std::filesystem::exists(lock)) return true;
       std::ifstream status(status_path);
       std::string line;
-      while (std::getline(status, line)) {
+      while (lock.empty() && std::getline(status, line)) {
         if (line.rfind("SigCgt:", 0) == 0) {
           const unsigned long long caught = std::stoull(line.substr(7), nullptr, 16);
           if (caught & (1ull << (SIGINT - 1))) return true;
         }
       }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
     return false;
   }

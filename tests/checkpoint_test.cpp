@@ -62,7 +62,7 @@ void expect_resumes_exactly(const RenderSettings& settings, const std::string& w
   int saves = 0;
   Checkpointing checkpointing;
   checkpointing.interval_seconds = 1e-9;  // every pass, every group of an adaptive round
-  checkpointing.save = [&](const RenderState& state, bool) {
+  checkpointing.save = [&](const RenderState& state, SaveReason) {
     ++saves;
     if ((saves & (saves - 1)) == 0 || saves % 37 == 0) kept.push_back(state);
   };
@@ -98,7 +98,7 @@ TEST(Checkpoint, FinishedRenderRefinesToTheLargerCount) {
   RenderSettings s = small(SamplerKind::Sobol);
   RenderState finished{0};
   Checkpointing keep;
-  keep.save = [&](const RenderState& state, bool) { finished = state; };
+  keep.save = [&](const RenderState& state, SaveReason) { finished = state; };
   s.samples = FixedSamples{12};
   render(scene, s, nullptr, &keep);
   s.samples = FixedSamples{40};
@@ -129,7 +129,7 @@ class CheckpointFile : public ::testing::Test {
   RenderState saved_state() {
     RenderState saved{0};
     Checkpointing keep;
-    keep.save = [&](const RenderState& state, bool) { saved = state; };
+    keep.save = [&](const RenderState& state, SaveReason) { saved = state; };
     RenderSettings s = settings_;
     s.samples = AdaptiveBudget{48, 4};
     settings_ = s;
@@ -139,7 +139,7 @@ class CheckpointFile : public ::testing::Test {
 
   std::string refusal(const CheckpointIdentity& identity) {
     try {
-      read_checkpoint(path_.string(), identity);
+      read_checkpoint(path_.string(), identity, settings_);
     } catch (const InvalidInput& e) {
       return e.what();
     }
@@ -151,7 +151,7 @@ TEST_F(CheckpointFile, KeepsTheStateBitForBit) {
   const RenderState state = saved_state();
   const CheckpointIdentity id = checkpoint_identity(scene_, settings_);
   write_checkpoint(path_.string(), id, state);
-  const std::optional<RenderState> read = read_checkpoint(path_.string(), id);
+  const std::optional<RenderState> read = read_checkpoint(path_.string(), id, settings_);
   ASSERT_TRUE(read);
   EXPECT_TRUE(read->pixels.sums == state.pixels.sums);
   EXPECT_EQ(read->pixels.samples, state.pixels.samples);
@@ -163,7 +163,7 @@ TEST_F(CheckpointFile, KeepsTheStateBitForBit) {
   for (std::size_t p = 0; p < state.pixels.spreads.size(); ++p) {
     ASSERT_TRUE(read->pixels.spreads[p] == state.pixels.spreads[p]);
   }
-  EXPECT_FALSE(read_checkpoint((path_.string() + ".none"), id)) << "no file: nothing to resume";
+  EXPECT_FALSE(read_checkpoint((path_.string() + ".none"), id, settings_)) << "no file: nothing to resume";
 }
 
 TEST_F(CheckpointFile, RefusesAnotherRequestNamingWhatDiffers) {
@@ -249,7 +249,7 @@ TEST_F(CheckpointFile, RefusesDamagedFiles) {
     EXPECT_NE(why.find(expected), std::string::npos) << "got: " << why;
   };
   refused_with(good.substr(0, good.size() / 2), "ends before its pixels do");
-  refused_with(good.substr(0, good.size() - 3), "ends before its pixels do");
+  refused_with(good.substr(0, good.size() - 3), "ends before its checksum");
   std::string flipped = good;
   flipped[good.size() / 2] = char(flipped[good.size() / 2] ^ 0x10);
   refused_with(flipped, "checksum");

@@ -119,8 +119,8 @@ bool kill_at(BackgroundRender& r, Moment moment, double delay_seconds, const fs:
              const std::string& output_name, int sig = SIGKILL) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   std::string checkpoint_temp = ".", image_temp = ".";  // the writers' temporaries
-  checkpoint_temp.append(output_name).append(".rtiow-checkpoint.tmp-");
-  image_temp.append(fs::path(output_name).stem().string()).append(".tmp-");
+  checkpoint_temp.append(output_name).append(".rtiow-checkpoint.rtiow-tmp-");
+  image_temp.append(output_name).append(".rtiow-tmp-");
   if (moment == Moment::Delay) {
     std::this_thread::sleep_for(std::chrono::duration<double>(delay_seconds));
   } else {
@@ -186,6 +186,10 @@ TEST(Checkpoint, RendersKilledAtRandomMomentsResumeToTheSameFile) {
     // Resumed (possibly more than once: a kill before the first checkpoint leaves nothing).
     const CommandResult resumed = run_rtiow(with(request, {"--resume", "-o", out}));
     ASSERT_EQ(resumed.exit_code, 0) << "trial " << trial << ": " << resumed.stderr_text;
+    // The finished render leaves its image alone: the kill's temporaries are cleaned, the
+    // checkpoint removed.
+    EXPECT_FALSE(has_file_starting(dir, "." + name)) << "trial " << trial << ": a temporary left";
+    EXPECT_FALSE(fs::exists(out + ".rtiow-checkpoint")) << "trial " << trial;
     EXPECT_TRUE(slurp(out) == references[m])
         << "trial " << trial << " (mode " << m << ", moment " << int(moment) << ", delay " << delay
         << "): the resumed file differs from the uninterrupted one";
@@ -228,14 +232,18 @@ TEST(Checkpoint, EachSignalAtRandomMomentsResumesToTheSameFile) {
       const std::string out = (dir / name).string();
       const std::vector<std::string> request = with(base, modes[m]);
       BackgroundRender r(with(request, {"--checkpoint", "0.03", "-o", out}));
-      ASSERT_TRUE(r.wait_until_catching_sigint());
+      ASSERT_TRUE(r.wait_until_rendering());
       const bool signalled = kill_at(r, moment, delay, dir, name, sig);
       ended_by_signal += signalled;
       const std::string where = std::string(strsignal(sig)) + ", mode " + std::to_string(m) +
                                 ", moment " + std::to_string(int(moment));
       if (signalled) {
-        EXPECT_TRUE(fs::exists(dir / (name + ".rtiow-checkpoint"))) << where;
+        // Stopped: the image of the samples done, and the checkpoint to continue it; or, when
+        // the signal came during the final write, the whole image and no checkpoint.
+        const bool after_render = r.stderr_text().find("after the render ended") != std::string::npos;
+        EXPECT_EQ(fs::exists(dir / (name + ".rtiow-checkpoint")), !after_render) << where;
         EXPECT_TRUE(fs::exists(out)) << where << ": no partial image";
+        EXPECT_FALSE(has_file_starting(dir, "." + name)) << where << ": a temporary left";
       }
       const CommandResult resumed = run_rtiow(with(request, {"--resume", "-o", out}));
       ASSERT_EQ(resumed.exit_code, 0) << where << ": " << resumed.stderr_text;
@@ -253,10 +261,12 @@ TEST(Checkpoint, FinishedRenderRefinesToTheFileOfTheLargerCount) {
   const std::string direct = (dir / "direct.png").string(),
                     refined = (dir / "refined.png").string();
   ASSERT_EQ(run_rtiow(with(base, {"--spp", "40", "-o", direct})).exit_code, 0);
-  ASSERT_EQ(run_rtiow(with(base, {"--spp", "10", "-o", refined})).exit_code, 0);
-  const CommandResult r = run_rtiow(with(base, {"--spp", "40", "--resume", "-o", refined}));
+  ASSERT_EQ(run_rtiow(with(base, {"--spp", "10", "--keep-state", "-o", refined})).exit_code, 0);
+  const CommandResult r =
+      run_rtiow(with(base, {"--spp", "40", "--resume", "--keep-state", "-o", refined}));
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   EXPECT_TRUE(slurp(direct) == slurp(refined)) << "10 then 40 spp is not the 40-spp file";
+  EXPECT_FALSE(fs::exists(direct + ".rtiow-checkpoint")) << "kept without --keep-state";
   // Back to fewer samples than the checkpoint holds: refused, naming the count.
   const CommandResult fewer = run_rtiow(with(base, {"--spp", "20", "--resume", "-o", refined}));
   EXPECT_EQ(fewer.exit_code, 2);
@@ -266,7 +276,10 @@ TEST(Checkpoint, FinishedRenderRefinesToTheFileOfTheLargerCount) {
 TEST(Checkpoint, ResumeRefusesTheCheckpointOfAnotherRequest) {
   const fs::path dir = fresh_dir();
   const std::string out = (dir / "c.png").string();
-  ASSERT_EQ(run_rtiow({"render", "-q", "--width", "60", "--spp", "4", "-o", out}).exit_code, 0);
+  ASSERT_EQ(
+      run_rtiow({"render", "-q", "--width", "60", "--spp", "4", "--keep-state", "-o", out})
+          .exit_code,
+      0);
   const std::string before = slurp(out);
   const CommandResult r = run_rtiow(
       {"render", "-q", "--width", "60", "--spp", "4", "--seed", "9", "--resume", "-o", out});
@@ -289,7 +302,7 @@ TEST(Checkpoint, FailedFinalWriteKeepsTheRenderToWriteLater) {
                                             "160",    "--spp",   "600",   "--reproducible"};
   const fs::path out = dir / "blocked.png";
   BackgroundRender r(with(request, {"-o", out.string()}));
-  ASSERT_TRUE(r.wait_until_catching_sigint());
+  ASSERT_TRUE(r.wait_until_rendering());
   // The target becomes a directory with something in it: no rename can replace it.
   fs::create_directories(out / "in-the-way");
   const int code = r.wait(120.0);
@@ -314,7 +327,7 @@ TEST(Checkpoint, DirectoryRemovedMidRenderKeepsTheRenderInTheTemporaryDirectory)
   ::setenv("TMPDIR", tmp.c_str(), 1);  // inherited by the render
   BackgroundRender r(with(request, {"-o", (gone / "x.png").string()}));
   ::unsetenv("TMPDIR");
-  ASSERT_TRUE(r.wait_until_catching_sigint());
+  ASSERT_TRUE(r.wait_until_rendering());
   fs::remove_all(gone);
   EXPECT_EQ(r.wait(120.0), 1) << r.stderr_text();
   const std::string err = r.stderr_text();
@@ -336,7 +349,7 @@ TEST(Faults, SecondRenderToTheSameOutputIsRefused) {
   const fs::path out = dir / "same.png";
   BackgroundRender first(
       {"render", "--scene", "cover", "--width", "160", "--spp", "1000000", "-o", out.string()});
-  ASSERT_TRUE(first.wait_until_catching_sigint());
+  ASSERT_TRUE(first.wait_until_rendering());
   const CommandResult second =
       run_rtiow({"render", "--width", "40", "--spp", "2", "-o", out.string()});
   EXPECT_EQ(second.exit_code, 2);
@@ -346,8 +359,11 @@ TEST(Faults, SecondRenderToTheSameOutputIsRefused) {
   first.signal(SIGINT);
   EXPECT_EQ(first.wait(20.0), 128 + SIGINT) << first.stderr_text();
   EXPECT_FALSE(fs::exists(dir / ".same.png.rtiow-lock")) << "the lock outlived its render";
+  // The stopped render's checkpoint stays (to resume); --restart discards it.
   EXPECT_EQ(
-      run_rtiow({"render", "-q", "--width", "40", "--spp", "2", "-o", out.string()}).exit_code, 0)
+      run_rtiow({"render", "-q", "--width", "40", "--spp", "2", "--restart", "-o", out.string()})
+          .exit_code,
+      0)
       << "the output is free again";
 }
 
@@ -361,7 +377,7 @@ TEST(Faults, ImmutableTargetKeepsTheRender) {
   const std::vector<std::string> request = {"render", "--scene", "cover", "--width",
                                             "160",    "--spp",   "400",   "--reproducible"};
   BackgroundRender r(with(request, {"-o", out.string()}));
-  ASSERT_TRUE(r.wait_until_catching_sigint());
+  ASSERT_TRUE(r.wait_until_rendering());
   ImmutableFile immutable(out);
   if (!immutable.applied()) {
     r.signal(SIGKILL);

@@ -1,22 +1,42 @@
 #pragma once
-// Writing a file so that it is never seen half-written: the content goes to a temporary
-// beside the target (same directory, so the rename stays on one file system and is atomic)
-// and is renamed over the target only when complete. On failure the temporary is removed
-// and the target is left as it was.
+// Writing a file so that it is never seen half-written and no one else's file is touched.
+// The content goes to a temporary that rtiow creates itself, exclusively (O_CREAT|O_EXCL|
+// O_NOFOLLOW: never through a link, never a file someone made first), under an unpredictable
+// name, in the target's directory held open (so the rename stays in that directory and on one
+// file system, and is atomic). It is flushed to the disk and renamed over the target only when
+// complete; a link at the target's name is replaced, never followed. On failure, or when the
+// process must end at once (core/io/removed_on_abort.h), the temporary is removed and the
+// target left as it was.
+//
+// A temporary is named ".<target's name>.rtiow-tmp-<8 random letters and digits>", so one
+// that a kill -9 left behind is recognised as rtiow's (remove_stale_temporaries).
 
+#include <cstddef>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace rtiow {
 
-// Calls `write(temporary_path)`, which returns false (and sets `reason`) or throws on failure.
-// The temporary keeps the target's extension, for writers that pick a format by it.
-// Throws std::runtime_error "cannot write 'path': reason".
-void write_atomically(
-    const std::string& path,
-    const std::function<bool(const std::string& temporary, std::string& reason)>& write);
+// Calls `write(fd)` with the temporary open for writing; it returns false (and sets `reason`)
+// or throws on failure. Throws std::runtime_error "cannot write 'path': reason".
+void write_atomically(const std::string& path,
+                      const std::function<bool(int fd, std::string& reason)>& write);
 
-// The same for text.
+// The same for bytes and for text.
+void write_bytes_atomically(const std::string& path, const std::vector<unsigned char>& bytes);
 void write_text_atomically(const std::string& path, const std::string& text);
+
+// `count` letters and digits from the system's random source: a name no one can guess.
+std::string unpredictable_letters(std::size_t count);
+
+// Whether `name` (a file name, no directory) is one of rtiow's temporaries for a target
+// whose file name is `target_name`.
+bool is_temporary_of(const std::string& target_name, const std::string& name);
+
+// Removes the temporaries of `target` that a killed rtiow left in its directory: only names
+// of rtiow's pattern, only regular files (not links) owned by this user. A caller must hold
+// the target's lock (app/output_lock.h), so no live rtiow is writing them. Returns how many.
+int remove_stale_temporaries(const std::string& target);
 
 }  // namespace rtiow

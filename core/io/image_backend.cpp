@@ -129,13 +129,50 @@ const ImageBackend& image_backend() {
   return loaded_backend();
 }
 
+namespace {
+
+// The library's reason, with the descriptor's name it was given spelt as the user's path.
+std::string in_words_of(std::string reason, const std::string& library_name,
+                        const std::string& path) {
+  for (std::size_t at = reason.find(library_name); at != std::string::npos;
+       at = reason.find(library_name, at + path.size())) {
+    reason.replace(at, library_name.size(), path);
+  }
+  return reason;
+}
+
+// A reader that holds the file it reads open (the library reopened it by its descriptor's
+// name) and speaks of it by the user's path.
+class CheckedImageReader final : public ImageReader {
+ public:
+  CheckedImageReader(InputFile file, std::string path, std::unique_ptr<ImageReader> in)
+      : file_(std::move(file)), path_(std::move(path)), in_(std::move(in)) {}
+  const ImageHeader& header() const override { return in_->header(); }
+  bool read_pixels(PixelType type, void* pixels, std::string& reason) override {
+    if (in_->read_pixels(type, pixels, reason)) return true;
+    reason = in_words_of(reason, file_.name_for_library(), path_);
+    return false;
+  }
+
+ private:
+  InputFile file_;
+  std::string path_;
+  std::unique_ptr<ImageReader> in_;
+};
+
+}  // namespace
+
 std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std::string& name,
                                               std::uint64_t max_bytes, const char* what) {
-  check_input_file(path, max_bytes, what);
+  InputFile file(path, max_bytes, what);
+  const std::string library_name = file.name_for_library();
   std::string reason;
-  auto in = image_backend().open(path, reason);
-  if (!in) throw InvalidInput(name + ": cannot read: " + one_line(reason, 200));
-  return in;
+  auto in = image_backend().open(library_name, reason);
+  if (!in) {
+    throw InvalidInput(name + ": cannot read: " +
+                       one_line(in_words_of(reason, library_name, path), 200));
+  }
+  return std::make_unique<CheckedImageReader>(std::move(file), path, std::move(in));
 }
 
 }  // namespace rtiow

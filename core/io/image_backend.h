@@ -19,7 +19,7 @@ class ImageBackend;
 class ImageReader;
 
 // Changes whenever image_file.h changes shape: a backend from another build is refused.
-inline constexpr int kImageBackendAbi = 2;
+inline constexpr int kImageBackendAbi = 3;
 
 // The name the backend's file has.
 inline constexpr const char* kImageBackendFile = "librtiow_image_io.so";
@@ -30,7 +30,7 @@ inline constexpr const char* kImageBackendFile = "librtiow_image_io.so";
 void preload_image_backend();
 
 // An image file rtiow reads (a part file, an image to compare), opened: checked first like
-// any input (check_input_file, at most `max_bytes`), then its header read. Throws
+// any input (core/io/input_file.h, at most `max_bytes`), then its header read. Throws
 // InvalidInput "<name>: cannot read: <reason>" in one line.
 std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std::string& name,
                                               std::uint64_t max_bytes, const char* what);

@@ -59,12 +59,14 @@ class ImageReader {
 class ImageBackend {
  public:
   virtual ~ImageBackend() = default;
-  // Writes `pixels`, interleaved in the header's channel types, to `path` in the format its
-  // extension names. False (and `reason`) on failure; the file may then be partial, so
-  // callers write to a temporary (core/io/atomic_file.h).
-  virtual bool write(const std::string& path, const ImageHeader& header, const void* pixels,
-                     std::string& reason) const = 0;
-  // Nothing (and `reason`) when the file does not open as an image.
+  // Encodes `pixels`, interleaved in the header's channel types, in memory in the format the
+  // extension of `path` names, and checks that the bytes decode again (some encoders do not
+  // report a failure). The backend never writes a file: rtiow writes the bytes itself
+  // (core/io/atomic_file.h). False (and `reason`) on failure.
+  virtual bool encode(const std::string& path, const ImageHeader& header, const void* pixels,
+                      std::vector<unsigned char>& bytes, std::string& reason) const = 0;
+  // Nothing (and `reason`) when the file does not open as an image. The format is found from
+  // the file's content, so `path` may name an open descriptor (/proc/self/fd/N).
   virtual std::unique_ptr<ImageReader> open(const std::string& path, std::string& reason) const = 0;
 };
 

@@ -1,7 +1,6 @@
 #include "core/io/image_output.h"
 
 #include "core/io/atomic_file.h"
-#include "core/io/file_bytes.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
 #include "core/io/output_path.h"
@@ -62,19 +61,6 @@ std::uint8_t encode_gamma2_8bit(float linear) {
   return static_cast<std::uint8_t>(std::lround(v * 255.0f));
 }
 
-bool reads_back(const std::string& path, std::string& reason) {
-  const ImageBackend& backend = image_backend();
-  std::string ignored;  // the reason below is the one that helps
-  if (auto in = backend.open(path, ignored)) {
-    const ImageHeader& header = in->header();
-    std::vector<float> pixels(std::size_t(header.width) * std::size_t(header.height) *
-                              header.channel_names.size());
-    if (in->read_pixels(PixelType::Float, pixels.data(), ignored)) return true;
-  }
-  reason = "the file written does not read back (is the disk full, or a file-size limit set?)";
-  return false;
-}
-
 void write_image(const std::string& path, const Film& film, const Metadata& metadata,
                  const std::vector<ExtraChannel>& extra) {
   const ImageFormat* image = image_format(path);
@@ -113,22 +99,12 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
     data = bytes.data();
   }
 
-  if (image->own_encoder) {
-    // Encoded here, its bytes written with every failure checked: nothing to read back.
-    std::vector<unsigned char> encoded;
-    std::string reason;
-    if (!encode_png(header, bytes.data(), encoded, reason)) {
-      throw std::runtime_error("cannot write '" + path + "': " + reason);
-    }
-    write_atomically(path, [&](const std::string& temporary, std::string& why) {
-      return write_file_bytes(temporary, encoded, why);
-    });
-    return;
-  }
-  const ImageBackend& backend = image_backend();
-  write_atomically(path, [&](const std::string& temporary, std::string& reason) {
-    return backend.write(temporary, header, data, reason) && reads_back(temporary, reason);
-  });
+  std::vector<unsigned char> encoded;
+  std::string reason;
+  const bool ok = image->own_encoder ? encode_png(header, bytes.data(), encoded, reason)
+                                     : image_backend().encode(path, header, data, encoded, reason);
+  if (!ok) throw std::runtime_error("cannot write '" + path + "': " + reason);
+  write_bytes_atomically(path, encoded);
 }
 
 }  // namespace rtiow

@@ -2,9 +2,9 @@
 // Writing a film: PNG by rtiow's own encoder (core/io/png_encoder.h), every other format through
 // the image library (core/io/image_backend.h). The format follows the file extension (the list is
 // in core/io/output_path.h): float formats (.exr, .hdr) get linear values, 8-bit formats (.png,
-// .jpg, .ppm, .tif, ...) the book's gamma 2. Writes go to a temporary file in the target directory
-// that is renamed over the target only when complete, so a failed write never leaves a truncated
-// image.
+// .jpg, .ppm, .tif, ...) the book's gamma 2. Every format is encoded in memory and its bytes
+// written by core/io/atomic_file.h: a temporary rtiow creates exclusively, renamed over the target
+// only when complete, so a failed write never leaves a truncated image or touches another file.
 
 #include <cstdint>
 #include <string>
@@ -36,12 +36,6 @@ struct ExtraChannel {
 // (throws std::invalid_argument otherwise): check_image_output() refuses both before work.
 void write_image(const std::string& path, const Film& film, const Metadata& metadata = {},
                  const std::vector<ExtraChannel>& extra = {});
-
-// True if the image file at `path` opens and all its pixels read; otherwise sets `reason`.
-// Some writers (PNG in OpenImageIO 2.4) do not report a failed write, so a disk that
-// fills up would leave a truncated image: every file the image library writes is read back
-// before it replaces the target.
-bool reads_back(const std::string& path, std::string& reason);
 
 // The book's gamma 2 and 8-bit quantisation, applied to one linear value.
 std::uint8_t encode_gamma2_8bit(float linear);

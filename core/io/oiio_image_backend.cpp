@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "core/io/file_bytes.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
 
@@ -171,20 +170,38 @@ class OiioImageReader final : public ImageReader {
   ImageHeader header_;
 };
 
+// Whether `bytes`, encoded for `path`'s format, decode to all their pixels again: some
+// encoders (PNG in OpenImageIO 2.4) do not report every failure.
+bool decodes(const std::string& path, const std::vector<unsigned char>& bytes,
+             std::string& reason) {
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  auto in = OIIO::ImageInput::open(path, nullptr, &memory);
+  if (in) {
+    const OIIO::ImageSpec& spec = in->spec();
+    std::vector<float> pixels(std::size_t(spec.width) * std::size_t(spec.height) *
+                              std::size_t(spec.nchannels));
+    if (in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
+      return true;
+    }
+  }
+  reason = "the encoded image does not decode again: " + take_error();
+  return false;
+}
+
 class OiioImageBackend final : public ImageBackend {
  public:
-  bool write(const std::string& path, const ImageHeader& header, const void* pixels,
-             std::string& reason) const override {
+  bool encode(const std::string& path, const ImageHeader& header, const void* pixels,
+              std::vector<unsigned char>& bytes, std::string& reason) const override {
     const QuietStderr quiet;
     auto out = OIIO::ImageOutput::create(path);
     if (!out) {
       reason = take_error();
       return false;
     }
-    // The image is encoded in memory and written by write_bytes: a codec never touches the
-    // disk, so a full disk or a file-size limit is an error to report, not a library's
-    // exit(1) (libjpeg's default on a failed write). See core/io/file_bytes.h.
-    std::vector<unsigned char> bytes;
+    // Encoded in memory: a codec never touches the disk, so a full disk or a file-size limit
+    // is an error rtiow reports, not a library's exit(1) (libjpeg's default on a failed
+    // write), and no codec ever opens a path someone could have put a link at.
+    bytes.clear();
     OIIO::Filesystem::IOVecOutput memory(bytes);
     OIIO::ImageSpec spec = to_spec(header);
     void* proxy = &memory;
@@ -196,7 +213,7 @@ class OiioImageBackend final : public ImageBackend {
       reason = take_error(out->geterror());
       return false;
     }
-    return write_file_bytes(path, bytes, reason);
+    return decodes(path, bytes, reason);
   }
 
   std::unique_ptr<ImageReader> open(const std::string& path, std::string& reason) const override {

@@ -2,9 +2,16 @@
 // The thread count a user asked for (--threads), for all of the work it covers: the render's
 // passes, and before them the scene's construction (or a big scene file's parse) and
 // Embree's build, which use TBB's parallel loops of whatever arena calls them.
+//
+// TBB runs no more threads than the machine has cores unless told otherwise (and prints a
+// warning of its own when an arena asks for more): a count above the cores raises TBB's limit
+// for the work's duration, so the count asked is the count used, and TBB says nothing.
 
+#include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/info.h>
 #include <oneapi/tbb/task_arena.h>
+
+#include <optional>
 
 namespace rtiow {
 
@@ -13,10 +20,15 @@ inline int thread_count(int asked) {
   return asked > 0 ? asked : tbb::info::default_concurrency();
 }
 
-// f() with TBB's parallel work inside it on at most `asked` threads (0: every core).
+// f() with TBB's parallel work inside it on `asked` threads (0: every core).
 template <typename F>
 auto with_threads(int asked, F&& f) {
-  tbb::task_arena arena(thread_count(asked));
+  const int threads = thread_count(asked);
+  std::optional<tbb::global_control> more_than_cores;
+  if (threads > tbb::info::default_concurrency()) {
+    more_than_cores.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  }
+  tbb::task_arena arena(threads);
   return arena.execute(f);
 }
 

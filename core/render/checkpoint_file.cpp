@@ -1,70 +1,60 @@
 #include "core/render/checkpoint_file.h"
 
-#include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
-#include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
+#include <limits>
 #include <map>
-#include <new>
 #include <optional>
 #include <stdexcept>
 #include <variant>
 #include <vector>
 
+#include "core/io/atomic_file.h"
 #include "core/io/checksum.h"
+#include "core/io/file_bytes.h"
+#include "core/io/input_file.h"
 #include "core/limits/error.h"
+#include "core/limits/input_limits.h"
 #include "core/scene/scene_digest.h"
 #include "core/version.h"
 
 namespace rtiow {
 namespace {
 
-namespace fs = std::filesystem;
-
-constexpr char kMagic[] = "rtiow-checkpoint 2\n";
+constexpr char kMagicPrefix[] = "rtiow-checkpoint ";
+constexpr char kMagic[] = "rtiow-checkpoint 3\n";
+constexpr char kMagicFixedRecords[] = "rtiow-checkpoint 2\n";  // still read
 constexpr std::size_t kMaxHeaderBytes = 1 << 16;
 constexpr std::size_t kChunkBytes = 1 << 20;
+// A checkpoint's pixels take at most this many bytes each (version 2's fixed record is 160),
+// so a file much larger than its pixels need is refused before it is read.
+constexpr std::uint64_t kMaxBytesPerPixel = 4 * 3 * 19 + 3 * 10;
+// The longest a render can have run, in seconds (a century): beyond, a time is not one.
+constexpr double kMaxRenderSeconds = 3.2e9;
 
-// Fixed-size little-endian records (x86-64 and the other targets rtiow builds on are
-// little-endian; the header's magic would not parse on a machine that disagreed).
-template <typename T>
-void put(std::vector<char>& out, const T& value) {
-  const char* bytes = reinterpret_cast<const char*>(&value);
-  out.insert(out.end(), bytes, bytes + sizeof(T));
+// ---- Writing: variable-length integers (LEB128), seven bits a byte, low bits first.
+
+void put_varint(std::vector<char>& out, uint128 v) {
+  while (v >= 0x80) {
+    out.push_back(char(std::uint8_t(v) | 0x80));
+    v >>= 7;
+  }
+  out.push_back(char(std::uint8_t(v)));
 }
 
-template <typename T>
-T take(const char*& in) {
-  T value;
-  std::memcpy(&value, in, sizeof(T));
-  in += sizeof(T);
-  return value;
+// A signed difference, zigzagged so that small magnitudes take one byte.
+void put_signed(std::vector<char>& out, std::int64_t v) {
+  put_varint(out, (std::uint64_t(v) << 1) ^ std::uint64_t(v >> 63));
 }
 
 void put_sum(std::vector<char>& out, const PixelSum& sum) {
-  for (int c = 0; c < 3; ++c) {
-    const auto v = uint128(sum.channel(c));
-    put(out, std::uint64_t(v));
-    put(out, std::uint64_t(v >> 64));
-  }
-}
-
-PixelSum take_sum(const char*& in) {
-  PixelSum sum;
-  for (int c = 0; c < 3; ++c) {
-    const auto low = take<std::uint64_t>(in), high = take<std::uint64_t>(in);
-    sum.set_channel(c, int128((uint128(high) << 64) | low));
-  }
-  return sum;
-}
-
-std::size_t record_bytes(bool targets) {
-  return 3 * 16 + 3 * 16 + 3 * 16 + 4 + 8 + (targets ? 4 : 0);
+  for (int c = 0; c < 3; ++c) put_varint(out, uint128(sum.channel(c)));
 }
 
 std::string exact(double v) {  // a double in text that reads back to the same bits
@@ -78,6 +68,8 @@ std::string header_text(const CheckpointIdentity& id, const RenderState& state) 
   const auto line = [&](const char* key, const std::string& value) {
     h.append(key).append(" ").append(value).append("\n");
   };
+  const auto& samples = state.pixels.samples;
+  const auto [least, most] = std::minmax_element(samples.begin(), samples.end());
   line("version", id.version);
   line("scene", id.scene);
   line("size", id.size);
@@ -86,7 +78,9 @@ std::string header_text(const CheckpointIdentity& id, const RenderState& state) 
   line("sampler", id.sampler);
   line("first_sample", id.first_sample);
   line("mode", id.mode);
-  line("pixels", std::to_string(state.pixels.samples.size()));
+  line("pixels", std::to_string(samples.size()));
+  line("least_samples", std::to_string(samples.empty() ? 0 : *least));
+  line("most_samples", std::to_string(samples.empty() ? 0 : *most));
   line("targets", state.targets.empty() ? "0" : "1");
   line("last_round", state.last_round ? "1" : "0");
   line("rays_traced", std::to_string(state.rays_traced));
@@ -97,45 +91,45 @@ std::string header_text(const CheckpointIdentity& id, const RenderState& state) 
   return h;
 }
 
-std::string system_reason(int error) {
-  return std::strerror(error);
+// Writes `data` and adds it to the checksum; false (with `reason`) on failure.
+bool write_summed(int fd, const char* data, std::size_t n, Checksum& checksum,
+                  std::string& reason) {
+  checksum.update(data, n);
+  return write_all(fd, data, n, reason);
 }
 
-// Writes all of `data` to `fd`, adding it to `checksum`; false (errno set) on failure.
-bool write_all(int fd, const char* data, std::size_t n, Checksum* checksum) {
-  if (checksum) checksum->update(data, n);
-  while (n > 0) {
-    const ssize_t written = ::write(fd, data, n);
-    if (written < 0 && errno == EINTR) continue;
-    if (written <= 0) return false;
-    data += written;
-    n -= std::size_t(written);
-  }
-  return true;
-}
-
-bool write_state(int fd, const CheckpointIdentity& identity, const RenderState& state) {
+bool write_state(int fd, const CheckpointIdentity& identity, const RenderState& state,
+                 std::string& reason) {
   Checksum checksum;
   const std::string header = header_text(identity, state);
-  if (!write_all(fd, header.data(), header.size(), &checksum)) return false;
+  if (!write_summed(fd, header.data(), header.size(), checksum, reason)) return false;
   const PixelAccumulators& p = state.pixels;
   const bool targets = !state.targets.empty();
   std::vector<char> chunk;
-  chunk.reserve(kChunkBytes + record_bytes(true));
+  chunk.reserve(kChunkBytes + kMaxBytesPerPixel);
+  std::uint32_t previous_samples = 0;
   for (std::size_t i = 0; i < p.samples.size(); ++i) {
+    put_signed(chunk, std::int64_t(p.samples[i]) - std::int64_t(previous_samples));
+    previous_samples = p.samples[i];
+    put_varint(chunk, p.rays[i]);
+    if (targets) put_signed(chunk, std::int64_t(state.targets[i]) - std::int64_t(p.samples[i]));
     put_sum(chunk, p.sums[i]);
     put_sum(chunk, p.spreads[i].squares);
     put_sum(chunk, p.spreads[i].odd);
-    put(chunk, p.samples[i]);
-    put(chunk, p.rays[i]);
-    if (targets) put(chunk, state.targets[i]);
     if (chunk.size() >= kChunkBytes || i + 1 == p.samples.size()) {
-      if (!write_all(fd, chunk.data(), chunk.size(), &checksum)) return false;
+      if (!write_summed(fd, chunk.data(), chunk.size(), checksum, reason)) return false;
       chunk.clear();
     }
   }
   const std::uint64_t sum = checksum.value();
-  return write_all(fd, reinterpret_cast<const char*>(&sum), sizeof sum, nullptr);
+  return write_all(fd, &sum, sizeof sum, reason);
+}
+
+// ---- Reading.
+
+InvalidInput bad_file(const std::string& path, const std::string& why) {
+  return InvalidInput("checkpoint " + quote_value(path) + ": " + why +
+                      " (not a checkpoint of this rtiow, or a damaged one: remove it)");
 }
 
 // Reads exactly n bytes; false at the end of the file or on an error.
@@ -150,41 +144,29 @@ bool read_exact(int fd, char* data, std::size_t n) {
   return true;
 }
 
-class FileCloser {
- public:
-  explicit FileCloser(int fd) : fd_(fd) {}
-  ~FileCloser() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  FileCloser(const FileCloser&) = delete;
-  FileCloser& operator=(const FileCloser&) = delete;
-
- private:
-  int fd_;
+struct Header {
+  bool fixed_records = false;  // version 2
+  std::map<std::string, std::string> fields;
 };
 
-// The header's lines up to "end", as key -> value; the bytes it took go to `checksum`.
-std::map<std::string, std::string> read_header(int fd, const std::string& path,
-                                               Checksum& checksum) {
-  const auto bad = [&](const std::string& why) {
-    return InvalidInput("checkpoint " + quote_value(path) + ": " + why +
-                        " (not a checkpoint of this rtiow, or a damaged one: remove it)");
-  };
+// The header's lines up to "end"; the bytes it took go to `checksum`.
+Header read_header(int fd, const std::string& path, Checksum& checksum) {
   std::string text;
   char c = 0;
   while (text.size() < kMaxHeaderBytes && read_exact(fd, &c, 1)) {
     text.push_back(c);
     if (c == '\n' && text.size() >= 4 && text.compare(text.size() - 4, 4, "end\n") == 0) break;
   }
-  if (text.rfind(kMagic, 0) != 0) {
-    throw bad(text.rfind("rtiow-checkpoint ", 0) == 0 ? "a checkpoint of another format"
-                                                      : "no checkpoint header");
+  Header header;
+  header.fixed_records = text.rfind(kMagicFixedRecords, 0) == 0;
+  if (text.rfind(kMagic, 0) != 0 && !header.fixed_records) {
+    throw bad_file(path, text.rfind(kMagicPrefix, 0) == 0 ? "a checkpoint of another format"
+                                                          : "no checkpoint header");
   }
   if (text.size() < 4 || text.compare(text.size() - 4, 4, "end\n") != 0) {
-    throw bad("the header does not end");
+    throw bad_file(path, "the header does not end");
   }
   checksum.update(text.data(), text.size());
-  std::map<std::string, std::string> fields;
   std::size_t at = std::strlen(kMagic);
   while (at < text.size()) {
     const std::size_t end = text.find('\n', at);
@@ -192,44 +174,152 @@ std::map<std::string, std::string> read_header(int fd, const std::string& path,
     at = end + 1;
     if (line == "end") break;
     const std::size_t space = line.find(' ');
-    if (space == std::string::npos) throw bad("a header line without a value");
-    fields[line.substr(0, space)] = line.substr(space + 1);
+    if (space == std::string::npos) throw bad_file(path, "a header line without a value");
+    if (!header.fields.emplace(line.substr(0, space), line.substr(space + 1)).second) {
+      throw bad_file(path, "header field " + quote_value(line.substr(0, space)) + " appears twice");
+    }
   }
-  return fields;
+  return header;
 }
 
-std::uint64_t field_number(const std::map<std::string, std::string>& fields, const char* key,
-                           const std::string& path) {
-  const auto it = fields.find(key);
+std::uint64_t field_number(const Header& header, const char* key, const std::string& path,
+                           std::uint64_t most) {
+  const auto it = header.fields.find(key);
   std::uint64_t value = 0;
-  if (it != fields.end()) {
+  if (it != header.fields.end()) {
     const std::string& t = it->second;
     const auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), value);
-    if (error == std::errc() && end == t.data() + t.size()) return value;
+    if (error == std::errc() && end == t.data() + t.size() && value <= most) return value;
   }
-  throw InvalidInput("checkpoint " + quote_value(path) + ": header field " + key +
-                     " is missing or not a whole number");
+  throw bad_file(path, std::string("header field ") + key + " is missing or not a whole number " +
+                           "from 0 to " + std::to_string(most));
 }
 
-double field_double(const std::map<std::string, std::string>& fields, const char* key,
-                    const std::string& path) {
-  const auto it = fields.find(key);
-  if (it != fields.end()) {
+double field_double(const Header& header, const char* key, const std::string& path, double most) {
+  const auto it = header.fields.find(key);
+  if (it != header.fields.end()) {
     char* end = nullptr;
     const double v = std::strtod(it->second.c_str(), &end);
-    if (!it->second.empty() && *end == '\0') return v;
+    if (!it->second.empty() && *end == '\0' && std::isfinite(v) && v >= 0.0 && v <= most) return v;
   }
-  throw InvalidInput("checkpoint " + quote_value(path) + ": header field " + key +
-                     " is missing or not a number");
+  throw bad_file(path, std::string("header field ") + key +
+                           " is missing or not a finite number from 0 to " + exact(most));
 }
 
-CheckpointIdentity stored_identity(const std::map<std::string, std::string>& fields) {
+CheckpointIdentity stored_identity(const Header& header) {
   const auto get = [&](const char* key) {
-    const auto it = fields.find(key);
-    return it == fields.end() ? std::string("(none)") : it->second;
+    const auto it = header.fields.find(key);
+    return it == header.fields.end() ? std::string("(none)") : it->second;
   };
   return {get("version"), get("scene"),   get("size"),         get("depth"),
           get("seed"),    get("sampler"), get("first_sample"), get("mode")};
+}
+
+// The most samples a pixel of this render may hold: its cap when adaptive; otherwise what its
+// sample indices can name.
+std::uint64_t most_samples(const RenderSettings& s) {
+  if (const auto* t = std::get_if<PixelErrorTarget>(&s.samples)) return std::uint64_t(t->most);
+  if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) return std::uint64_t(i->most);
+  if (std::holds_alternative<AdaptiveBudget>(s.samples)) return limits::kMostAdaptiveSamples;
+  const std::uint64_t indices =
+      s.first_sample < limits::kMaxSampleIndex ? limits::kMaxSampleIndex - s.first_sample : 0;
+  return std::min<std::uint64_t>(indices, std::uint64_t(std::numeric_limits<int>::max()));
+}
+
+// The pixel records, in 1 MiB reads; every byte taken goes to the checksum.
+class RecordReader {
+ public:
+  RecordReader(int fd, Checksum& checksum, const std::string& path)
+      : fd_(fd), checksum_(checksum), path_(path), buffer_(kChunkBytes) {}
+
+  std::uint8_t byte() {
+    if (at_ == end_ && !refill()) {
+      throw InvalidInput("checkpoint " + quote_value(path_) +
+                         ": ends before its pixels do (a damaged file: remove it)");
+    }
+    return std::uint8_t(buffer_[at_++]);
+  }
+  template <typename T>
+  T fixed() {  // little-endian, sizeof(T) bytes
+    T value = 0;
+    for (std::size_t i = 0; i < sizeof(T); ++i) value |= T(T(byte()) << (8 * i));
+    return value;
+  }
+  uint128 varint() {
+    uint128 value = 0;
+    for (int shift = 0; shift < 128; shift += 7) {
+      const std::uint8_t b = byte();
+      if (shift == 126 && (b & 0x7c) != 0) break;  // beyond 128 bits
+      value |= uint128(b & 0x7f) << shift;
+      if ((b & 0x80) == 0) return value;
+    }
+    throw bad_file(path_, "a pixel holds a number too long to be one");
+  }
+  std::int64_t signed_varint() {
+    const uint128 z = varint();
+    if (z >> 64) throw bad_file(path_, "a pixel holds a difference too large to be one");
+    const auto u = std::uint64_t(z);
+    return std::int64_t(u >> 1) ^ -std::int64_t(u & 1);
+  }
+  // Whether the checksum of every byte taken follows, and nothing after it.
+  bool ends_with_checksum() {
+    sum_taken();
+    const std::uint64_t expected = checksum_.value();
+    std::uint64_t stored = 0;
+    for (std::size_t i = 0; i < sizeof stored; ++i) {
+      if (at_ == end_ && !refill()) {
+        throw InvalidInput("checkpoint " + quote_value(path_) +
+                           ": ends before its checksum (a damaged file: remove it)");
+      }
+      stored |= std::uint64_t(std::uint8_t(buffer_[at_++])) << (8 * i);
+      summed_ = at_;  // the stored checksum is not part of what it sums
+    }
+    char extra = 0;
+    return stored == expected && at_ == end_ && !read_exact(fd_, &extra, 1);
+  }
+
+ private:
+  void sum_taken() {
+    checksum_.update(buffer_.data() + summed_, at_ - summed_);
+    summed_ = at_;
+  }
+  bool refill() {
+    sum_taken();
+    ssize_t got = 0;
+    do {
+      got = ::read(fd_, buffer_.data(), buffer_.size());
+    } while (got < 0 && errno == EINTR);
+    if (got <= 0) return false;
+    at_ = summed_ = 0, end_ = std::size_t(got);
+    return true;
+  }
+
+  int fd_;
+  Checksum& checksum_;
+  const std::string& path_;
+  std::vector<char> buffer_;
+  std::size_t at_ = 0, end_ = 0, summed_ = 0;
+};
+
+PixelSum read_sum(RecordReader& in, bool fixed_records) {
+  PixelSum sum;
+  for (int c = 0; c < 3; ++c) {
+    if (fixed_records) {
+      const auto low = in.fixed<std::uint64_t>(), high = in.fixed<std::uint64_t>();
+      sum.set_channel(c, int128((uint128(high) << 64) | low));
+    } else {
+      sum.set_channel(c, int128(in.varint()));
+    }
+  }
+  return sum;
+}
+
+// Whether every channel of `sum` lies in [0, samples * per_sample].
+bool within(const PixelSum& sum, std::uint64_t samples, uint128 per_sample) {
+  for (int c = 0; c < 3; ++c) {
+    if (sum.channel(c) < 0 || uint128(sum.channel(c)) > uint128(samples) * per_sample) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -287,98 +377,169 @@ std::string checkpoint_path(const std::string& output) {
 
 void write_checkpoint(const std::string& path, const CheckpointIdentity& identity,
                       const RenderState& state) {
-  const fs::path target(path);
-  std::string name = ".";
-  name.append(target.filename().string()).append(".tmp-").append(std::to_string(::getpid()));
-  const fs::path temporary = target.parent_path() / name;
-  const auto fail = [&](int error) {
-    ::unlink(temporary.c_str());
-    throw std::runtime_error("cannot write the checkpoint " + quote_value(path) + ": " +
-                             system_reason(error));
-  };
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail(errno);
-  bool written = false;
   try {
-    written = write_state(fd, identity, state) && ::fsync(fd) == 0;
+    write_atomically(path, [&](int fd, std::string& reason) {
+      return write_state(fd, identity, state, reason);
+    });
   } catch (const std::bad_alloc&) {
-    ::close(fd);  // no temporary left behind, and the caller hears why
-    fail(ENOMEM);
-  }
-  const int error = errno;
-  if (::close(fd) != 0 && written) fail(errno);
-  if (!written) fail(error);
-  if (::rename(temporary.c_str(), target.c_str()) != 0) fail(errno);
-  // The rename itself survives a power cut only once the directory is on the disk.
-  const std::string dir = target.parent_path().empty() ? "." : target.parent_path().string();
-  const int dir_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir_fd >= 0) {
-    ::fsync(dir_fd);
-    ::close(dir_fd);
+    throw std::runtime_error("cannot write the checkpoint " + quote_value(path) +
+                             ": out of memory");
+  } catch (const std::runtime_error& e) {
+    // "cannot write 'path': why" as the checkpoint's own words
+    const std::string text = e.what();
+    const std::size_t colon = text.find("': ");
+    throw std::runtime_error("cannot write the checkpoint " + quote_value(path) + ": " +
+                             (colon == std::string::npos ? text : text.substr(colon + 3)));
   }
 }
 
-std::optional<RenderState> read_checkpoint(const std::string& path,
-                                           const CheckpointIdentity& expected) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0 && errno == ENOENT) return std::nullopt;
-  if (fd < 0) {
-    throw InvalidInput("checkpoint " + quote_value(path) + ": " + system_reason(errno));
+namespace {
+
+// The file at `path`, opened as a checkpoint must be: never through a link (rtiow writes
+// none), never blocking (a FIFO is refused), a regular file. Nothing when there is none.
+std::optional<InputFile> open_checkpoint(const std::string& path) {
+  return InputFile::open_if_present(path, std::numeric_limits<std::uint64_t>::max(), "checkpoint",
+                                    /*follow_links=*/false);
+}
+
+}  // namespace
+
+std::optional<CheckpointSummary> read_checkpoint_summary(const std::string& path) {
+  const std::optional<InputFile> file = open_checkpoint(path);
+  if (!file) return std::nullopt;
+  Checksum ignored;
+  const Header header = read_header(file->fd(), path, ignored);
+  CheckpointSummary summary{stored_identity(header), {}, {}};
+  if (!header.fixed_records) {
+    constexpr std::uint64_t kAny = std::numeric_limits<std::uint32_t>::max();
+    summary.least_samples = field_number(header, "least_samples", path, kAny);
+    summary.most_samples = field_number(header, "most_samples", path, kAny);
   }
-  const FileCloser closer(fd);
+  return summary;
+}
+
+std::optional<RenderState> read_checkpoint(const std::string& path,
+                                           const CheckpointIdentity& expected,
+                                           const RenderSettings& settings) {
+  const std::optional<InputFile> file = open_checkpoint(path);
+  if (!file) return std::nullopt;
+  const int fd = file->fd();
   Checksum checksum;
-  const auto fields = read_header(fd, path, checksum);
-  const std::string differs = identity_mismatch(stored_identity(fields), expected);
+  const Header header = read_header(fd, path, checksum);
+  const std::string differs = identity_mismatch(stored_identity(header), expected);
   if (!differs.empty()) {
     throw InvalidInput("checkpoint " + quote_value(path) + " is of another render (" + differs +
-                       "): remove it, or render without --resume to replace it");
+                       "): remove it, or render with --restart to replace it");
   }
-  const std::uint64_t pixels = field_number(fields, "pixels", path);
-  const int sep = int(expected.size.find('x'));
-  const std::uint64_t expected_pixels = std::stoull(expected.size.substr(0, std::size_t(sep))) *
-                                        std::stoull(expected.size.substr(std::size_t(sep) + 1));
+  // Every field against the request and the limits, before anything is allocated.
+  const std::uint64_t expected_pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
+  const std::uint64_t pixels = field_number(header, "pixels", path, limits::kMaxPixels);
   if (pixels != expected_pixels) {
-    throw InvalidInput("checkpoint " + quote_value(path) + ": holds " + std::to_string(pixels) +
-                       " pixels, not the image's " + std::to_string(expected_pixels));
+    throw bad_file(path, "holds " + std::to_string(pixels) + " pixels, not the image's " +
+                             std::to_string(expected_pixels));
   }
-  RenderState state{std::size_t(pixels)};
-  const bool targets = field_number(fields, "targets", path) != 0;
-  if (targets) state.targets.resize(std::size_t(pixels));
-  state.last_round = field_number(fields, "last_round", path) != 0;
-  state.rays_traced = field_number(fields, "rays_traced", path);
-  state.render_seconds = field_double(fields, "render_seconds", path);
-  state.estimated_image_error = field_double(fields, "estimated_image_error", path);
-  state.pixels_above_target = field_number(fields, "pixels_above_target", path);
+  if (file->size() > pixels * kMaxBytesPerPixel + kMaxHeaderBytes + 8) {
+    throw bad_file(path, "is larger than its pixels can be");
+  }
+  const bool adaptive = is_adaptive(settings);
+  const std::uint64_t most = most_samples(settings);
+  const bool targets = field_number(header, "targets", path, adaptive ? 1 : 0) != 0;
+  const bool last_round = field_number(header, "last_round", path, adaptive ? 1 : 0) != 0;
+  const std::uint64_t rays_traced =
+      field_number(header, "rays_traced", path, std::numeric_limits<std::uint64_t>::max());
+  const double seconds = field_double(header, "render_seconds", path, kMaxRenderSeconds);
+  const double image_error = field_double(header, "estimated_image_error", path, 1e300);
+  const std::uint64_t above = field_number(header, "pixels_above_target", path, pixels);
+  std::optional<std::uint64_t> least_stored, most_stored;
+  if (!header.fixed_records) {
+    least_stored = field_number(header, "least_samples", path, most);
+    most_stored = field_number(header, "most_samples", path, most);
+  }
 
-  const auto truncated = [&] {
-    return InvalidInput("checkpoint " + quote_value(path) +
-                        ": ends before its pixels do (a damaged file: remove it)");
-  };
-  const std::size_t record = record_bytes(targets);
-  const std::size_t per_chunk = kChunkBytes / record;
-  std::vector<char> chunk(per_chunk * record);
+  RenderState state{std::size_t(pixels)};
+  if (targets) state.targets.resize(std::size_t(pixels));
+  state.last_round = last_round;
+  state.rays_traced = rays_traced;
+  state.render_seconds = seconds;
+  state.estimated_image_error = image_error;
+  state.pixels_above_target = above;
+
+  // Each pixel's record, checked as it is read: a count and a target within the cap, one
+  // count for every pixel of a uniform render, rays no more than its samples can trace, sums
+  // within what its samples can add up to.
+  constexpr uint128 kMostSum = uint128(PixelSum::kMaxSample * PixelSum::kScale);
+  constexpr uint128 kMostSquare = kMostSum * uint128(PixelSum::kMaxSample);
+  const auto depth = std::uint64_t(std::max(settings.max_depth, 0));
+  RecordReader in(fd, checksum, path);
   PixelAccumulators& p = state.pixels;
-  for (std::size_t first = 0; first < pixels; first += per_chunk) {
-    const std::size_t count = std::min<std::size_t>(per_chunk, std::size_t(pixels) - first);
-    if (!read_exact(fd, chunk.data(), count * record)) throw truncated();
-    checksum.update(chunk.data(), count * record);
-    const char* in = chunk.data();
-    for (std::size_t i = first; i < first + count; ++i) {
-      p.sums[i] = take_sum(in);
-      const PixelSum squares = take_sum(in);
+  std::uint64_t rays_sum = 0, least = most, most_seen = 0;
+  std::int64_t previous = 0;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const auto bad_pixel = [&](const std::string& why) {
+      return bad_file(path, "pixel " + std::to_string(i) + " " + why);
+    };
+    std::int64_t samples = 0, target = 0;
+    std::uint64_t rays = 0;
+    if (header.fixed_records) {
+      p.sums[i] = read_sum(in, true);
+      const PixelSum squares = read_sum(in, true);
       for (int c = 0; c < 3; ++c) p.spreads[i].squares.set_channel(c, squares.channel(c));
-      p.spreads[i].odd = take_sum(in);
-      p.samples[i] = take<std::uint32_t>(in);
-      p.rays[i] = take<std::uint64_t>(in);
-      if (targets) state.targets[i] = take<std::uint32_t>(in);
+      p.spreads[i].odd = read_sum(in, true);
+      samples = in.fixed<std::uint32_t>();
+      rays = in.fixed<std::uint64_t>();
+      if (targets) target = in.fixed<std::uint32_t>();
+    } else {
+      // Differences beyond the cap are refused before they are added (no overflow).
+      const auto bounded = [&](std::int64_t d) {
+        return d >= -std::int64_t(most) && d <= std::int64_t(most);
+      };
+      const std::int64_t difference = in.signed_varint();
+      samples = bounded(difference) ? previous + difference : -1;
+      const uint128 r = in.varint();
+      rays = r >> 64 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(r);
+      if (targets) {
+        const std::int64_t beyond = in.signed_varint();
+        target = bounded(beyond) ? samples + beyond : -1;
+      }
+      p.sums[i] = read_sum(in, false);
+      const PixelSum squares = read_sum(in, false);
+      for (int c = 0; c < 3; ++c) p.spreads[i].squares.set_channel(c, squares.channel(c));
+      p.spreads[i].odd = read_sum(in, false);
     }
+    previous = samples;
+    if (samples < 0 || std::uint64_t(samples) > most) {
+      throw bad_pixel("has a sample count outside 0 to " + std::to_string(most));
+    }
+    if (targets && (target < 0 || std::uint64_t(target) > most)) {
+      throw bad_pixel("has an adaptive target outside 0 to " + std::to_string(most));
+    }
+    const auto n = std::uint64_t(samples);
+    if (!adaptive && i > 0 && n != p.samples[0]) {
+      throw bad_pixel("has another count than the first pixel's, in a uniform render");
+    }
+    if (uint128(rays) > uint128(n) * depth) {
+      throw bad_pixel("has more rays than its samples can trace at depth " + std::to_string(depth));
+    }
+    if (!within(p.sums[i], n, kMostSum) || !within(p.spreads[i].odd, n, kMostSum) ||
+        !within(p.spreads[i].squares, n, kMostSquare)) {
+      throw bad_pixel("has sums no samples can add up to");
+    }
+    p.samples[i] = std::uint32_t(n);
+    p.rays[i] = rays;
+    if (targets) state.targets[i] = std::uint32_t(target);
+    rays_sum += rays;
+    least = std::min(least, n), most_seen = std::max(most_seen, n);
   }
-  std::uint64_t stored = 0;
-  char extra = 0;
-  if (!read_exact(fd, reinterpret_cast<char*>(&stored), sizeof stored)) throw truncated();
-  if (stored != checksum.value() || read_exact(fd, &extra, 1)) {
+  if (!in.ends_with_checksum()) {
     throw InvalidInput("checkpoint " + quote_value(path) +
                        ": its checksum does not match its content (a damaged file: remove it)");
+  }
+  if (rays_sum != rays_traced) {
+    throw bad_file(path, "header field rays_traced is not the sum of its pixels' rays");
+  }
+  if ((least_stored && *least_stored != (pixels ? least : 0)) ||
+      (most_stored && *most_stored != most_seen)) {
+    throw bad_file(path, "header fields least_samples and most_samples are not its pixels'");
   }
   return state;
 }

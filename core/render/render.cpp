@@ -125,13 +125,16 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
     render_uniform(ctx, progress, journal, result);
   }
   result.render_seconds = journal.elapsed();
-  journal.save(result, true);  // finished or stopped: kept, to resume or refine
+  journal.save(result, result.stopped ? SaveReason::Stopped : SaveReason::Finished);
   PixelAccumulators& pixels = state.pixels;
   result.film = Film(settings.width, settings.height);
   resolve(pixels.sums, pixels.samples, result.film);
   result.sums = std::move(pixels.sums);
   result.spreads = std::move(pixels.spreads);
   result.pixel_samples = std::move(pixels.samples);
+  result.pixel_rays = std::move(pixels.rays);
+  result.targets = std::move(state.targets);
+  result.last_round = state.last_round;
   result.first_sample = settings.first_sample;
   result.sampler = settings.sampler;
   return result;
@@ -192,6 +195,21 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, RenderPr
                ? render_with<NaiveAccel>(scene, camera, settings, progress, checkpointing)
                : render_with<EmbreeAccel>(scene, camera, settings, progress, checkpointing);
   });
+}
+
+RenderState state_of(const RenderResult& result) {
+  RenderState state{result.pixel_samples.size()};
+  state.pixels.sums = result.sums;
+  state.pixels.spreads = result.spreads;
+  state.pixels.samples = result.pixel_samples;
+  state.pixels.rays = result.pixel_rays;
+  state.targets = result.targets;
+  state.last_round = result.last_round;
+  state.rays_traced = result.rays_traced;
+  state.render_seconds = result.render_seconds;
+  state.estimated_image_error = result.estimated_image_error;
+  state.pixels_above_target = result.pixels_above_target;
+  return state;
 }
 
 void start_parallel_runtime() {

@@ -61,6 +61,9 @@ struct RenderResult {
   std::vector<PixelSum> sums;                // their exact sums, for merging shares of a render
   std::vector<PixelSpread> spreads;          // for each pixel's variance
   std::vector<std::uint32_t> pixel_samples;  // each pixel's sample count
+  std::vector<std::uint64_t> pixel_rays;     // the rays each pixel's samples traced
+  std::vector<std::uint32_t> targets;        // adaptive: the round's targets (a state's)
+  bool last_round = false;                   // adaptive: the round under way is the last
   std::uint64_t first_sample = 0;            // each pixel's samples start at this index
   SamplerKind sampler = SamplerKind::Independent;  // what drew them
   int samples_completed = 0;    // per pixel (the most any pixel took when adaptive)
@@ -80,6 +83,11 @@ struct RenderResult {
 void validate(const Scene& scene, const RenderSettings& settings);
 
 struct Checkpointing;  // core/render/render_state.h
+struct RenderState;
+
+// The state a render ended in, copied back out of its result: for a caller that keeps it after
+// the render (in a checkpoint, when the image could not be written).
+RenderState state_of(const RenderResult& result);
 
 // Validates the scene's camera and the settings (throwing InvalidInput before any work),
 // builds the accelerator and renders in passes: each pass adds a few samples to every

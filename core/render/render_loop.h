@@ -214,8 +214,11 @@ std::uint64_t render_pass(const RenderContext<Accel>& ctx, std::uint32_t samples
 
 // A pass over a list of pixels (raster order), each brought to its entry of `targets`
 // (film-sized): adaptive sampling's rounds, where few pixels may remain and tiles would
-// leave threads idle. `may_skip` is asked before each group of pixels; once it returns
-// true (a stop request, a deadline) the rest keep their counts. Returns the rays traced.
+// leave threads idle. `may_skip` is asked before each group of pixels, and again after every
+// kSamplesPerStep samples of a pixel (a pixel may be given millions), so a stop request or a
+// deadline is honoured within a fraction of a second; once it returns true the rest keep their
+// counts (a pixel part of the way to its target continues from there: sums are exact, so the
+// steps never change the image). Returns the rays traced.
 template <typename Accel>
 std::uint64_t render_pixel_list(const RenderContext<Accel>& ctx,
                                 const std::vector<std::size_t>& list,
@@ -223,15 +226,27 @@ std::uint64_t render_pixel_list(const RenderContext<Accel>& ctx,
                                 PixelAccumulators& pixels, RenderProgress* progress,
                                 const std::function<bool()>& may_skip) {
   constexpr std::size_t kPixelsPerTask = 8;
+  constexpr std::uint32_t kSamplesPerStep = 4096;
   std::atomic<std::uint64_t> rays{0};
   parallel_over(ctx.settings, tbb::blocked_range<std::size_t>(0, list.size(), kPixelsPerTask),
                 [&](const tbb::blocked_range<std::size_t>& part) {
-                  if (may_skip()) return;
-                  std::uint64_t part_rays = 0;
-                  const std::uint64_t part_samples = advance_pixels(
-                      ctx, part.size(), [&](std::size_t k) { return list[part.begin() + k]; },
-                      [&](std::size_t p) { return targets[p]; }, pixels, part_rays);
-                  count_work(part_rays, part_samples, rays, progress);
+                  for (bool more = true; more;) {
+                    if (may_skip()) return;
+                    more = false;
+                    const auto step_target = [&](std::size_t p) {
+                      const std::uint32_t from = pixels.samples[p];
+                      if (targets[p] <= from || targets[p] - from <= kSamplesPerStep) {
+                        return targets[p];
+                      }
+                      more = true;
+                      return from + kSamplesPerStep;
+                    };
+                    std::uint64_t part_rays = 0;
+                    const std::uint64_t part_samples = advance_pixels(
+                        ctx, part.size(), [&](std::size_t k) { return list[part.begin() + k]; },
+                        step_target, pixels, part_rays);
+                    count_work(part_rays, part_samples, rays, progress);
+                  }
                 });
   return rays.load();
 }

@@ -145,9 +145,12 @@ void write_part(const std::string& path, const RenderPart& part) {
     }
   }
 
-  write_atomically(path, [&](const std::string& temporary, std::string& reason) {
-    return backend.write(temporary, header, data.data(), reason) && reads_back(temporary, reason);
-  });
+  std::vector<unsigned char> encoded;
+  std::string reason;
+  if (!backend.encode(path, header, data.data(), encoded, reason)) {
+    throw std::runtime_error("cannot write '" + path + "': " + reason);
+  }
+  write_bytes_atomically(path, encoded);
 }
 
 namespace {

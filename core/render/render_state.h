@@ -31,14 +31,17 @@ struct RenderState {
   explicit RenderState(std::size_t pixel_count) : pixels(pixel_count) {}
 };
 
+// Why a state is saved: on the way, or because the render ended, stopped by a request (to be
+// resumed) or finished (its work done, or its time limit reached: kept only to refine).
+enum class SaveReason { Periodic, Stopped, Finished };
+
 // How a render keeps its state. `save` is called between passes (or in the middle of an
 // adaptive round) once `interval_seconds` have passed since the last save, and once more when
-// the render ends, finished or stopped (`ended` true). A render given `resume` continues
-// from it (moved from).
+// the render ends. A render given `resume` continues from it (moved from).
 struct Checkpointing {
   RenderState* resume = nullptr;
   double interval_seconds = 0.0;  // 0: only when the render ends
-  std::function<void(const RenderState& state, bool ended)> save;
+  std::function<void(const RenderState& state, SaveReason reason)> save;
 };
 
 // The render loops' side of checkpointing: the state they add to, when a save is due, and
@@ -65,13 +68,13 @@ class RenderJournal {
 
   // Saves the state with what `result` has counted (rays, where the error stands).
   template <typename Result>
-  void save(const Result& result, bool ended = false) {
+  void save(const Result& result, SaveReason reason = SaveReason::Periodic) {
     if (!checkpointing_) return;
     state_.rays_traced = result.rays_traced;
     state_.estimated_image_error = result.estimated_image_error;
     state_.pixels_above_target = result.pixels_above_target;
     state_.render_seconds = elapsed();
-    checkpointing_->save(state_, ended);
+    checkpointing_->save(state_, reason);
     last_save_ = Clock::now();
   }
 

@@ -543,9 +543,11 @@ Scene load_scene_file(const std::string& path) {
         },
         limits::kMaxSceneFileBytes, "standard input");
   }
-  const std::uint64_t bytes = check_input_file(path, limits::kMaxSceneFileBytes, "scene file");
-  std::FILE* file = std::fopen(path.c_str(), "rb");
+  InputFile input(path, limits::kMaxSceneFileBytes, "scene file");
+  const std::uint64_t bytes = input.size();
+  std::FILE* file = ::fdopen(input.fd(), "rb");
   if (!file) throw InvalidInput("scene file " + quote_value(path) + ": cannot open it");
+  input.release();  // the FILE closes it
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(file, &std::fclose);
   const auto read = [&](char* buffer, std::size_t size) {
     const std::size_t n = std::fread(buffer, 1, size, file);

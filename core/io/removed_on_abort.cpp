@@ -1,0 +1,49 @@
+#include "core/io/removed_on_abort.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cstring>
+
+namespace rtiow {
+namespace {
+
+// A fixed table: a signal handler can neither allocate nor lock. rtiow holds at most a lock,
+// a checkpoint's temporary and an image's temporary at once.
+constexpr int kFree = -1, kFilling = -2;
+struct Slot {
+  std::atomic<int> dir_fd{kFree};  // kFree, kFilling, or the directory of `name`
+  char name[256] = {};
+};
+std::array<Slot, 8> g_slots;
+static_assert(std::atomic<int>::is_always_lock_free, "read from a signal handler");
+
+}  // namespace
+
+RemovedOnAbort::RemovedOnAbort(int dir_fd, const std::string& name) {
+  if (dir_fd < 0 || name.empty() || name.size() >= sizeof(Slot::name)) return;
+  for (int i = 0; i < int(g_slots.size()); ++i) {
+    int expected = kFree;
+    if (!g_slots[std::size_t(i)].dir_fd.compare_exchange_strong(expected, kFilling)) continue;
+    Slot& slot = g_slots[std::size_t(i)];
+    std::memcpy(slot.name, name.c_str(), name.size() + 1);
+    slot.dir_fd.store(dir_fd);  // the name is whole before a handler can see the slot
+    slot_ = i;
+    return;
+  }
+}
+
+RemovedOnAbort::~RemovedOnAbort() {
+  if (slot_ >= 0) g_slots[std::size_t(slot_)].dir_fd.store(kFree);
+}
+
+void remove_files_now() noexcept {
+  for (Slot& slot : g_slots) {
+    const int dir_fd = slot.dir_fd.load();
+    if (dir_fd >= 0) ::unlinkat(dir_fd, slot.name, 0);
+  }
+}
+
+}  // namespace rtiow

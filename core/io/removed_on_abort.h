@@ -1,0 +1,27 @@
+#pragma once
+// Files this process must not leave behind even when it ends at once (a second Ctrl-C, a
+// fatal signal handled by rtiow): a temporary being written, a lock file. Each is registered
+// by its directory's descriptor and its name while it exists; remove_files_now() unlinks
+// them all and is async-signal-safe, so a signal handler may call it just before _exit.
+
+#include <string>
+
+namespace rtiow {
+
+// Registers (dir_fd, name) for as long as it lives. Names longer than a file name may be
+// are not registered (the file is then removed only by its owner's normal path).
+class RemovedOnAbort {
+ public:
+  RemovedOnAbort(int dir_fd, const std::string& name);
+  ~RemovedOnAbort();
+  RemovedOnAbort(const RemovedOnAbort&) = delete;
+  RemovedOnAbort& operator=(const RemovedOnAbort&) = delete;
+
+ private:
+  int slot_ = -1;
+};
+
+// Unlinks every registered file. Async-signal-safe: only atomics and unlinkat.
+void remove_files_now() noexcept;
+
+}  // namespace rtiow
