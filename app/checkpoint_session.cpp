@@ -81,8 +81,10 @@ void CheckpointSession::refuse_unless_told() {
   const std::string differs = identity_mismatch(there->identity, identity_);
   const std::string done = samples_done(*there);
   if (differs.empty()) {
-    throw InvalidInput("checkpoint " + quote_value(path_) + " holds an unfinished render of this "
-                       "request" + (done.empty() ? "" : " (" + done + ")") +
+    throw InvalidInput("checkpoint " + quote_value(path_) +
+                       " holds an unfinished render of this "
+                       "request" +
+                       (done.empty() ? "" : " (" + done + ")") +
                        ": add --resume to continue it, or --restart to discard it and render "
                        "from the start");
   }

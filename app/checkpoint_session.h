@@ -75,7 +75,7 @@ class CheckpointSession {
   CheckpointOptions options_;
   CheckpointIdentity identity_;
   bool identity_known_ = false;
-  bool wrote_beside_ = false;     // a checkpoint of this render is (or was) at path_
+  bool wrote_beside_ = false;  // a checkpoint of this render is (or was) at path_
   bool warned_ = false;
   bool finished_ = false;
   std::string failure_;

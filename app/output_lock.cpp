@@ -62,22 +62,25 @@ OutputLock::OutputLock(const std::string& output) : name_(lock_name(output)) {
   // A few tries: a stale lock may be removed, or a fresh one made, between our steps.
   for (int attempt = 0; attempt < 5; ++attempt) {
     bool created = true;
-    int fd = ::openat(dir_fd_, name_.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
-                      0644);
+    int fd =
+        ::openat(dir_fd_, name_.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd < 0 && errno == EEXIST) {
       // Someone's lock, live or stale; opened without following a link or blocking on a FIFO,
       // and used only if it is a plain file of this user's.
       created = false;
-      fd = ::openat(dir_fd_, name_.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+      fd =
+          ::openat(dir_fd_, name_.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
       if (fd < 0 && errno == ENOENT) continue;  // removed meanwhile: create it
-      if (fd < 0 && errno == ELOOP) refuse("it is a symbolic link, which rtiow never makes; remove it");
-      if (fd < 0 && errno == EISDIR) refuse("it is a directory, which rtiow never makes; remove it");
+      if (fd < 0 && errno == ELOOP)
+        refuse("it is a symbolic link, which rtiow never makes; remove it");
+      if (fd < 0 && errno == EISDIR)
+        refuse("it is a directory, which rtiow never makes; remove it");
       if (fd < 0) refuse(std::strerror(errno));
       struct stat info {};
       const bool fstat_ok = ::fstat(fd, &info) == 0;
-      const std::string why = !fstat_ok                     ? std::strerror(errno)
-                              : !S_ISREG(info.st_mode)      ? "it is not a regular file (a FIFO, "
-                                                              "socket or device); remove it"
+      const std::string why = !fstat_ok                    ? std::strerror(errno)
+                              : !S_ISREG(info.st_mode)     ? "it is not a regular file (a FIFO, "
+                                                             "socket or device); remove it"
                               : info.st_uid != ::geteuid() ? "it belongs to another user; remove it"
                               : info.st_nlink != 1 ? "it has other names (hard links); remove it"
                                                    : "";

@@ -364,9 +364,9 @@ void write_or_keep(const RenderOptions& o, const Job& job, const RenderResult& r
     } catch (const std::bad_alloc&) {  // no memory for a copy of the state: said below
     }
     if (!checkpoint->holds_the_render()) {
-      throw std::runtime_error(what + "; and the render's state could not be kept" +
-                               (checkpoint->failure().empty() ? std::string()
-                                                              : " (" + checkpoint->failure() + ")"));
+      throw std::runtime_error(
+          what + "; and the render's state could not be kept" +
+          (checkpoint->failure().empty() ? std::string() : " (" + checkpoint->failure() + ")"));
     }
     throw std::runtime_error(what + "; the render is kept in " +
                              quote_value(checkpoint->kept_at(), kWholePath) + ": " +

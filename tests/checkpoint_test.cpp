@@ -163,7 +163,8 @@ TEST_F(CheckpointFile, KeepsTheStateBitForBit) {
   for (std::size_t p = 0; p < state.pixels.spreads.size(); ++p) {
     ASSERT_TRUE(read->pixels.spreads[p] == state.pixels.spreads[p]);
   }
-  EXPECT_FALSE(read_checkpoint((path_.string() + ".none"), id, settings_)) << "no file: nothing to resume";
+  EXPECT_FALSE(read_checkpoint((path_.string() + ".none"), id, settings_))
+      << "no file: nothing to resume";
 }
 
 TEST_F(CheckpointFile, RefusesAnotherRequestNamingWhatDiffers) {

@@ -719,8 +719,8 @@ namespace {
 
 std::vector<std::string> long_render(const fs::path& out) {
   // --restart: each case leaves its stopped render's checkpoint, which the next discards.
-  return {"render", "--scene", "cover", "--width", "160", "--spp", "1000000", "--restart",
-          "-o",     out.string()};
+  return {"render", "--scene", "cover",     "--width", "160",
+          "--spp",  "1000000", "--restart", "-o",      out.string()};
 }
 
 // Every signal that ends a process by default keeps the work: Ctrl-C, kill, a closed

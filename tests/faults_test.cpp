@@ -240,7 +240,8 @@ TEST(Checkpoint, EachSignalAtRandomMomentsResumesToTheSameFile) {
       if (signalled) {
         // Stopped: the image of the samples done, and the checkpoint to continue it; or, when
         // the signal came during the final write, the whole image and no checkpoint.
-        const bool after_render = r.stderr_text().find("after the render ended") != std::string::npos;
+        const bool after_render =
+            r.stderr_text().find("after the render ended") != std::string::npos;
         EXPECT_EQ(fs::exists(dir / (name + ".rtiow-checkpoint")), !after_render) << where;
         EXPECT_TRUE(fs::exists(out)) << where << ": no partial image";
         EXPECT_FALSE(has_file_starting(dir, "." + name)) << where << ": a temporary left";
@@ -276,10 +277,9 @@ TEST(Checkpoint, FinishedRenderRefinesToTheFileOfTheLargerCount) {
 TEST(Checkpoint, ResumeRefusesTheCheckpointOfAnotherRequest) {
   const fs::path dir = fresh_dir();
   const std::string out = (dir / "c.png").string();
-  ASSERT_EQ(
-      run_rtiow({"render", "-q", "--width", "60", "--spp", "4", "--keep-state", "-o", out})
-          .exit_code,
-      0);
+  ASSERT_EQ(run_rtiow({"render", "-q", "--width", "60", "--spp", "4", "--keep-state", "-o", out})
+                .exit_code,
+            0);
   const std::string before = slurp(out);
   const CommandResult r = run_rtiow(
       {"render", "-q", "--width", "60", "--spp", "4", "--seed", "9", "--resume", "-o", out});

@@ -78,8 +78,7 @@ void write_atomically(const std::string& path,
   const auto fail = [&](const std::string& why) {
     throw std::runtime_error("cannot write '" + path + "': " + why);
   };
-  const Descriptor dir(
-      ::open(directory_of(target).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  const Descriptor dir(::open(directory_of(target).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
   if (dir.get() < 0) fail(std::strerror(errno));
 
   // Exclusive creation under a fresh random name; a name taken (by chance, or by someone who
@@ -132,7 +131,8 @@ void write_text_atomically(const std::string& path, const std::string& text) {
 
 bool is_temporary_of(const std::string& target_name, const std::string& name) {
   const std::string prefix = "." + target_name + kTemporaryMark;
-  if (name.size() != prefix.size() + kRandomLetters || name.compare(0, prefix.size(), prefix) != 0) {
+  if (name.size() != prefix.size() + kRandomLetters ||
+      name.compare(0, prefix.size(), prefix) != 0) {
     return false;
   }
   for (std::size_t i = prefix.size(); i < name.size(); ++i) {

@@ -169,8 +169,8 @@ std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std
   std::string reason;
   auto in = image_backend().open(library_name, reason);
   if (!in) {
-    throw InvalidInput(name + ": cannot read: " +
-                       one_line(in_words_of(reason, library_name, path), 200));
+    throw InvalidInput(name +
+                       ": cannot read: " + one_line(in_words_of(reason, library_name, path), 200));
   }
   return std::make_unique<CheckedImageReader>(std::move(file), path, std::move(in));
 }

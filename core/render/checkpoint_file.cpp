@@ -432,7 +432,8 @@ std::optional<RenderState> read_checkpoint(const std::string& path,
                        "): remove it, or render with --restart to replace it");
   }
   // Every field against the request and the limits, before anything is allocated.
-  const std::uint64_t expected_pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
+  const std::uint64_t expected_pixels =
+      std::uint64_t(settings.width) * std::uint64_t(settings.height);
   const std::uint64_t pixels = field_number(header, "pixels", path, limits::kMaxPixels);
   if (pixels != expected_pixels) {
     throw bad_file(path, "holds " + std::to_string(pixels) + " pixels, not the image's " +

@@ -270,15 +270,20 @@ void read_part_sums(ImageReader& in, const std::string& name,
 RenderPart read_part(const std::string& path) {
   const std::string name = "part file " + quote_value(path);
   auto in = open_input_image(path, name, limits::kMaxPartFileBytes, "part file");
-  const std::optional<std::vector<WordChannels>> channels = find_sum_channels(in->header());
+  return read_part(*in, path);
+}
+
+RenderPart read_part(ImageReader& in, const std::string& path) {
+  const std::string name = "part file " + quote_value(path);
+  const std::optional<std::vector<WordChannels>> channels = find_sum_channels(in.header());
   if (!channels) {
     throw InvalidInput(name + ": not a part file (render one with --sample-range or --part)");
   }
   RenderPart part;
   part.path = path;
-  read_part_header(in->header(), name, part);
-  part.metadata = read_part_metadata(in->header());
-  read_part_sums(*in, name, *channels, part);
+  read_part_header(in.header(), name, part);
+  part.metadata = read_part_metadata(in.header());
+  read_part_sums(in, name, *channels, part);
   return part;
 }
 

@@ -42,6 +42,12 @@ void write_part(const std::string& path, const RenderPart& part);
 // every header field is checked before the pixels are allocated.
 RenderPart read_part(const std::string& path);
 
+class ImageReader;  // core/io/image_file.h
+
+// The same from an image already opened (`path` names it in messages): what the fuzz target
+// drives with headers and pixels of its own making.
+RenderPart read_part(ImageReader& in, const std::string& path);
+
 struct MergedRender {
   Film film;
   std::uint64_t samples = 0;
