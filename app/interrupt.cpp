@@ -32,8 +32,7 @@ void on_signal(int signal) {
   if (g_signal != 0) end_at_once(signal);
   g_signal = signal;
   if (g_stop) g_stop->store(true);
-  constexpr char kStopping[] =
-      "\nrtiow: stopping: the samples done will be written (again to end at once)\n";
+  constexpr char kStopping[] = "\nrtiow: stopping; a second signal ends rtiow at once\n";
   write_stderr(kStopping, sizeof kStopping - 1);
 }
 

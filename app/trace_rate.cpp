@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/accel/embree_accel.h"
+#include "core/parallel/thread_count.h"
 #include "core/render/render_loop.h"
 
 namespace rtiow {
@@ -51,9 +52,8 @@ TraceRate measure_trace_rate(const Scene& scene, const std::vector<Ray>& rays, i
                              EmbreeCallback callback) {
   const EmbreeAccel embree(scene.spheres, callback);
   std::atomic<std::uint64_t> hits{0};
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   const auto start = std::chrono::steady_clock::now();
-  arena.execute([&] {
+  with_threads(threads, [&] {  // above the cores too, without TBB's warning
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, rays.size(), 4096),
         [&](const tbb::blocked_range<std::size_t>& range) {

@@ -20,14 +20,20 @@ inline int thread_count(int asked) {
   return asked > 0 ? asked : tbb::info::default_concurrency();
 }
 
-// f() with TBB's parallel work inside it on `asked` threads (0: every core).
-template <typename F>
-auto with_threads(int asked, F&& f) {
-  const int threads = thread_count(asked);
+// TBB's limit raised to `threads` while the result lives, where that is above the cores.
+inline std::optional<tbb::global_control> allow_threads(int threads) {
   std::optional<tbb::global_control> more_than_cores;
   if (threads > tbb::info::default_concurrency()) {
     more_than_cores.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   }
+  return more_than_cores;
+}
+
+// f() with TBB's parallel work inside it on `asked` threads (0: every core).
+template <typename F>
+auto with_threads(int asked, F&& f) {
+  const int threads = thread_count(asked);
+  const std::optional<tbb::global_control> allowed = allow_threads(threads);
   tbb::task_arena arena(threads);
   return arena.execute(f);
 }

@@ -141,7 +141,9 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
 // count. The fork and the join are annotated for TSan, which does not see TBB's own.
 template <typename Range, typename Body>
 void parallel_over(const RenderSettings& settings, const Range& range, const Body& body) {
-  tbb::task_arena arena(thread_count(settings.threads));
+  const int threads = thread_count(settings.threads);
+  const std::optional<tbb::global_control> allowed = allow_threads(threads);
+  tbb::task_arena arena(threads);
   tsan_release(&tsan_fork_sync);  // what the tasks read was written before this
   arena.execute(
       [&] { tbb::parallel_for(range, TsanOrderedBody<Body>(body), tbb::simple_partitioner()); });
