@@ -36,12 +36,20 @@ std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
     }
   }
   std::string sampler;
+  std::int64_t replicates = kReplicates;  // an older rtiow's parts always had two
   for (const auto& [key, value] : merged.metadata) {
     if (const auto* text = std::get_if<std::string>(&value); key == metadata_key::kSampler && text)
       sampler = *text;
+    if (const auto* n = std::get_if<std::int64_t>(&value); key == metadata_key::kReplicates && n)
+      replicates = *n;
+  }
+  if (replicates != kReplicates && sampler != to_string(SamplerKind::Independent)) {
+    throw InvalidInput(
+        "--stats-channels: the parts were rendered from one sequence, which keeps no estimate of "
+        "the error: render them with --stats-channels");
   }
   try {
-    return statistics_channels(merged_result(merged, parse_sampler(sampler)));
+    return statistics_channels(merged_result(merged, parse_sampler(sampler), int(replicates)));
   } catch (const InvalidInput& e) {
     throw InvalidInput("--stats-channels: the parts' sampler: " + std::string(e.what()));
   }

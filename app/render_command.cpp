@@ -94,6 +94,7 @@ RenderRequest request_of(const RenderOptions& o) {
   r.image_error = o.image_error;
   r.adaptive = o.adaptive;
   r.min_samples = o.min_spp;
+  r.estimate_error = o.stats_channels;
   return r;
 }
 
@@ -207,12 +208,8 @@ void check_adaptive_options(const RenderOptions& o, const std::string& output,
                        "with --sample-range, --part or mpirun");
   }
 
-  // A part's file keeps its exact spreads; the variances are the whole render's, at the merge.
-  if (o.stats_channels && (!o.sample_range.empty() || !o.part.empty())) {
-    throw InvalidInput(
-        "--stats-channels is for the whole render, not a part: a part file keeps what the "
-        "variances need, and 'rtiow merge --stats-channels' writes them");
-  }
+  // (A part with --stats-channels keeps two replicates, so that 'rtiow merge --stats-channels'
+  // can write the whole render's variances; the part file holds its exact spreads, not channels.)
 }
 
 // A render as the options ask for it: the scene, the settings of this process's share, and
@@ -553,7 +550,10 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
       ->capture_default_str();
   cmd->add_flag("--stats-channels", o.stats_channels,
                 "Add per-pixel channels to an .exr output: spp and the variance of the pixel's "
-                "mean (variance.R/G/B)");
+                "mean (variance.R/G/B). For that estimate the samples alternate between two "
+                "independent replicates, whose image has about 1.2x the squared error of one "
+                "sequence at a fixed count; with --part, so that 'rtiow merge --stats-channels' "
+                "can write them");
   cmd->add_option("--fresnel", o.fresnel,
                   "Glass reflectance: schlick (the book's approximation) or exact (default: as "
                   "the scene says, schlick for the built-in scenes)")

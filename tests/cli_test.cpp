@@ -915,27 +915,42 @@ TEST(Cli, PartsMergeIntoTheIdenticalFileAndBadSetsAreRefused) {
   ASSERT_EQ(m.exit_code, 0) << m.stderr_text;
   EXPECT_EQ(slurp(merged), slurp(whole)) << "merged parts differ from the single render";
 
-  // The variances too: a part keeps its exact spread, so the merge writes the channels one
-  // render writes, bit for bit.
+  // The variances too: parts rendered with --stats-channels keep two replicates and their
+  // exact spreads, so the merge writes the channels one render writes, bit for bit.
   const fs::path whole_stats = output_path("whole-stats.exr"),
                  merged_stats = output_path("merged-stats.exr");
   ASSERT_EQ(run_rtiow("render" + common + "--stats-channels -o " + whole_stats.string()).exit_code,
             0);
-  const CommandResult ms =
-      run_rtiow("merge --stats-channels " + parts[1].string() + " " + parts[2].string() + " " +
-                parts[0].string() + " -o " + merged_stats.string());
+  std::vector<fs::path> stats_parts;
+  for (int i = 0; i < 3; ++i) {
+    stats_parts.push_back(output_path("stats-part" + std::to_string(i) + ".exr"));
+    ASSERT_EQ(run_rtiow("render" + common + "--stats-channels --part " + std::to_string(i) +
+                        "/3 -o " + stats_parts.back().string())
+                  .exit_code,
+              0);
+  }
+  const CommandResult ms = run_rtiow("merge --stats-channels " + stats_parts[1].string() + " " +
+                                     stats_parts[2].string() + " " + stats_parts[0].string() +
+                                     " -o " + merged_stats.string());
   ASSERT_EQ(ms.exit_code, 0) << ms.stderr_text;
   EXPECT_EQ(slurp(merged_stats), slurp(whole_stats)) << "the merged variances differ";
-  const CommandResult png_stats =
-      run_rtiow("merge --stats-channels " + parts[0].string() + " " + parts[1].string() + " " +
-                parts[2].string() + " -o " + output_path("stats.png").string());
+  const CommandResult png_stats = run_rtiow(
+      "merge --stats-channels " + stats_parts[0].string() + " " + stats_parts[1].string() + " " +
+      stats_parts[2].string() + " -o " + output_path("stats.png").string());
   EXPECT_EQ(png_stats.exit_code, 2);
   EXPECT_NE(png_stats.stderr_text.find("must be .exr"), std::string::npos) << png_stats.stderr_text;
-  const CommandResult part_stats = run_rtiow("render" + common + "--part 0/3 --stats-channels -o " +
-                                             output_path("stats-part.exr").string());
-  EXPECT_EQ(part_stats.exit_code, 2);
-  EXPECT_NE(part_stats.stderr_text.find("rtiow merge --stats-channels"), std::string::npos)
-      << part_stats.stderr_text;
+  // Parts drawn from one sequence (no --stats-channels) keep no estimate: refused by name.
+  const CommandResult plain_stats =
+      run_rtiow("merge --stats-channels " + parts[0].string() + " " + parts[1].string() + " " +
+                parts[2].string() + " -o " + output_path("plain-stats.exr").string());
+  EXPECT_EQ(plain_stats.exit_code, 2);
+  EXPECT_NE(plain_stats.stderr_text.find("render them with --stats-channels"), std::string::npos)
+      << plain_stats.stderr_text;
+  // One sequence and two replicates are other samples: their parts do not merge.
+  const CommandResult mixed =
+      run_rtiow("merge " + parts[0].string() + " " + stats_parts[1].string() + " " +
+                stats_parts[2].string() + " -o " + output_path("mixed.exr").string());
+  EXPECT_EQ(mixed.exit_code, 2) << mixed.stderr_text;
 
   const fs::path early = output_path("early.exr"), late = output_path("late.exr");
   ASSERT_EQ(run_rtiow("render" + common + "--sample-range 0:5 -o " + early.string()).exit_code, 0);

@@ -48,6 +48,7 @@ RenderSettings settings(const Scene& scene, int width, int spp, SamplerKind samp
   s.samples = FixedSamples{spp};
   s.max_depth = 50;
   s.sampler = sampler;
+  s.estimate_error = true;  // the variance channels' renders
   return s;
 }
 

@@ -342,14 +342,11 @@ CheckpointIdentity checkpoint_identity(const Scene& scene, const RenderSettings&
     }
     mode = value + min_spp + spp;
   }
-  return {version(),
-          scene_digest(scene),
-          std::to_string(s.width) + "x" + std::to_string(s.height),
-          std::to_string(s.max_depth),
-          std::to_string(s.seed),
-          to_string(s.sampler),
-          std::to_string(s.first_sample),
-          mode};
+  return {version(), scene_digest(scene), std::to_string(s.width) + "x" + std::to_string(s.height),
+          std::to_string(s.max_depth), std::to_string(s.seed),
+          // One sequence draws other samples than two replicates (an older checkpoint's).
+          to_string(s.sampler) + (replicates(s) == 1 ? " (one sequence)" : ""),
+          std::to_string(s.first_sample), mode};
 }
 
 std::string identity_mismatch(const CheckpointIdentity& checkpoint, const CheckpointIdentity& now) {

@@ -137,6 +137,7 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   result.last_round = state.last_round;
   result.first_sample = settings.first_sample;
   result.sampler = settings.sampler;
+  result.replicates = replicates(settings);
   return result;
 }
 

@@ -37,11 +37,22 @@ struct RenderSettings {
   // Sobol: at equal time 2.3-5.4x lower relMSE than independent sampling on every built-in
   // scene (docs/accuracy.md); the book's sampler is Independent.
   SamplerKind sampler = SamplerKind::Sobol;
+  // Keep what an estimate of each pixel's error needs: two independent replicates of the
+  // sampler's sequence (core/sampling/sampler.h). The variance channels ask for it; the adaptive
+  // modes always have it. Without it a render draws one sequence, and its image is less noisy.
+  bool estimate_error = false;
 };
 
 // Whether pixels get different sample counts (any adaptive mode).
 inline bool is_adaptive(const RenderSettings& s) {
   return is_adaptive(s.samples);
+}
+
+// How many independent replicates a pixel's samples alternate between: kReplicates where the
+// render estimates its error (or the sampler's samples are independent anyway), else 1.
+inline int replicates(const RenderSettings& s) {
+  return s.estimate_error || is_adaptive(s) || s.sampler == SamplerKind::Independent ? kReplicates
+                                                                                     : 1;
 }
 
 // Throws InvalidInput naming the setting: non-positive size or spp, negative depth,
@@ -66,6 +77,7 @@ struct RenderResult {
   bool last_round = false;                   // adaptive: the round under way is the last
   std::uint64_t first_sample = 0;            // each pixel's samples start at this index
   SamplerKind sampler = SamplerKind::Independent;  // what drew them
+  int replicates = kReplicates;                    // in how many independent sequences
   int samples_completed = 0;    // per pixel (the most any pixel took when adaptive)
   bool stopped = false;         // a stop request ended the render early
   bool time_limited = false;    // the time limit ended it (with the samples completed)

@@ -84,7 +84,7 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
   std::array<std::optional<PixelSampler>, kTileSize> samplers;
   for (int j = 0; j < run.length; ++j) {
     samplers[std::size_t(j)].emplace(settings.sampler, settings.seed, std::uint32_t(run.x + j),
-                                     std::uint32_t(run.y));
+                                     std::uint32_t(run.y), replicates(settings));
   }
   std::array<std::optional<SampleStream>, kRayPacketSize> streams;
   std::array<int, kRayPacketSize> owner;            // the pixel of the run each sample belongs to

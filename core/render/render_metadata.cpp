@@ -19,6 +19,7 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
                                       {key::kDepth, std::int64_t(s.max_depth)},
                                       {key::kSeed, std::int64_t(s.seed)},
                                       {key::kSampler, to_string(s.sampler)},
+                                      {key::kReplicates, std::int64_t(replicates(s))},
                                       {key::kAccelerator, to_string(s.accel)},
                                       {key::kRaysTraced, std::int64_t(r.rays_traced)},
                                   });

@@ -14,6 +14,9 @@ inline constexpr const char* kSceneSeed = "scene_seed";
 inline constexpr const char* kDepth = "depth";
 inline constexpr const char* kSeed = "seed";
 inline constexpr const char* kSampler = "sampler";
+// How many independent replicates the samples alternate between: 2 where the render kept what
+// an error estimate needs (absent in files of an older rtiow, which always kept two), 1 else.
+inline constexpr const char* kReplicates = "replicates";
 inline constexpr const char* kAccelerator = "accelerator";
 inline constexpr const char* kRaysTraced = "rays_traced";
 inline constexpr const char* kSpp = "spp";                     // uniform sampling

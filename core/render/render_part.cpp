@@ -87,6 +87,7 @@ std::string render_digest(const Scene& scene, const RenderSettings& settings) {
     text.append("|").append(std::to_string(v));
   }
   text.append("|").append(to_string(settings.sampler));
+  if (replicates(settings) == 1) text.append("|one sequence");  // other samples than replicates'
   std::uint64_t h = 0x6a09e667f3bcc908ull;
   for (unsigned char c : text) h = hash_combine(h, c);
   return hex(h);
@@ -383,12 +384,13 @@ MergedRender merge_parts(const std::vector<RenderPart>& input) {
   return merged;
 }
 
-RenderResult merged_result(const MergedRender& merged, SamplerKind sampler) {
+RenderResult merged_result(const MergedRender& merged, SamplerKind sampler, int replicates) {
   RenderResult r;
   r.film = merged.film;
   r.sums = merged.sums;
   r.spreads = merged.spreads;
   r.sampler = sampler;
+  r.replicates = replicates;
   complete_from_shares(merged.samples, r);
   return r;
 }

@@ -58,7 +58,7 @@ struct MergedRender {
 
 // The merged render as one render's result (samples from index 0, drawn by `sampler`), for
 // its variances (core/render/render_statistics.h).
-RenderResult merged_result(const MergedRender& merged, SamplerKind sampler);
+RenderResult merged_result(const MergedRender& merged, SamplerKind sampler, int replicates);
 
 // Checks that the parts belong to one render (same digest, size and job), that they neither
 // overlap nor leave a gap from sample 0 to the job's last, and adds them. Throws InvalidInput

@@ -102,6 +102,7 @@ ResolvedRender resolve(Scene scene, const RenderRequest& r) {
   s.time_limit_seconds = r.time_limit_seconds;
   s.accel = r.accel;
   s.sampler = r.sampler;
+  s.estimate_error = r.estimate_error;
   validate(s);
   return {std::move(scene), s};
 }

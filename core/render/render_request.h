@@ -43,6 +43,8 @@ struct RenderRequest {
   double target_error = 0.0;  // --target-error: each pixel's relative standard error
   double image_error = 0.0;   // --image-error: the image's relative RMS error
   bool adaptive = false;      // --adaptive: spend the budget where the variance is
+  // --stats-channels: keep what an estimate of each pixel's error needs (RenderSettings).
+  bool estimate_error = false;
   int min_samples = kDefaultLeastSamples;
 };
 

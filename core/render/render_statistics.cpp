@@ -1,6 +1,7 @@
 #include "core/render/render_statistics.h"
 
 #include <filesystem>
+#include <stdexcept>
 
 #include "core/film/replicate_variance.h"
 
@@ -10,11 +11,18 @@
 namespace rtiow {
 
 std::vector<Vec3d> pixel_mean_variances(const RenderResult& result) {
+  if (result.replicates < kReplicates) {
+    throw std::invalid_argument(
+        "no estimate of the error of a render drawn from one sequence: render it with "
+        "estimate_error (--stats-channels) to keep two replicates");
+  }
   return honest_variances(result.film.width(), result.film.height(), result.sums, result.spreads,
                           result.pixel_samples, result.first_sample, result.sampler);
 }
 
 ImageEstimate to_estimate(const RenderResult& result) {
+  // A render from one sequence has no estimate of its error: its variances are unknown.
+  if (result.replicates < kReplicates) return {result.film, {}};
   return {result.film, pixel_mean_variances(result)};
 }
 
