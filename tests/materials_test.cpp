@@ -125,15 +125,12 @@ TEST(ScatterOnGivenUniforms, LambertianIsTheNormalPlusTheUnitVectorOfTheDirectio
   }
 }
 
-TEST(ScatterOnGivenUniforms, FuzzyMetalOffsetsTheUnitMirrorByFuzzTimesAUnitVector) {
+TEST(ScatterOnGivenUniforms, FuzzyMetalOffsetsTheMirrorByFuzzTimesTheBallPoint) {
   const Material metal = make_metal({0.9f, 0.8f, 0.7f}, 0.5f);
-  // Unit vector (1, 0, 0) (u = (0.5, 0)): offset 0.5 along x, whatever the radius dimension
-  // (which the book's 3.x fuzz ball used) holds.
-  for (const float radius : {0.125f, 0.9f}) {
-    expect_direction(
-        scatter(metal, Vec3{0, -2, 0}, hit_facing_up(true), given(0.9f, 0.5f, 0.0f, radius)),
-        {0.5f, 1.0f, 0.0f}, "unit mirror + fuzz * unit vector");
-  }
+  // Unit vector (1, 0, 0) (u = (0.5, 0)) at radius cbrt(0.125) = 0.5: offset 0.25 along x.
+  expect_direction(
+      scatter(metal, Vec3{0, -1, 0}, hit_facing_up(true), given(0.9f, 0.5f, 0.0f, 0.125f)),
+      {0.25f, 1.0f, 0.0f}, "mirror + fuzz * ball point");
   // Fuzz 1 pushing a grazing reflection straight down (u = (0.5, 0.75): (0, -1, 0)) absorbs.
   const Material rough = make_metal({1, 1, 1}, 1.0f);
   EXPECT_FALSE(scatter(rough, normalize(Vec3{1, -0.05f, 0}), hit_facing_up(true),

@@ -7,10 +7,7 @@
 // `Sample_f` a 1D and a 2D value the same way; Mitsuba 3's `BSDF::sample` takes sample1 and
 // sample2). The direction comes first: with the Sobol sampler the first bounce's direction is
 // then dimensions 4 and 5, whose joint stratification with the pixel gave 15% lower relMSE on
-// the cover than dimensions 5 and 6. The radius was how far into its fuzz ball a metal went
-// (the book's 3.x fuzz); since rtiow follows the book's 4.0 fuzz (a unit vector) no material
-// reads it, and it keeps its place so that every other dimension keeps its meaning (only paths
-// through a fuzzy metal changed with the fuzz).
+// the cover than dimensions 5 and 6.
 
 namespace rtiow {
 
@@ -23,7 +20,7 @@ inline constexpr int kDirectionOffset = 0, kLobeOffset = 2, kRadiusOffset = 3;
 struct BounceSample {
   float direction[2] = {};  // a direction (Lambertian; a fuzzy metal's offset)
   float lobe = 0.0f;        // which lobe (a dielectric: reflect or refract)
-  float radius = 0.0f;      // read by no material now (below)
+  float radius = 0.0f;      // how far into the fuzz ball (a fuzzy metal)
 };
 
 // Which of a bounce's dimensions a material reads (materials declare it next to `scatter`).
