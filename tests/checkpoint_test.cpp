@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/io/checksum.h"
 #include "core/limits/error.h"
 #include "core/render/checkpoint_file.h"
 #include "core/render/render.h"
@@ -237,6 +238,53 @@ TEST_F(CheckpointFile, TheSceneDigestTellsApartAnyChangeToTheScene) {
     change(changed);
     EXPECT_NE(checkpoint_identity(changed, settings_).scene, base) << what;
   }
+}
+
+// A checkpoint of version 2 (fixed little-endian records, 156 bytes a pixel, before the compact
+// records) is still read, to the same state: a render kept before resumes after.
+TEST_F(CheckpointFile, ReadsAVersion2CheckpointToTheSameState) {
+  const RenderState state = saved_state();
+  const CheckpointIdentity id = checkpoint_identity(scene_, settings_);
+  write_checkpoint(path_.string(), id, state);
+  // The version-3 header without its two new fields, then version 2's records.
+  const std::string v3 = test::slurp(path_);
+  std::string header = v3.substr(0, v3.find("end\n") + 4);
+  header.replace(0, std::string("rtiow-checkpoint 3").size(), "rtiow-checkpoint 2");
+  for (const char* key : {"least_samples ", "most_samples "}) {
+    const std::size_t at = header.find(std::string("\n") + key);
+    ASSERT_NE(at, std::string::npos);
+    header.erase(at + 1, header.find('\n', at + 1) - at);
+  }
+  std::string bytes = header;
+  const auto put = [&](const auto& v) {
+    bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
+  };
+  const auto put_sum = [&](const PixelSum& sum) {
+    for (int c = 0; c < 3; ++c) {
+      const auto v = uint128(sum.channel(c));
+      put(std::uint64_t(v)), put(std::uint64_t(v >> 64));
+    }
+  };
+  const PixelAccumulators& p = state.pixels;
+  for (std::size_t i = 0; i < p.samples.size(); ++i) {
+    put_sum(p.sums[i]), put_sum(p.spreads[i].squares), put_sum(p.spreads[i].odd);
+    put(p.samples[i]), put(p.rays[i]);
+    if (!state.targets.empty()) put(state.targets[i]);
+  }
+  Checksum checksum;
+  checksum.update(bytes.data(), bytes.size());
+  put(checksum.value());
+  test::write_file(path_, bytes);
+  const std::optional<RenderState> read = read_checkpoint(path_.string(), id, settings_);
+  ASSERT_TRUE(read);
+  EXPECT_TRUE(read->pixels.sums == state.pixels.sums);
+  EXPECT_EQ(read->pixels.samples, state.pixels.samples);
+  EXPECT_EQ(read->pixels.rays, state.pixels.rays);
+  EXPECT_EQ(read->targets, state.targets);
+  for (std::size_t i = 0; i < p.spreads.size(); ++i) {
+    ASSERT_TRUE(read->pixels.spreads[i] == state.pixels.spreads[i]);
+  }
+  EXPECT_LT(v3.size() * 2, bytes.size()) << "version 3 is not the smaller";
 }
 
 TEST_F(CheckpointFile, RefusesDamagedFiles) {
