@@ -138,6 +138,22 @@ class CheckpointFile : public ::testing::Test {
     return saved;
   }
 
+  // The checkpoint at path_ reads back to `state`, bit for bit.
+  void expect_reads_back(const CheckpointIdentity& id, const RenderState& state) {
+    const std::optional<RenderState> read = read_checkpoint(path_.string(), id, settings_);
+    ASSERT_TRUE(read);
+    EXPECT_TRUE(read->pixels.sums == state.pixels.sums);
+    EXPECT_EQ(read->pixels.samples, state.pixels.samples);
+    EXPECT_EQ(read->pixels.rays, state.pixels.rays);
+    EXPECT_EQ(read->targets, state.targets);
+    EXPECT_EQ(read->last_round, state.last_round);
+    EXPECT_EQ(read->rays_traced, state.rays_traced);
+    EXPECT_EQ(read->render_seconds, state.render_seconds);
+    for (std::size_t p = 0; p < state.pixels.spreads.size(); ++p) {
+      ASSERT_TRUE(read->pixels.spreads[p] == state.pixels.spreads[p]);
+    }
+  }
+
   std::string refusal(const CheckpointIdentity& identity) {
     try {
       read_checkpoint(path_.string(), identity, settings_);
@@ -152,18 +168,7 @@ TEST_F(CheckpointFile, KeepsTheStateBitForBit) {
   const RenderState state = saved_state();
   const CheckpointIdentity id = checkpoint_identity(scene_, settings_);
   write_checkpoint(path_.string(), id, state);
-  const std::optional<RenderState> read = read_checkpoint(path_.string(), id, settings_);
-  ASSERT_TRUE(read);
-  EXPECT_TRUE(read->pixels.sums == state.pixels.sums);
-  EXPECT_EQ(read->pixels.samples, state.pixels.samples);
-  EXPECT_EQ(read->pixels.rays, state.pixels.rays);
-  EXPECT_EQ(read->targets, state.targets);
-  EXPECT_EQ(read->last_round, state.last_round);
-  EXPECT_EQ(read->rays_traced, state.rays_traced);
-  EXPECT_EQ(read->render_seconds, state.render_seconds);
-  for (std::size_t p = 0; p < state.pixels.spreads.size(); ++p) {
-    ASSERT_TRUE(read->pixels.spreads[p] == state.pixels.spreads[p]);
-  }
+  expect_reads_back(id, state);
   EXPECT_FALSE(read_checkpoint((path_.string() + ".none"), id, settings_))
       << "no file: nothing to resume";
 }
@@ -275,15 +280,7 @@ TEST_F(CheckpointFile, ReadsAVersion2CheckpointToTheSameState) {
   checksum.update(bytes.data(), bytes.size());
   put(checksum.value());
   test::write_file(path_, bytes);
-  const std::optional<RenderState> read = read_checkpoint(path_.string(), id, settings_);
-  ASSERT_TRUE(read);
-  EXPECT_TRUE(read->pixels.sums == state.pixels.sums);
-  EXPECT_EQ(read->pixels.samples, state.pixels.samples);
-  EXPECT_EQ(read->pixels.rays, state.pixels.rays);
-  EXPECT_EQ(read->targets, state.targets);
-  for (std::size_t i = 0; i < p.spreads.size(); ++i) {
-    ASSERT_TRUE(read->pixels.spreads[i] == state.pixels.spreads[i]);
-  }
+  expect_reads_back(id, state);
   EXPECT_LT(v3.size() * 2, bytes.size()) << "version 3 is not the smaller";
 }
 
