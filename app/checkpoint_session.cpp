@@ -40,7 +40,6 @@ CheckpointSession::CheckpointSession(const std::string& output, const Scene& sce
   // that writes or reads a checkpoint needs it.
   if (options_.interval_seconds > 0.0 || options_.resume) {
     identity_ = checkpoint_identity(scene, settings);
-    identity_known_ = true;
   }
   if (options_.resume) {
     resumed_ = read_checkpoint(path_, identity_, settings);
@@ -61,8 +60,7 @@ CheckpointSession::CheckpointSession(const std::string& output, const Scene& sce
   }
   checkpointing_.resume = resumed_ ? &*resumed_ : nullptr;
   checkpointing_.interval_seconds = options_.interval_seconds;
-  if (options_.interval_seconds > 0.0 || resumed_) {
-    if (!identity_known_) identity_ = checkpoint_identity(scene, settings);
+  if (uses_state()) {  // the identity is known: either computed it above
     checkpointing_.save = [this](const RenderState& state, SaveReason reason) {
       save(state, reason);
     };

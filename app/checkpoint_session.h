@@ -74,7 +74,6 @@ class CheckpointSession {
   std::string path_;
   CheckpointOptions options_;
   CheckpointIdentity identity_;
-  bool identity_known_ = false;
   bool wrote_beside_ = false;  // a checkpoint of this render is (or was) at path_
   bool warned_ = false;
   bool finished_ = false;
