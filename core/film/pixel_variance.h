@@ -67,10 +67,20 @@ inline void add_sample(PixelSum& sum, PixelSpread& spread, const Color& c,
   spread.add_counted(v, sample_index);
 }
 
+// The sum of squared deviations that rounding alone gives n equal samples: each square and
+// each sample are rounded to 2^-32 (by at most 2^-33), and the difference of the sums is taken
+// in double. Below three times this the sums cannot tell a pixel's samples apart (floats
+// closer than about 2e-5 at 1), and its spread is 0: a constant pixel reports no variance,
+// rather than rounding noise that a ratio of neighbours could take for evidence
+// (core/film/replicate_variance.cpp).
+inline double rounding_of_squared_deviations(double mean, double count) {
+  return count * (std::ldexp(1.0 + 2.0 * mean, -33) + mean * mean * std::ldexp(1.0, -50));
+}
+
 // The pixel's sample variance over n, per channel, after `n` samples: the variance of its
 // mean for independent samples, an overestimate for the Sobol samplers (whose honest
 // estimate scales this, core/film/replicate_variance.h). Infinite below two samples, where
-// there is no estimate.
+// there is no estimate; 0 where the samples are equal to the sums' resolution.
 inline Vec3d variance_of_mean(const PixelSum& sum, const PixelSpread& spread, std::uint64_t n) {
   if (n < 2) {
     constexpr double inf = INFINITY;
@@ -80,9 +90,9 @@ inline Vec3d variance_of_mean(const PixelSum& sum, const PixelSpread& spread, st
   double v[3];
   for (std::size_t c = 0; c < 3; ++c) {
     const double mean = double(sum.channel(int(c))) / PixelSum::kScale / count;
-    const double sample_variance =
-        std::max(0.0, (spread.squares.value(int(c)) - count * mean * mean) / (count - 1));
-    v[c] = sample_variance / count;
+    const double deviations = spread.squares.value(int(c)) - count * mean * mean;
+    const bool resolved = deviations > 3.0 * rounding_of_squared_deviations(mean, count);
+    v[c] = resolved ? deviations / (count - 1) / count : 0.0;
   }
   return {v[0], v[1], v[2]};
 }

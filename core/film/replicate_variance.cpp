@@ -73,7 +73,7 @@ WindowTotals class_windows(int width, int height, const std::vector<Vec3d>& repl
   std::vector<double> r(replicate.size(), 0.0), s(replicate.size(), 0.0), n(replicate.size(), 0.0);
   for (std::size_t p = 0; p < r.size(); ++p) {
     if (classes[p] < 0 || (only >= 0 && classes[p] != only)) continue;
-    r[p] = replicate[p][channel], s[p] = sample[p][channel], n[p] = 1.0;
+    r[p] = replicate[p][channel], s[p] = sample[p][channel], n[p] = s[p] > 0.0 ? 1.0 : 0.0;
   }
   WindowTotals t{window_sums(width, height, r, kReplicateWindowRadius),
                  window_sums(width, height, s, kReplicateWindowRadius),
@@ -84,10 +84,19 @@ WindowTotals class_windows(int width, int height, const std::vector<Vec3d>& repl
   return t;
 }
 
-// Rounding of the windows' sums can leave a tiny negative remainder; a window with no spread
-// at all says nothing, and the sample variance stands.
+// Rounding of the windows' sums can leave a tiny negative remainder.
 double ratio_of(double replicate, double sample) {
-  return sample > 0.0 ? std::max(0.0, replicate) / sample : 1.0;
+  return std::max(0.0, replicate) / sample;
+}
+
+// The ratio of a window's sums where at least kReplicateMinNeighbours of its pixels have a
+// spread (a constant pixel adds nothing to either sum, so it is no evidence of the sampler's
+// gain); with fewer, the neighbours say nothing about it, and the ratio is 1: the pixel's
+// sample variance stands, the honest bound for independent samples. A handful of neighbours
+// (or none but rounding, once) would make a ratio of a few degrees of freedom, near 0 by
+// chance, and report next to no variance at a noisy pixel.
+double ratio_of_window(double replicate, double sample, double pixels_with_spread) {
+  return pixels_with_spread >= kReplicateMinNeighbours ? ratio_of(replicate, sample) : 1.0;
 }
 
 // The mean of one channel's sample variance over p's 3x3 neighbours, p left out (0 when none
@@ -106,8 +115,9 @@ double neighbours_sample_variance(int width, int height, const std::vector<Vec3d
 }
 
 // For a render whose pixels all have one count: each pixel's ratio over the window's
-// neighbours whose sample variance is at most kReplicateTrimFactor times its neighbours' level,
-// where at least kReplicateMinNeighbours remain (else the whole window's, already in `ratios`).
+// neighbours of about its own level of noise (at most kReplicateTrimFactor times the larger of
+// its 3x3 neighbours' level and its own, at least its own over kReplicateQuietFactor), where at
+// least kReplicateMinNeighbours remain (else the whole window's, already in `ratios`).
 void trimmed_ratios(int width, int height, const std::vector<Vec3d>& replicate,
                     const std::vector<Vec3d>& sample, const std::vector<int>& classes,
                     std::size_t channel, std::vector<Vec3d>& ratios) {
@@ -117,15 +127,19 @@ void trimmed_ratios(int width, int height, const std::vector<Vec3d>& replicate,
       for (int x = 0; x < width; ++x) {
         const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
         if (classes[p] < 0) continue;
-        const double limit =
-            kReplicateTrimFactor *
+        const double own = sample[p][channel];
+        const double level =
             neighbours_sample_variance(width, height, sample, classes, channel, x, y);
+        const double limit = kReplicateTrimFactor * std::max(level, own);
+        const double low = own / kReplicateQuietFactor;
         double replicates = 0, samples = 0;
         int kept = 0;
         for (int ny = std::max(0, y - r); ny <= std::min(height - 1, y + r); ++ny) {
           for (int nx = std::max(0, x - r); nx <= std::min(width - 1, x + r); ++nx) {
             const std::size_t q = std::size_t(ny) * std::size_t(width) + std::size_t(nx);
-            if (q == p || classes[q] < 0 || sample[q][channel] > limit) continue;
+            const double spread = sample[q][channel];
+            if (q == p || classes[q] < 0 || spread > limit || spread < low || spread == 0.0)
+              continue;
             replicates += replicate[q][channel], samples += sample[q][channel], ++kept;
           }
         }
@@ -151,6 +165,9 @@ std::vector<Vec3d> replicate_ratios(int width, int height, const std::vector<Pix
     if (!std::isfinite(own.x + own.y + own.z)) continue;
     sample[p] = own;
     replicate[p] = replicate_estimate(sums[p], spreads[p], first, samples[p]);
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (own[c] == 0.0) replicate[p][c] = 0.0;  // equal samples, to the sums' resolution
+    }
     classes[p] = count_class(samples[p]);
     most = std::max(most, classes[p]);
   }
@@ -166,7 +183,7 @@ std::vector<Vec3d> replicate_ratios(int width, int height, const std::vector<Pix
     // them, else from the neighbours of every count.
     const WindowTotals all = class_windows(width, height, replicate, sample, channel, classes, -1);
     for (std::size_t p = 0; p < sums.size(); ++p)
-      ratios[p][channel] = ratio_of(all.replicate[p], all.sample[p]);
+      ratios[p][channel] = ratio_of_window(all.replicate[p], all.sample[p], all.pixels[p]);
     if (uniform_counts) {
       trimmed_ratios(width, height, replicate, sample, classes, channel, ratios);
       continue;
@@ -198,7 +215,13 @@ std::vector<Vec3d> honest_variances(int width, int height, const std::vector<Pix
       continue;
     }
     const Vec3d replicates = replicate_estimate(sums[p], spreads[p], first, samples[p]);
-    variances[p] = own * ratios[p] * (1.0 - kOwnReplicateWeight) + replicates * kOwnReplicateWeight;
+    for (std::size_t c = 0; c < 3; ++c) {
+      // Equal samples (to the sums' resolution) have no spread, and their replicates' means
+      // differ only by rounding.
+      variances[p][c] = own[c] == 0.0 ? 0.0
+                                      : own[c] * ratios[p][c] * (1.0 - kOwnReplicateWeight) +
+                                            replicates[c] * kOwnReplicateWeight;
+    }
   }
   return variances;
 }

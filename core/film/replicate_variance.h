@@ -19,10 +19,12 @@
 // has some hundred degrees of freedom; an eighth of the pixel's own replicate estimate (both
 // are unbiased) brings in what the gain does differently at this pixel. It assumes that gain
 // changes slowly across the image (measured: the ratio is near 0 in the sky and 0.2-0.5 on the
-// ground), and is weakest where it does not. The ratio is per channel: the gain differs between
-// them (on the blue diffuse sphere of `materials` at 1024 spp one ratio for all three understated
-// red's and green's variance 2.5x). docs/accuracy.md has the calibration measured against
-// independent renders.
+// ground), and is weakest where it does not. Where the neighbours hold no evidence (fewer than
+// kReplicateMinNeighbours with any spread: a channel constant within most pixels, a small
+// image) the ratio is 1, so a pixel whose samples differ never reports 0. The ratio is per channel:
+// the gain differs between them (on the blue diffuse sphere of `materials` at 1024 spp one ratio
+// for all three understated red's and green's variance 2.5x). docs/accuracy.md has the calibration
+// measured against independent renders.
 
 #include <cstdint>
 #include <vector>
@@ -37,18 +39,26 @@ namespace rtiow {
 // The window is (2 kReplicateWindowRadius + 1)^2 pixels around the pixel, the pixel left out
 // (so that an adaptive pixel's count never depends on its own samples through the ratio).
 inline constexpr int kReplicateWindowRadius = 7;
-// In an adaptive render a pixel borrows the ratio from window neighbours whose count is within
-// a factor of two of its own (the gain grows with the count) where at least this many are.
+// A ratio is taken only from at least this many neighbours with a spread (a constant pixel is
+// no evidence of the gain); with fewer in the whole window the ratio is 1, the independent
+// bound. In an adaptive render a pixel borrows the ratio from window neighbours whose count
+// is within a factor of two of its own (the gain grows with the count) where this many are.
 inline constexpr double kReplicateMinNeighbours = 32;
 
-// In a render whose pixels share one count, a pixel's ratio leaves out the window's neighbours
-// whose sample variance is above this many times its own neighbours' level (the mean over its
-// 3x3 neighbours, itself left out), where at least kReplicateMinNeighbours remain. A ratio of
-// sums is dominated by its noisiest pixels: a sky pixel whose window reaches the spheres took
-// their ratio, some hundred times its own, and overstated its variance 5-50x (padded-sobol on
-// the cover at 1024 spp: per-pixel calibration 0.89, docs/accuracy.md). With the trim it is
-// 0.95, and the 16x16 blocks' 10th percentile rises from 0.45-0.62 to 0.62-0.87.
-inline constexpr double kReplicateTrimFactor = 16;
+// In a render whose pixels share one count, a pixel's ratio comes from the window's neighbours
+// of about its own level of noise, where at least kReplicateMinNeighbours of them are: a ratio
+// of sums is dominated by its noisiest pixels, and the gain differs between kinds of noise.
+// Left out above: neighbours whose sample variance is over kReplicateTrimFactor times the
+// larger of p's 3x3 neighbours' mean level (p left out) and p's own. A sky pixel whose window
+// reaches the spheres took their ratio, some hundred times its own, and overstated its
+// variance 5-50x (padded-sobol on the cover at 1024 spp: per-pixel calibration 0.89); a smooth
+// ground pixel took the ratio of neighbours noisy with rare paths (gain near 1), 0.77 on a
+// ground lit by the sky at 16 spp. Left out below: neighbours under p's own over
+// kReplicateQuietFactor. A pixel at an edge, among quiet sky, took the sky's ratio near 0 and
+// reported z^2 of 6e4 (materials, padded-sobol, 64 spp). docs/accuracy.md has the measurements
+// (2026-11-26): every sampler and scene 0.97-1.04 per pixel from 16 spp.
+inline constexpr double kReplicateTrimFactor = 2;
+inline constexpr double kReplicateQuietFactor = 16;
 
 // The weight of a pixel's own replicate estimate in its variance (the rest is its sample
 // variance scaled by its neighbours' ratio). Measured on cover, materials and defocus at 16,
