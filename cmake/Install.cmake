@@ -19,6 +19,11 @@ set_target_properties(rtiow_image_io_static PROPERTIES EXPORT_NAME image_io
                                                        OUTPUT_NAME rtiow_image_io)
 install(TARGETS rtiow_image_io_static EXPORT rtiowTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+foreach(oiio_target OpenImageIO OpenImageIO_Util)
+  get_target_property(oiio_file OpenImageIO::${oiio_target} LOCATION)
+  set_property(TARGET rtiow_image_io_static APPEND PROPERTY INTERFACE_LINK_LIBRARIES
+               "$<INSTALL_INTERFACE:${oiio_file}>")
+endforeach()
 set_property(TARGET rtiow_core APPEND PROPERTY INTERFACE_LINK_LIBRARIES
              "$<INSTALL_INTERFACE:rtiow::image_io>")
 set_property(TARGET rtiow_core APPEND PROPERTY INTERFACE_LINK_OPTIONS
