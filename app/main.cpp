@@ -24,6 +24,7 @@
 #include "app/interrupt.h"
 #include "app/merge_command.h"
 #include "app/mpi_session.h"
+#include "app/parse_errors.h"
 #include "app/render_command.h"
 #include "app/scene_command.h"
 #include "core/limits/error.h"
@@ -73,16 +74,32 @@ int print_and_exit(const CLI::App& app, const CLI::Error& e) {
   return code;
 }
 
-// A first word that is no option and no command: name it (CLI11 would only say that a
-// command is required). Returns true if it did.
+// A first word that is no command, or no option rtiow itself takes: name it, with the nearest
+// real one (CLI11 would only say that a command is required). Returns true if it did.
 bool refused_unknown_command(const CLI::App& app, int argc, char** argv) {
-  if (argc < 2 || argv[1][0] == '-') return false;
-  std::string known;
-  for (const CLI::App* sub : app.get_subcommands({})) {
-    if (sub->get_name() == argv[1]) return false;
-    known += (known.empty() ? "" : ", ") + sub->get_name();
+  if (argc < 2) return false;
+  const std::string first = argv[1];
+  std::vector<std::string> names;
+  if (first[0] == '-') {
+    for (const CLI::Option* option : app.get_options()) {
+      if (option->check_name(first.substr(0, first.find('=')))) return false;
+      for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+      for (const std::string& name : option->get_snames()) names.push_back("-" + name);
+    }
+  } else {
+    for (const CLI::App* sub : app.get_subcommands({})) {
+      if (sub->get_name() == first) return false;
+      names.push_back(sub->get_name());
+    }
   }
-  report(("unknown command " + rtiow::quote_value(argv[1]) + " (known: " + known + ")").c_str());
+  const std::string suggestion = rtiow::nearest_name(first, names);
+  std::string known;
+  for (const std::string& name : names) known += (known.empty() ? "" : ", ") + name;
+  const std::string what = first[0] == '-' ? "unknown option " : "unknown command ";
+  report((what + rtiow::quote_value(first) +
+          (suggestion.empty() ? "" : "; did you mean " + suggestion + "?") + " (known: " + known +
+          "; see rtiow --help)")
+             .c_str());
   return true;
 }
 
@@ -178,7 +195,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return print_and_exit(app, e);
   } catch (const CLI::ParseError& e) {
-    report((std::string(e.what()) + " (see rtiow --help)").c_str());
+    report(rtiow::explain_parse_error(app, e).c_str());
     return 2;
   }
 

@@ -145,6 +145,12 @@ Scene load_scene(const RenderOptions& o, bool scene_option_given) {
   if (scene_option_given) {
     throw InvalidInput("give a scene file or --scene, not both");
   }
+  // `rtiow render cover`, as `rtiow scene cover` takes it: the built-in scene is --scene cover.
+  std::error_code no_file;
+  if (!std::filesystem::exists(o.scene_file, no_file) && is_builtin_scene_name(o.scene_file)) {
+    throw InvalidInput("no scene file " + quote_value(o.scene_file) +
+                       "; the built-in scene is rendered with --scene " + o.scene_file);
+  }
   return load_scene_file(o.scene_file);
 }
 

@@ -29,6 +29,13 @@ int run_scene(const SceneOptions& o, bool output_given) {
   if (output_given && o.output.empty()) throw InvalidInput("-o/--output: the path is empty");
   const bool to_stdout = o.output.empty() || o.output == "-";
   if (!to_stdout) check_output_path(o.output, {});
+  // `rtiow scene cover -o c.png` would write JSON under an image's name.
+  if (!to_stdout && image_format(o.output) != nullptr) {
+    throw InvalidInput("-o " + quote_value(o.output) +
+                       ": a scene is JSON, not an image; name it .json (an image of it: rtiow "
+                       "render --scene " +
+                       o.name + " -o " + o.output + ")");
+  }
   const std::string text = scene_to_json(make_builtin_scene(o.name, o.scene_seed));
   if (to_stdout) {
     std::fwrite(text.data(), 1, text.size(), stdout);

@@ -400,6 +400,48 @@ TEST(Cli, RefusesBadCamerasAndSettingsWithOneLineAndExitTwo) {
   expect_refused("--no-such-option", "no-such-option");
 }
 
+// A slip gets the nearest real name, a value of the wrong kind the kind expected, and the
+// hint names the help of the command used (issue 43: the top-level help lists no render option).
+TEST(Cli, OptionErrorsSuggestWhatWasMeant) {
+  expect_refused("--widht 100", "unknown option '--widht' for rtiow render; did you mean --width?");
+  expect_refused("--sed 3", "did you mean --seed?");
+  expect_refused("--acel naive", "did you mean --accel?");
+  expect_refused("--width=100x", "--width expects a whole number, not '100x'");
+  expect_refused("--spp ten", "--spp expects a whole number, not 'ten' (see rtiow render --help)");
+  expect_refused("--target-error often", "--target-error: must be a finite number");
+  // Nothing near enough: no suggestion.
+  const CommandResult far = run_rtiow("render --zzzzzz 1");
+  EXPECT_EQ(far.exit_code, 2);
+  EXPECT_EQ(far.stderr_text.find("did you mean"), std::string::npos) << far.stderr_text;
+  // The other commands and rtiow itself.
+  const CommandResult diff = run_rtiow("diff --alfa 0.1 a.png b.png");
+  EXPECT_NE(diff.stderr_text.find("did you mean --alpha? (see rtiow diff --help)"),
+            std::string::npos)
+      << diff.stderr_text;
+  const CommandResult version = run_rtiow("--verison");
+  EXPECT_EQ(version.exit_code, 2);
+  EXPECT_NE(version.stderr_text.find("did you mean --version?"), std::string::npos)
+      << version.stderr_text;
+  const CommandResult command = run_rtiow("rendr --spp 4");
+  EXPECT_EQ(command.exit_code, 2);
+  EXPECT_NE(command.stderr_text.find("unknown command 'rendr'; did you mean render?"),
+            std::string::npos)
+      << command.stderr_text;
+}
+
+// The natural slips between a scene's name and a scene file, and a scene written as an image.
+TEST(Cli, SceneNamesAndFilesPointToEachOther) {
+  expect_refused("cover",
+                 "no scene file 'cover'; the built-in scene is rendered with --scene cover");
+  expect_refused("--scene base.json", "a scene file is given by its path, without --scene");
+  const fs::path png = output_path("scene.png");
+  const CommandResult r = run_rtiow("scene cover -o " + png.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("a scene is JSON, not an image"), std::string::npos)
+      << r.stderr_text;
+  EXPECT_FALSE(fs::exists(png));
+}
+
 TEST(Cli, RefusesUnwritableOutputsBeforeRendering) {
   const CommandResult bad_ext =
       run_rtiow("render -q --spp 1 --width 8 -o " + output_path("image.nosuchformat").string());

@@ -1,5 +1,6 @@
 #include "core/scene/builtin_scenes.h"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -241,6 +242,12 @@ const std::vector<BuiltinScene>& builtin_scenes() {
   return infos;
 }
 
+bool is_builtin_scene_name(const std::string& name) {
+  if (name.rfind(kFieldPrefix, 0) == 0) return true;
+  return std::any_of(registry().begin(), registry().end(),
+                     [&](const auto& e) { return e.info.name == name; });
+}
+
 Scene make_builtin_scene(const std::string& name, std::uint64_t scene_seed) {
   if (const auto count = sphere_field_count(name)) {
     Scene s = sphere_field_scene(*count, scene_seed);
@@ -258,8 +265,13 @@ Scene make_builtin_scene(const std::string& name, std::uint64_t scene_seed) {
   }
   std::string known;
   for (const auto& e : registry()) known += e.info.name + ", ";
-  throw InvalidInput("unknown scene '" + name + "' (known: " + known + kFieldPrefix +
-                     "N with N from 1 to " + std::to_string(kMaxFieldSpheres) + ")");
+  // `--scene base.json`: a scene file is given by its path alone.
+  const bool looks_like_a_file =
+      name.find('/') != std::string::npos || name.ends_with(".json") || name == "-";
+  throw InvalidInput(
+      "unknown scene " + quote_value(name) + " (known: " + known + kFieldPrefix +
+      "N with N from 1 to " + std::to_string(kMaxFieldSpheres) + ")" +
+      (looks_like_a_file ? "; a scene file is given by its path, without --scene" : ""));
 }
 
 }  // namespace rtiow

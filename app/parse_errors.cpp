@@ -1,0 +1,117 @@
+#include "app/parse_errors.h"
+
+#include <algorithm>
+#include <regex>
+
+#include "core/limits/error.h"
+
+namespace rtiow {
+namespace {
+
+// Edit distance with a swap of neighbours counting one (optimal string alignment): "widht" is
+// one edit from "width".
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  const std::size_t n = a.size(), m = b.size();
+  std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
+  for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= n; ++i) {
+    for (std::size_t j = 1; j <= m; ++j) {
+      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  }
+  return d[n][m];
+}
+
+// The command the error belongs to: the deepest one parsed, or `app` itself.
+const CLI::App& command_in_use(const CLI::App& app) {
+  const std::vector<CLI::App*> parsed = app.get_subcommands();
+  return parsed.empty() ? app : *parsed.back();
+}
+
+std::string full_name(const CLI::App& command) {
+  return command.get_parent() == nullptr
+             ? command.get_name()
+             : full_name(*command.get_parent()) + " " + command.get_name();
+}
+
+// Every spelling of the command's options: --long and -s.
+std::vector<std::string> option_spellings(const CLI::App& command) {
+  std::vector<std::string> names;
+  for (const CLI::Option* option : command.get_options()) {
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+    for (const std::string& name : option->get_snames()) names.push_back("-" + name);
+  }
+  return names;
+}
+
+// "--widht=3" is the option "--widht".
+std::string option_part(const std::string& argument) {
+  return argument.substr(0, argument.find('='));
+}
+
+std::string explain_extras(const CLI::App& command) {
+  const std::string name = full_name(command);
+  const std::vector<std::string> extras = command.remaining();
+  if (extras.empty()) return "";
+  const std::string& first = extras.front();
+  std::string message;
+  if (first.size() > 1 && first[0] == '-') {
+    message = "unknown option " + quote_value(option_part(first)) + " for " + name;
+    const std::string suggestion = nearest_name(option_part(first), option_spellings(command));
+    if (!suggestion.empty()) message += "; did you mean " + suggestion + "?";
+  } else {
+    message = "unexpected argument " + quote_value(first) + " for " + name;
+  }
+  return message + " (see " + name + " --help)";
+}
+
+// What a CLI11 type name asks for, in words.
+std::string kind_of(const std::string& type_name) {
+  if (type_name.rfind("UINT", 0) == 0) return "a whole number of at least 0";
+  if (type_name.rfind("INT", 0) == 0) return "a whole number";
+  if (type_name.rfind("FLOAT", 0) == 0) return "a number";
+  return "a value of type " + type_name;
+}
+
+// "Could not convert: --spp = ten": the option's kind, and the value given.
+std::string explain_conversion(const CLI::App& command, const std::string& what) {
+  static const std::regex pattern("Could not convert: (.*) = (.*)");
+  std::smatch match;
+  if (!std::regex_match(what, match, pattern)) return "";
+  const std::string option_name = match[1], value = match[2];
+  std::string kind = "another kind of value";
+  for (const CLI::Option* option : command.get_options()) {
+    if (option->check_name(option_name)) kind = kind_of(option->get_type_name());
+  }
+  return option_name + " expects " + kind + ", not " + quote_value(value) + " (see " +
+         full_name(command) + " --help)";
+}
+
+}  // namespace
+
+std::string nearest_name(std::string_view word, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_distance = SIZE_MAX;
+  for (const std::string& candidate : candidates) {
+    const std::size_t distance = edit_distance(word, candidate);
+    if (distance < best_distance) best = candidate, best_distance = distance;
+  }
+  const std::size_t allowed = std::clamp<std::size_t>(word.size() / 3, 1, 3);
+  return best_distance <= allowed ? best : "";
+}
+
+std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& error) {
+  const CLI::App& command = command_in_use(app);
+  std::string message;
+  if (dynamic_cast<const CLI::ExtrasError*>(&error) != nullptr) message = explain_extras(command);
+  if (dynamic_cast<const CLI::ConversionError*>(&error) != nullptr)
+    message = explain_conversion(command, error.what());
+  if (!message.empty()) return message;
+  return std::string(error.what()) + " (see " + full_name(command) + " --help)";
+}
+
+}  // namespace rtiow
