@@ -10,6 +10,9 @@ namespace {
 static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
 std::atomic<bool>* g_stop = nullptr;
 volatile std::sig_atomic_t g_signal = 0;
+// A live progress line is on stderr only when it is a terminal: the messages below start on a
+// line of their own there, and add no empty line to a log.
+volatile std::sig_atomic_t g_terminal = 0;
 
 void write_stderr(const char* text, std::size_t size) {
   // write(2) is async-signal-safe; the result is irrelevant in a handler.
@@ -22,7 +25,8 @@ void write_stderr(const char* text, std::size_t size) {
   constexpr char kHead[] = "\nrtiow: ended by signal ";
   constexpr char kTail[] = "; nothing more was written\n";
   char number[3] = {char('0' + signal / 10 % 10), char('0' + signal % 10), 0};
-  write_stderr(kHead, sizeof kHead - 1);
+  const std::size_t skip = g_terminal ? 0 : 1;  // the line break before the text
+  write_stderr(kHead + skip, sizeof kHead - 1 - skip);
   write_stderr(signal < 10 ? number + 1 : number, signal < 10 ? 1 : 2);
   write_stderr(kTail, sizeof kTail - 1);
   ::_exit(128 + signal);
@@ -33,7 +37,8 @@ void on_signal(int signal) {
   g_signal = signal;
   if (g_stop) g_stop->store(true);
   constexpr char kStopping[] = "\nrtiow: stopping; a second signal ends rtiow at once\n";
-  write_stderr(kStopping, sizeof kStopping - 1);
+  const std::size_t skip = g_terminal ? 0 : 1;
+  write_stderr(kStopping + skip, sizeof kStopping - 1 - skip);
 }
 
 void install(void (*handler)(int), struct sigaction* previous) {
@@ -53,6 +58,7 @@ void install(void (*handler)(int), struct sigaction* previous) {
 }  // namespace
 
 void end_at_once_on_signals() {
+  g_terminal = ::isatty(STDERR_FILENO) == 1;
   install(end_at_once, nullptr);
 }
 

@@ -49,12 +49,15 @@ void ProgressDisplay::report(bool final_report) {
     report_open_ended(final_report, elapsed);
     return;
   }
-  const double fraction =
-      total_samples_ ? double(progress_.samples_done) / double(total_samples_) : 1;
+  const std::uint64_t done = progress_.samples_done, resumed = progress_.samples_resumed;
+  const double fraction = total_samples_ ? double(done) / double(total_samples_) : 1;
   const double mrays = elapsed > 0 ? double(progress_.rays_traced) / elapsed * 1e-6 : 0.0;
   char elapsed_text[32], eta_text[32] = "?";
   format_duration(elapsed_text, sizeof elapsed_text, elapsed);
-  if (fraction > 0.0) format_duration(eta_text, sizeof eta_text, elapsed * (1 / fraction - 1));
+  // The samples still to do at this run's rate: a resumed render's checkpointed samples took
+  // no time of this run, and counting them made the ETA 2-3x too short.
+  const double to_go = seconds_to_go(done, resumed, total_samples_, elapsed);
+  if (to_go >= 0.0) format_duration(eta_text, sizeof eta_text, to_go);
 
   if (terminal_) {
     std::fprintf(stderr, "\r\033[K%5.1f%%  elapsed %s  ETA %s  %.1f Mrays/s", 100.0 * fraction,
@@ -62,9 +65,10 @@ void ProgressDisplay::report(bool final_report) {
     std::fflush(stderr);
     return;
   }
-  // Not a terminal: one line per completed tenth, so a log stays short.
+  // Not a terminal: one line per completed tenth, so a log stays short; none once a signal
+  // has asked the render to stop (its "stopping" line is the last word until the summary).
   const int decile = int(fraction * 10.0);
-  if (final_report || decile <= last_decile_) return;
+  if (final_report || decile <= last_decile_ || progress_.stop_requested) return;
   last_decile_ = decile;
   std::fprintf(stderr, "progress: %3d%%  elapsed %s  ETA %s  %.1f Mrays/s\n", decile * 10,
                elapsed_text, eta_text, mrays);
@@ -85,7 +89,7 @@ void ProgressDisplay::report_open_ended(bool final_report, double elapsed) {
   }
   // Not a terminal: a line every ten seconds.
   const int tens = int(elapsed / 10.0);
-  if (final_report || tens <= last_decile_) return;
+  if (final_report || tens <= last_decile_ || progress_.stop_requested) return;
   last_decile_ = tens;
   std::fprintf(stderr, "progress: %.3g samples  elapsed %s  %.1f Mrays/s\n", samples, elapsed_text,
                mrays);

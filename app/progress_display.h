@@ -13,6 +13,15 @@
 
 namespace rtiow {
 
+// Seconds until `total` samples are done at this run's rate: `done` of them are, `resumed` of
+// those came from a checkpoint (they took none of the `elapsed` seconds). Negative when this
+// run has done nothing yet, so there is no rate.
+inline double seconds_to_go(std::uint64_t done, std::uint64_t resumed, std::uint64_t total,
+                            double elapsed) {
+  if (done <= resumed || done > total || elapsed <= 0.0) return -1.0;
+  return double(total - done) * elapsed / double(done - resumed);
+}
+
 class ProgressDisplay {
  public:
   // `total_samples` 0: not known in advance; the display counts samples instead.

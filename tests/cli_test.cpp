@@ -22,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/progress_display.h"
 #include "core/rtiow.h"
 #include "tests/background_render.h"
 #include "tests/test_files.h"
@@ -442,6 +443,15 @@ TEST(Cli, SceneNamesAndFilesPointToEachOther) {
   EXPECT_FALSE(fs::exists(png));
 }
 
+// A refine from 25% to 100% of its samples, at 30% after one second: 70% to go at 5% a second
+// is 14 s (counting the checkpoint's 25% as this run's work said 2.3 s, issue 43).
+TEST(Cli, TheTimeToGoCountsOnlyThisRunsWork) {
+  EXPECT_DOUBLE_EQ(rtiow::seconds_to_go(300, 250, 1000, 1.0), 14.0);
+  EXPECT_DOUBLE_EQ(rtiow::seconds_to_go(300, 0, 1000, 1.0), 7.0 / 3.0);  // a fresh render
+  EXPECT_LT(rtiow::seconds_to_go(250, 250, 1000, 1.0), 0.0);             // no rate yet
+  EXPECT_DOUBLE_EQ(rtiow::seconds_to_go(1000, 250, 1000, 3.0), 0.0);
+}
+
 TEST(Cli, RefusesUnwritableOutputsBeforeRendering) {
   const CommandResult bad_ext =
       run_rtiow("render -q --spp 1 --width 8 -o " + output_path("image.nosuchformat").string());
@@ -778,6 +788,13 @@ TEST(Cli, InterruptWritesTheSamplesCompleted) {
     const int code = r.wait(20.0);
     EXPECT_EQ(code, 128 + sig) << r.stderr_text();
     EXPECT_NE(r.stderr_text().find("interrupted: wrote"), std::string::npos) << r.stderr_text();
+    // stderr is no terminal here: no empty line, and no progress line after "stopping".
+    const std::string text = r.stderr_text();
+    EXPECT_EQ(text.find("\n\n"), std::string::npos) << text;
+    EXPECT_NE(text.rfind("rtiow: stopping", 0) == 0 ? 0 : text.find("\nrtiow: stopping"),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("progress:", text.find("rtiow: stopping")), std::string::npos) << text;
     auto in = OIIO::ImageInput::open(out.string());
     ASSERT_TRUE(in) << "no partial image written";
     const OIIO::ImageSpec& spec = in->spec();

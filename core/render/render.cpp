@@ -115,7 +115,10 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   result.rays_traced = state.rays_traced;
   result.estimated_image_error = state.estimated_image_error;
   result.pixels_above_target = state.pixels_above_target;
-  for (const std::uint32_t s : state.pixels.samples) progress->samples_done += s;
+  std::uint64_t resumed = 0;
+  for (const std::uint32_t s : state.pixels.samples) resumed += s;
+  progress->samples_resumed = resumed;
+  progress->samples_done += resumed;
   RenderJournal journal(state, checkpointing);
   if (const auto* target = std::get_if<PixelErrorTarget>(&settings.samples)) {
     render_adaptive(ctx, *target, progress, journal, result);

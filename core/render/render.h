@@ -63,7 +63,10 @@ void validate(const RenderSettings& settings);
 // display) and a request to stop that it honours at the end of the current pass.
 struct RenderProgress {
   std::atomic<std::uint64_t> samples_done{0};  // pixel samples, over all pixels
-  std::atomic<std::uint64_t> rays_traced{0};
+  // Of samples_done, those a resumed render started with (from its checkpoint): the rate of
+  // this run's work, and so its time to go, leaves them out.
+  std::atomic<std::uint64_t> samples_resumed{0};
+  std::atomic<std::uint64_t> rays_traced{0};  // by this run
   std::atomic<bool> stop_requested{false};
 };
 
