@@ -1,13 +1,15 @@
 // The book's program on a small test scene, writing each pixel's mean and the variance of that
 // mean (its samples are independent) instead of a PPM: what tests/book_program_test.cpp
-// compares rtiow's image with, block by block.
+// compares rtiow's image with, block by block. Built twice: as the book ships it (glibc's
+// rand()), and as book_moments_mt19937 with a sound generator (BOOK_RANDOM_MT19937).
 //
-//   book_moments WIDTH HEIGHT SPP SEED METAL OUT
+//   book_moments WIDTH HEIGHT SPP SEED METAL OUT [DEPTH]
 //
 // METAL is `book` (v3.2.3: mirror direction plus fuzz times a point in the unit ball) or
 // `later` (a later edition's: the unit mirror direction plus fuzz times a unit vector). OUT
 // gets WIDTH x HEIGHT records of six little-endian doubles (mean R G B, variance of the mean
-// R G B), rows from the top. The scene is the one book_program_test.cpp builds in rtiow.
+// R G B), rows from the top. DEPTH is the book's max_depth (default 50). The scene is the one
+// book_program_test.cpp builds in rtiow.
 
 #include <cstdio>
 #include <cstdlib>
@@ -43,12 +45,15 @@ class later_edition_metal : public material {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 7) {
-        std::fprintf(stderr, "usage: book_moments WIDTH HEIGHT SPP SEED book|later OUT\n");
+    if (argc != 7 && argc != 8) {
+        std::fprintf(stderr, "usage: book_moments WIDTH HEIGHT SPP SEED book|later OUT [DEPTH]\n");
         return 2;
     }
     const int width = std::atoi(argv[1]), height = std::atoi(argv[2]), spp = std::atoi(argv[3]);
-    std::srand(unsigned(std::atoi(argv[4])));
+    std::srand(unsigned(std::strtoul(argv[4], nullptr, 10)));
+#ifdef BOOK_RANDOM_MT19937
+    book_engine().seed(std::strtoull(argv[4], nullptr, 10));
+#endif
     const bool later = std::string(argv[5]) == "later";
 
     hittable_list world;
@@ -65,7 +70,7 @@ int main(int argc, char** argv) {
     cam.aspect_ratio = double(width) / height;
     cam.image_width = width;
     cam.samples_per_pixel = spp;
-    cam.max_depth = 50;
+    cam.max_depth = argc == 8 ? std::atoi(argv[7]) : 50;
     cam.vfov = 70;
     cam.lookfrom = point3(0, 0.3, 0.6);
     cam.lookat = point3(0, -0.05, -1);
