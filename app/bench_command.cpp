@@ -273,17 +273,28 @@ std::function<int()> add_bench_command(CLI::App& app) {
   cmd->add_option("--plot", o.plot_path, "Where to draw the PNG plot")->capture_default_str();
 
   auto point = std::make_shared<PointOptions>();
-  CLI::App* point_cmd = app.add_subcommand("bench-point", "One scaling point (used by bench)");
+  // bench runs each scaling point in a process of its own, through this command; it is hidden
+  // from rtiow --help (a user runs bench), but its own help is true.
+  CLI::App* point_cmd = app.add_subcommand(
+      "bench-point",
+      "One scaling point of rtiow bench, in a process of its own: renders a scene with one "
+      "intersector and prints its figures as JSON on one line");
   point_cmd->group("");  // hidden from --help
-  point_cmd->add_option("--scene", point->scene)->required();
-  point_cmd->add_option("--accel", point->accel);
-  point_cmd->add_option("--width", point->width);
-  point_cmd->add_option("--height", point->height);
-  point_cmd->add_option("--spp", point->spp);
-  point_cmd->add_option("--depth", point->depth);
-  point_cmd->add_option("--repeat", point->repeat);
-  point_cmd->add_option("--threads", point->threads);
-  point_cmd->add_option("--budget", point->budget);
+  point_cmd->add_option("--scene", point->scene, "Built-in scene (e.g. spheres:100000)")
+      ->required();
+  point_cmd->add_option("--accel", point->accel, "Intersector: embree or naive")
+      ->capture_default_str();
+  point_cmd->add_option("--width", point->width, "Image width")->capture_default_str();
+  point_cmd->add_option("--height", point->height, "Image height")->capture_default_str();
+  point_cmd->add_option("--spp", point->spp, "Samples per pixel")->capture_default_str();
+  point_cmd->add_option("--depth", point->depth, "Maximum rays per path")->capture_default_str();
+  point_cmd
+      ->add_option("--repeat", point->repeat, "Renders to time, at most (the median is reported)")
+      ->capture_default_str();
+  point_cmd->add_option("--threads", point->threads, "Worker threads (0: all cores)")
+      ->capture_default_str();
+  point_cmd->add_option("--budget", point->budget, "Seconds after which no further repeat starts")
+      ->capture_default_str();
 
   return [options, point, cmd, point_cmd] {
     if (cmd->parsed()) return run_bench(*options);

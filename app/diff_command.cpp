@@ -104,7 +104,7 @@ int run_diff(const DiffOptions& o) {
           "note: %.0f%% of pixels differ: if these are renders of one job with other seeds, that "
           "is their noise; compare noise-aware: render both to .exr with --stats-channels, or "
           "give several renders of the job (rtiow diff reference.png s1.png s2.png s3.png); see "
-          "docs/diff.md\n",
+          "rtiow diff --help\n",
           d.fail_percent);
     }
   } else {
@@ -165,11 +165,11 @@ std::function<int()> add_diff_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--alpha", o->alpha,
                   "Noise-aware: the chance that noise alone fails the comparison (half for the "
-                  "image mean, half over the blocks)")
+                  "image mean, half over the blocks), 1e-12 to 0.5")
       ->check(kFiniteNotNegative)
       ->check(CLI::Range(1e-12, 0.5))
       ->capture_default_str();
-  cmd->add_option("--block", o->block, "Noise-aware: the side of a block of pixels")
+  cmd->add_option("--block", o->block, "Noise-aware: the side of a block of pixels, 1 to 4096")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
   cmd->add_option("--out-diff", o->out_diff,

@@ -14,6 +14,7 @@
 #include <exception>
 #include <functional>
 #include <iostream>
+#include <memory>
 #include <new>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@
 #include "app/accuracy_command.h"
 #include "app/bench_command.h"
 #include "app/diff_command.h"
+#include "app/help_format.h"
 #include "app/interrupt.h"
 #include "app/merge_command.h"
 #include "app/mpi_session.h"
@@ -89,7 +91,7 @@ bool refused_unknown_command(const CLI::App& app, int argc, char** argv) {
   } else {
     for (const CLI::App* sub : app.get_subcommands({})) {
       if (sub->get_name() == first) return false;
-      names.push_back(sub->get_name());
+      if (!sub->get_group().empty()) names.push_back(sub->get_name());  // not the hidden ones
     }
   }
   const std::string suggestion = rtiow::nearest_name(first, names);
@@ -178,6 +180,8 @@ int main(int argc, char** argv) {
       "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend, "
       "built on Embree, oneTBB and OpenImageIO",
       "rtiow"};
+  // Before the commands are added: each takes its parent's formatter.
+  app.formatter(std::make_shared<rtiow::ReadableHelpFormatter>());
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("rtiow ") + rtiow::version());
   std::vector<std::function<int()>> commands{

@@ -551,7 +551,7 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                 "--time-limit), spread over the pixels in proportion to sqrt(variance / cost), "
                 "which gives the lowest image error for the time");
   cmd->add_option("--min-spp", o.min_spp,
-                  "Adaptive sampling: samples every pixel takes before it may stop")
+                  "Adaptive sampling: samples every pixel takes before it may stop (at least 2)")
       ->check(CLI::Range(2, std::numeric_limits<int>::max()))
       ->capture_default_str();
   cmd->add_flag("--stats-channels", o.stats_channels,

@@ -87,6 +87,42 @@ TEST(Cli, HelpIsAvailableAndTrue) {
   }
 }
 
+// Every command's help shows a value's kind or its choices, not CLI11's parser strings
+// ("--seed UINT:NUMBER >= 0=1", "--alpha FLOAT:NUMBER >= 0:FLOAT in [1e-12 - 0.5]=0.01"), and
+// every option of every command, the hidden bench-point's too, says what it is for.
+TEST(Cli, HelpShowsKindsAndDescriptionsNotParserStrings) {
+  for (const char* command :
+       {"render", "scene", "merge", "bench", "bench-point", "accuracy", "diff"}) {
+    const CommandResult help = run_rtiow(std::string(command) + " --help");
+    EXPECT_EQ(help.exit_code, 0) << command;
+    for (const char* parser_text : {"NUMBER >=", "FLOAT in [", "INT in [", "TEXT:{"}) {
+      EXPECT_EQ(help.stdout_text.find(parser_text), std::string::npos)
+          << command << " --help shows " << parser_text << ":\n"
+          << help.stdout_text;
+    }
+    // An option line is its spelling and value ("  --seed UINT=1"), then two spaces and its
+    // description, or the description on the next line, indented.
+    const auto described_on_the_line = [](const std::string& option_line) {
+      const std::size_t gap = option_line.find("  ", 2);
+      return gap != std::string::npos &&
+             option_line.find_first_not_of(' ', gap) != std::string::npos;
+    };
+    std::istringstream lines(help.stdout_text.substr(help.stdout_text.find("Options:")));
+    std::string line, previous;
+    while (std::getline(lines, line)) {
+      if (previous.rfind("  -", 0) == 0 && !described_on_the_line(previous)) {
+        EXPECT_EQ(line.rfind("      ", 0), 0u) << command << ": no description for " << previous;
+      }
+      previous = line;
+    }
+    if (previous.rfind("  -", 0) == 0) {
+      EXPECT_TRUE(described_on_the_line(previous)) << command << ": " << previous;
+    }
+  }
+  // The hidden command is no suggestion to a user who mistyped one.
+  EXPECT_EQ(run_rtiow("bogus").stderr_text.find("bench-point"), std::string::npos);
+}
+
 // docs/usage.md shows `rtiow --help` and `rtiow render --help`: they must be what the binary
 // prints, or the docs have gone stale.
 // The subcommands `rtiow --help` lists, in its order.
