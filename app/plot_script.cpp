@@ -21,7 +21,7 @@ bool run_plot_script(const std::string& script, const std::string& json_path,
     std::printf("plot: skipped (%s failed; is python3-matplotlib installed?)\n", path.c_str());
     return false;
   }
-  std::printf("plot:    %s\n", fs::absolute(png_path).c_str());
+  std::printf("plot:    %s\n", png_path.c_str());
   return true;
 }
 
