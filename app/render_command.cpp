@@ -293,7 +293,8 @@ bool gather_ranks(const MpiSession& mpi, Job& job, RenderResult& result, bool sp
 }
 
 void write_result(const RenderOptions& o, const Job& job, const RenderResult& result) {
-  const Metadata metadata = render_metadata(job.scene, job.settings, result, o.reproducible);
+  Metadata metadata = render_metadata(job.scene, job.settings, result, o.reproducible);
+  if (!o.scene_file.empty()) metadata.emplace_back(metadata_key::kSceneFile, o.scene_file);
   if (!job.share) {
     write_image(job.output, result.film, metadata,
                 o.stats_channels ? statistics_channels(result) : std::vector<ExtraChannel>{});

@@ -5,6 +5,9 @@
 #include "core/io/image_file.h"
 #include "core/io/output_path.h"
 #include "core/io/png_encoder.h"
+#include "core/version.h"
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +32,9 @@ std::string metadata_string(const MetadataValue& v) {
   return std::get<std::string>(v);
 }
 
-void add_metadata(ImageHeader& header, const Metadata& unordered, bool typed) {
+void add_metadata(ImageHeader& header, const Metadata& unordered, bool typed,
+                  Provenance provenance) {
+  if (provenance == Provenance::None) return;
   // In key order, as EXR itself stores attributes: the same metadata gives the same bytes
   // however it was gathered (a render, or a merge of parts read back from EXR).
   Metadata metadata = unordered;
@@ -51,7 +56,17 @@ void add_metadata(ImageHeader& header, const Metadata& unordered, bool typed) {
       header.attributes.push_back({name, metadata_string(value)});
     }
   }
-  header.attributes.push_back({"Software", std::string("rtiow")});
+  header.attributes.push_back({"Software", std::string("rtiow ") + version()});
+  // Every key again as one JSON object in the description, which JPEG (EXIF) and TIFF keep where
+  // they drop other attributes.
+  if (provenance == Provenance::Description && !metadata.empty()) {
+    nlohmann::ordered_json all = nlohmann::ordered_json::object();
+    for (const auto& [key, value] : metadata) {
+      const std::string name = kMetadataPrefix + key;
+      std::visit([&](const auto& v) { all[name] = v; }, value);
+    }
+    header.attributes.push_back({"ImageDescription", all.dump()});
+  }
 }
 
 }  // namespace
@@ -76,7 +91,7 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
   for (const ExtraChannel& e : extra) header.channel_names.push_back(e.name);
   header.channel_types.assign(std::size_t(channels),
                               linear_float ? PixelType::Float : PixelType::UInt8);
-  add_metadata(header, metadata, linear_float);
+  add_metadata(header, metadata, linear_float, image->provenance);
   if (!linear_float) header.attributes.push_back({"oiio:ColorSpace", std::string("Gamma2.0")});
 
   std::vector<float> floats;

@@ -21,16 +21,16 @@ namespace fs = std::filesystem;
 // image ("null"), and formats that cannot hold RGB as rtiow writes it: only these are real.
 // (PFM is not here: Debian's OpenImageIO 2.4 reads it but has no writer.)
 constexpr std::array<ImageFormat, 10> kFormats{{
-    {".png", false, false, true},
-    {".jpg", false, false, false},
-    {".jpeg", false, false, false},
-    {".ppm", false, false, false},
-    {".bmp", false, false, false},
-    {".tga", false, false, false},
-    {".tif", false, false, false},
-    {".tiff", false, false, false},
-    {".exr", true, true, false},
-    {".hdr", true, false, false},
+    {".png", false, false, true, Provenance::Attributes},
+    {".jpg", false, false, false, Provenance::Description},
+    {".jpeg", false, false, false, Provenance::Description},
+    {".ppm", false, false, false, Provenance::None},
+    {".bmp", false, false, false, Provenance::None},
+    {".tga", false, false, false, Provenance::None},
+    {".tif", false, false, false, Provenance::Description},
+    {".tiff", false, false, false, Provenance::Description},
+    {".exr", true, true, false, Provenance::Attributes},
+    {".hdr", true, false, false, Provenance::None},
 }};
 
 // The temporary written beside the target adds ".", ".tmp-<pid>": keep room for it.

@@ -11,11 +11,19 @@
 namespace rtiow {
 
 // An image format rtiow writes, chosen by the file extension (lower case, with the dot).
+// Where a format keeps a render's provenance (core/render/render_metadata.h): every key as its
+// own "rtiow:<key>" attribute (PNG text chunks, EXR attributes); all of them as one JSON object
+// in the image description (JPEG's EXIF, TIFF's tag); or nowhere (HDR, PPM and BMP hold no
+// text; TGA's comment field holds 320 characters, too few, and its version field reads back
+// as a number that was never written).
+enum class Provenance { Attributes, Description, None };
+
 struct ImageFormat {
   const char* extension;
   bool linear_float;    // linear float pixels; otherwise 8-bit with the book's gamma 2
   bool extra_channels;  // can hold channels beyond R, G, B (--stats-channels, part files)
   bool own_encoder;     // encoded by rtiow itself (core/io/png_encoder.h), not the image library
+  Provenance provenance;
 };
 
 // The format of `path`, or nullptr when rtiow does not write that extension.

@@ -1,19 +1,60 @@
 #include "core/render/render_metadata.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <string>
 #include <variant>
 
 #include "core/limits/input_limits.h"
 #include "core/render/render_statistics.h"
+#include "core/scene/scene_digest.h"
+#include "core/version.h"
 
 namespace rtiow {
+namespace {
+
+// The shortest text that reads back as the same double.
+std::string number(double v) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+  return std::string(text, end);
+}
+
+std::string triple(const Vec3d& v) {
+  return number(v.x) + "," + number(v.y) + "," + number(v.z);
+}
+
+// In the render command's own options: --lookfrom X,Y,Z --lookat ... (exact doubles).
+std::string describe_camera(const CameraSettings& c) {
+  return "--lookfrom " + triple(c.lookfrom) + " --lookat " + triple(c.lookat) + " --vup " +
+         triple(c.vup) + " --vfov " + number(c.vfov_degrees) + " --aperture " + number(c.aperture) +
+         " --focus-dist " + number(c.focus_distance);
+}
+
+// The reflectance models of the scene's glass ("schlick", "exact" or both), empty without glass.
+std::string glass_reflectance(const Scene& scene) {
+  bool schlick = false, exact = false;
+  for (const Material& m : scene.materials) {
+    if (const auto* d = std::get_if<Dielectric>(&m)) {
+      (d->fresnel == FresnelModel::Exact ? exact : schlick) = true;
+    }
+  }
+  return std::string(schlick ? "schlick" : "") + (schlick && exact ? "," : "") +
+         (exact ? "exact" : "");
+}
+
+}  // namespace
 
 Metadata render_metadata(const Scene& scene, const RenderSettings& s, const RenderResult& r,
                          bool reproducible) {
   namespace key = metadata_key;
-  Metadata metadata{{key::kScene, scene.name}};
+  Metadata metadata{{key::kScene, scene.name},
+                    {key::kSceneDigest, scene_digest(scene)},
+                    {key::kCamera, describe_camera(scene.camera)},
+                    {key::kVersion, std::string(version())}};
+  if (const std::string fresnel = glass_reflectance(scene); !fresnel.empty())
+    metadata.emplace_back(key::kFresnel, fresnel);
   if (scene.layout_seed) metadata.emplace_back(key::kSceneSeed, std::int64_t(*scene.layout_seed));
   metadata.insert(metadata.end(), {
                                       {key::kDepth, std::int64_t(s.max_depth)},

@@ -35,6 +35,14 @@ inline constexpr const char* kSppLimit = "spp_limit";
 inline constexpr const char* kSppBudget = "spp_budget";  // --adaptive: the uniform spp it costs
 inline constexpr const char* kStopped = "stopped";       // why it ended early
 inline constexpr const char* kRenderSeconds = "render_seconds";  // left out if reproducible
+// What makes the render again, beyond the scene's name: rtiow's version, the digest of the
+// scene rendered (core/scene/scene_digest.h: its spheres, materials, camera, sky and image
+// settings), the camera used (after any override) and the glass's reflectance model.
+inline constexpr const char* kVersion = "version";
+inline constexpr const char* kSceneDigest = "scene_digest";
+inline constexpr const char* kCamera = "camera";
+inline constexpr const char* kFresnel = "fresnel";
+inline constexpr const char* kSceneFile = "scene_file";  // the file it was read from, if any
 
 }  // namespace rtiow::metadata_key
 
