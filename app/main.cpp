@@ -30,6 +30,7 @@
 #include "app/render_command.h"
 #include "app/scene_command.h"
 #include "core/limits/error.h"
+#include "core/limits/nearest_name.h"
 #include "core/version.h"
 
 namespace {

@@ -511,6 +511,7 @@ TEST(Cli, SceneNamesAndFilesPointToEachOther) {
   expect_refused("cover",
                  "no scene file 'cover'; the built-in scene is rendered with --scene cover");
   expect_refused("--scene base.json", "a scene file is given by its path, without --scene");
+  expect_refused("--scene covr", "unknown scene 'covr'; did you mean cover?");
   const fs::path png = output_path("scene.png");
   const CommandResult r = run_rtiow("scene cover -o " + png.string());
   EXPECT_EQ(r.exit_code, 2);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/limits/error.h"
+#include "core/limits/nearest_name.h"
 #include "core/parallel/huge_pages.h"
 #include "core/parallel/parallel_for_range.h"
 #include "core/sampling/rng.h"
@@ -264,12 +265,15 @@ Scene make_builtin_scene(const std::string& name, std::uint64_t scene_seed) {
     }
   }
   std::string known;
-  for (const auto& e : registry()) known += e.info.name + ", ";
+  std::vector<std::string> names;
+  for (const auto& e : registry()) known += e.info.name + ", ", names.push_back(e.info.name);
   // `--scene base.json`: a scene file is given by its path alone.
   const bool looks_like_a_file =
       name.find('/') != std::string::npos || name.ends_with(".json") || name == "-";
+  const std::string meant = nearest_name(name, names);
   throw InvalidInput(
-      "unknown scene " + quote_value(name) + " (known: " + known + kFieldPrefix +
+      "unknown scene " + quote_value(name) +
+      (meant.empty() ? "" : "; did you mean " + meant + "?") + " (known: " + known + kFieldPrefix +
       "N with N from 1 to " + std::to_string(kMaxFieldSpheres) + ")" +
       (looks_like_a_file ? "; a scene file is given by its path, without --scene" : ""));
 }
