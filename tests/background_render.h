@@ -81,7 +81,10 @@ class BackgroundRender {
     }
     const std::string status_path = "/proc/" + std::to_string(pid_) + "/status";
     while (std::chrono::steady_clock::now() < deadline) {
-      if (!lock.empty() && std::filesystem::exists(lock)) return true;
+      // The lock is taken once its holder's pid is in it (it exists a moment before, while
+      // rtiow still checks it is the file it locked).
+      std::error_code no_file;
+      if (!lock.empty() && std::filesystem::file_size(lock, no_file) > 0 && !no_file) return true;
       std::ifstream status(status_path);
       std::string line;
       while (lock.empty() && std::getline(status, line)) {
