@@ -582,7 +582,8 @@ void write_figures(const AccuracyOptions& o, const json& r) {
   const std::string png_path = (fs::path(o.out_dir) / "accuracy.png").string();
   write_text_atomically(json_path, r.dump(2) + "\n");
   write_csv(r, csv_path);
-  std::printf("\nfigures: %s\n         %s\n", json_path.c_str(), csv_path.c_str());
+  std::printf("\nfigures: %s\n         %s\n", one_line(json_path).c_str(),
+              one_line(csv_path).c_str());
   run_plot_script("accuracy_plot.py", json_path, png_path);
 }
 

@@ -237,7 +237,7 @@ int run_bench(const BenchOptions& o) {
 
   print_bench_table(results);
   write_bench_json(results, o.json_path);
-  std::printf("\nfigures: %s\n", o.json_path.c_str());
+  std::printf("\nfigures: %s\n", one_line(o.json_path).c_str());
   plot_bench(o.json_path, o.plot_path);
   return 0;
 }

@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -84,11 +85,9 @@ bool refused_unknown_command(const CLI::App& app, int argc, char** argv) {
   const std::string first = argv[1];
   std::vector<std::string> names;
   if (first[0] == '-') {
-    for (const CLI::Option* option : app.get_options()) {
-      if (option->check_name(first.substr(0, first.find('=')))) return false;
-      for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
-      for (const std::string& name : option->get_snames()) names.push_back("-" + name);
-    }
+    names = rtiow::option_spellings(app);
+    if (std::find(names.begin(), names.end(), first.substr(0, first.find('='))) != names.end())
+      return false;
   } else {
     for (const CLI::App* sub : app.get_subcommands({})) {
       if (sub->get_name() == first) return false;

@@ -71,7 +71,7 @@ int run_merge(const MergeOptions& o) {
   if (!o.quiet) {
     std::fprintf(stderr, "merged %zu parts: %dx%d, %llu spp -> %s\n", parts.size(),
                  merged.film.width(), merged.film.height(),
-                 static_cast<unsigned long long>(merged.samples), o.output.c_str());
+                 static_cast<unsigned long long>(merged.samples), one_line(o.output).c_str());
   }
   return 0;
 }

@@ -21,16 +21,6 @@ std::string full_name(const CLI::App& command) {
              : full_name(*command.get_parent()) + " " + command.get_name();
 }
 
-// Every spelling of the command's options: --long and -s.
-std::vector<std::string> option_spellings(const CLI::App& command) {
-  std::vector<std::string> names;
-  for (const CLI::Option* option : command.get_options()) {
-    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
-    for (const std::string& name : option->get_snames()) names.push_back("-" + name);
-  }
-  return names;
-}
-
 // "--widht=3" is the option "--widht".
 std::string option_part(const std::string& argument) {
   return argument.substr(0, argument.find('='));
@@ -75,6 +65,15 @@ std::string explain_conversion(const CLI::App& command, const std::string& what)
 }
 
 }  // namespace
+
+std::vector<std::string> option_spellings(const CLI::App& command) {
+  std::vector<std::string> names;
+  for (const CLI::Option* option : command.get_options()) {
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+    for (const std::string& name : option->get_snames()) names.push_back("-" + name);
+  }
+  return names;
+}
 
 std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& error) {
   const CLI::App& command = command_in_use(app);

@@ -7,8 +7,12 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
 
 namespace rtiow {
+
+// Every spelling of a command's own options: --long and -s.
+std::vector<std::string> option_spellings(const CLI::App& command);
 
 // The message for a parse error of `app` (after app.parse threw it).
 std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& error);

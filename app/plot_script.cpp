@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/limits/error.h"
+
 namespace rtiow {
 
 bool run_plot_script(const std::string& script, const std::string& json_path,
@@ -21,7 +23,7 @@ bool run_plot_script(const std::string& script, const std::string& json_path,
     std::printf("plot: skipped (%s failed; is python3-matplotlib installed?)\n", path.c_str());
     return false;
   }
-  std::printf("plot:    %s\n", png_path.c_str());
+  std::printf("plot:    %s\n", one_line(png_path).c_str());
   return true;
 }
 

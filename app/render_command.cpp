@@ -324,7 +324,7 @@ void print_summary(const Job& job, const RenderResult& result, const MpiSession&
                job.scene.name.c_str(), s.width, s.height, describe_samples(s, result).c_str(),
                s.max_depth, to_string(s.accel).c_str(), ranks.c_str(), threads,
                threads == 1 ? "" : "s", result.render_seconds, rays,
-               rays / result.render_seconds * 1e-6, job.output.c_str());
+               rays / result.render_seconds * 1e-6, one_line(job.output).c_str());
 }
 
 // The checkpoint of this process's render: none under mpirun (each rank holds only its
@@ -464,7 +464,7 @@ int run_render(const RenderOptions& o, bool scene_option_given, bool output_give
                                        checkpoint->how_to_continue() + " to continue it)"
                                  : "";
     std::fprintf(stderr, "rtiow: interrupted: wrote %s%s to %s%s\n",
-                 describe_samples(s, result).c_str(), asked.c_str(), job.output.c_str(),
+                 describe_samples(s, result).c_str(), asked.c_str(), one_line(job.output).c_str(),
                  kept.c_str());
     return 128 + InterruptGuard::signal_received();
   }

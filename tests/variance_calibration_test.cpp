@@ -26,20 +26,29 @@ namespace {
 // (the image-wide figure that --image-error and rtiow accuracy rest on): 1 when honest.
 struct Calibration {
   double per_pixel = 0, image = 0;
+  // What the figures come from, so seed pairs can be pooled: the sum and count of z^2 over the
+  // pixel-channels with a variance, and the largest z^2.
+  double z_squares = 0, counted = 0, largest = 0;
 };
 
 Calibration calibration(const RenderResult& a, const RenderResult& b) {
   const std::vector<Vec3d> va = pixel_mean_variances(a), vb = pixel_mean_variances(b);
-  double ratios = 0, count = 0, squares = 0, variances = 0;
+  Calibration result;
+  double squares = 0, variances = 0;
   for (std::size_t p = 0; p < va.size(); ++p) {
     for (std::size_t c = 0; c < 3; ++c) {
       const double d = double(a.film.pixels()[p][c]) - double(b.film.pixels()[p][c]);
       const double v = va[p][c] + vb[p][c];
       squares += d * d, variances += v;
-      if (v > 0) ratios += d * d / v, count += 1;
+      if (v > 0) {
+        result.z_squares += d * d / v, result.counted += 1;
+        result.largest = std::max(result.largest, d * d / v);
+      }
     }
   }
-  return {ratios / count, squares / variances};
+  result.per_pixel = result.z_squares / result.counted;
+  result.image = squares / variances;
+  return result;
 }
 
 RenderSettings settings(const Scene& scene, int width, int spp, SamplerKind sampler) {
@@ -163,16 +172,8 @@ PairsCalibration over_seed_pairs(const Scene& scene, RenderSettings s, int pairs
     s.seed = std::uint64_t(2 * pair + 1);
     const RenderResult a = render(scene, s);
     s.seed = std::uint64_t(2 * pair + 2);
-    const RenderResult b = render(scene, s);
-    const std::vector<Vec3d> va = pixel_mean_variances(a), vb = pixel_mean_variances(b);
-    for (std::size_t p = 0; p < va.size(); ++p) {
-      for (std::size_t c = 0; c < 3; ++c) {
-        const double d = double(a.film.pixels()[p][c]) - double(b.film.pixels()[p][c]);
-        const double v = va[p][c] + vb[p][c];
-        if (v <= 0) continue;
-        total += d * d / v, count += 1, largest = std::max(largest, d * d / v);
-      }
-    }
+    const Calibration c = calibration(a, render(scene, s));
+    total += c.z_squares, count += c.counted, largest = std::max(largest, c.largest);
   }
   return {total / count, largest};
 }
