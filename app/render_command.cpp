@@ -15,6 +15,7 @@
 
 #include "app/checkpoint_session.h"
 #include "app/cli_checks.h"
+#include "app/image_request.h"
 #include "app/interrupt.h"
 #include "app/mpi_session.h"
 #include "app/output_lock.h"
@@ -41,6 +42,7 @@ namespace {
 
 struct RenderOptions {
   std::string scene_file;
+  std::string like;  // an image whose recorded request this render repeats
   std::string scene = "cover";
   std::uint64_t scene_seed = 1;
   bool list_scenes = false;
@@ -229,11 +231,15 @@ struct Job {
 };
 
 std::vector<std::string> input_files(const RenderOptions& o) {
-  return o.scene_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{o.scene_file};
+  std::vector<std::string> inputs;
+  if (!o.scene_file.empty()) inputs.push_back(o.scene_file);
+  if (!o.like.empty()) inputs.push_back(o.like);
+  return inputs;
 }
 
+// `like`: the request of the --like image, whose scene is checked against its digest.
 Job prepare_job(const RenderOptions& o, bool scene_option_given, bool output_given,
-                const MpiSession& mpi) {
+                const MpiSession& mpi, const ImageRequest* like) {
   // Cheap checks of the output first, so a bad -o is refused before a large scene loads.
   if (output_given) check_output_path(output_path(o, output_given, Scene{}), input_files(o));
   Job job;
@@ -242,6 +248,7 @@ Job prepare_job(const RenderOptions& o, bool scene_option_given, bool output_giv
   // of range is refused by name once the request is resolved).
   const int threads = o.threads >= 0 && o.threads <= limits::kMaxThreads ? o.threads : 0;
   Scene scene = with_threads(threads, [&] { return load_scene(o, scene_option_given); });
+  if (like) check_scene_of_image(*like, scene, o.like);
   job.output = output_path(o, output_given, scene);
   // The whole job, resolved and checked before it is cut into a share.
   ResolvedRender resolved = resolve(std::move(scene), request);
@@ -418,12 +425,12 @@ void remove_leftovers(const std::string& output, bool quiet) {
 }
 
 int run_render(const RenderOptions& o, bool scene_option_given, bool output_given,
-               const MpiSession& mpi) {
+               const MpiSession& mpi, const ImageRequest* like) {
   if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
   // From the scene's load to the last write, a signal asks the command to stop gracefully.
   RenderProgress progress;
   const InterruptGuard interrupt(progress.stop_requested);
-  Job job = prepare_job(o, scene_option_given, output_given, mpi);
+  Job job = prepare_job(o, scene_option_given, output_given, mpi, like);
   if (const int code = interrupted_outside_render("before the render began; nothing was written")) {
     return code;
   }
@@ -487,6 +494,11 @@ CLI::Option* add_scene_options(CLI::App* cmd, RenderOptions& o) {
       cmd->add_option("--scene", o.scene, "Built-in scene to render (see --list-scenes)")
           ->capture_default_str();
   cmd->add_flag("--list-scenes", o.list_scenes, "List the built-in scenes and exit");
+  cmd->add_option("--like", o.like,
+                  "Render again as this image's metadata records it (scene, size, samples, "
+                  "seed, camera, ...); each option given replaces its part of that. Refused "
+                  "where the scene is no longer the one the image was rendered from")
+      ->type_name("IMAGE");
   cmd->add_option("--scene-seed", o.scene_seed, "Seed of the random layout of cover and spheres:N")
       ->check(kNotNegative)
       ->capture_default_str();
@@ -626,9 +638,15 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
   add_run_options(cmd, *options);
   add_camera_options(cmd, *options);
   return [options, cmd, scene_option, output_option, &mpi] {
-    return cmd->parsed()
-               ? run_render(*options, scene_option->count() > 0, output_option->count() > 0, mpi)
-               : -1;
+    if (!cmd->parsed()) return -1;
+    std::optional<ImageRequest> like;
+    bool scene_chosen = false;  // by the user, over the --like image's
+    if (!options->like.empty()) {
+      like = read_image_request(options->like);
+      scene_chosen = apply_image_request(*like, *cmd);
+    }
+    return run_render(*options, scene_option->count() > 0, output_option->count() > 0, mpi,
+                      like && !scene_chosen ? &*like : nullptr);
   };
 }
 

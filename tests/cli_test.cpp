@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -668,6 +669,129 @@ TEST(Cli, EveryFormatThatHoldsTextCarriesTheWholeRequest) {
   }
 }
 
+// The gallery of docs/ is what this build renders: each picture, rendered again from its own
+// metadata, gives its bytes. `cmake --build build --target gallery` renders them all again
+// (cmake/Gallery.cmake).
+TEST(Cli, TheGalleryIsWhatThisBuildRenders) {
+  const fs::path gallery = fs::path(RTIOW_SOURCE_DIR) / "docs" / "gallery";
+  int pictures = 0;
+  for (const auto& entry : fs::directory_iterator(gallery)) {
+    if (entry.path().extension() != ".png") continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    ++pictures;
+    const fs::path again = output_path("gallery-" + entry.path().filename().string());
+    fs::remove(again);
+    const CommandResult r =
+        run_rtiow("render -q --like " + entry.path().string() + " -o " + again.string());
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    EXPECT_TRUE(slurp(entry.path()) == slurp(again))
+        << "docs/gallery is stale: cmake --build build --target gallery renders it again";
+  }
+  EXPECT_EQ(pictures, 6);
+}
+
+// --like renders an image again from its own metadata: the same bytes, from every format that
+// holds the request, with settings away from every default (an override of the camera, a
+// sampler, a seed, exact Fresnel, an error target with its cap and minimum).
+TEST(Cli, LikeRendersTheSameFileAgainFromEveryFormatThatHoldsTheRequest) {
+  const fs::path scene = output_path("like-scene.json");
+  ASSERT_EQ(run_rtiow("scene materials -o " + scene.string()).exit_code, 0);
+  const std::string settings =
+      " --width 24 --height 20 --seed 9 --sampler padded-sobol --depth 7 --vfov 60 "
+      "--lookfrom 0.5,1,2 --fresnel exact --reproducible ";
+  struct Case {
+    const char* ext;
+    std::string sampling;
+  };
+  for (const Case& c : {Case{".png", "--spp 3"}, Case{".jpg", "--spp 2 --scene-seed 4"},
+                        Case{".tif", "--image-error 0.2 --spp 40 --min-spp 3"},
+                        Case{".exr", "--target-error 0.07 --spp 30 --min-spp 5 --stats-channels"},
+                        Case{".exr", "--adaptive --spp 20"}}) {
+    SCOPED_TRACE(std::string(c.ext) + " " + c.sampling);
+    const fs::path first = output_path(std::string("like-first") + c.ext);
+    const fs::path again = output_path(std::string("like-again") + c.ext);
+    fs::remove(first), fs::remove(again);
+    CommandResult r =
+        run_rtiow("render -q " + scene.string() + settings + c.sampling + " -o " + first.string());
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    r = run_rtiow("render -q --like " + first.string() + " -o " + again.string());
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    const std::string a = slurp(first), b = slurp(again);
+    EXPECT_FALSE(a.empty());
+    EXPECT_TRUE(a == b) << "the file rendered --like differs from the original";
+  }
+}
+
+// An option given with --like replaces its part of the recorded request, and only that.
+TEST(Cli, LikeTakesEachOptionGivenOverTheImages) {
+  const fs::path first = output_path("like-base.exr"), again = output_path("like-changed.exr");
+  fs::remove(first), fs::remove(again);
+  ASSERT_EQ(run_rtiow("render -q --scene spheres:30 --scene-seed 6 --width 20 --spp 3 --seed 11 "
+                      "--aperture 0.2 -o " +
+                      first.string())
+                .exit_code,
+            0);
+  const CommandResult r = run_rtiow("render -q --like " + first.string() +
+                                    " --spp 2 --aperture 0 -o " + again.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  auto in = OIIO::ImageInput::open(again.string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec& spec = in->spec();
+  EXPECT_EQ(spec.width, 20);
+  EXPECT_EQ(spec.get_int_attribute("rtiow:spp"), 2);
+  EXPECT_EQ(spec.get_int_attribute("rtiow:seed"), 11);
+  EXPECT_EQ(spec.get_int_attribute("rtiow:scene_seed"), 6);
+  EXPECT_EQ(spec.get_string_attribute("rtiow:scene"), "spheres:30");
+  const std::string camera = spec.get_string_attribute("rtiow:camera");
+  EXPECT_NE(camera.find("--aperture 0 "), std::string::npos) << camera;
+}
+
+// What --like cannot repeat is refused in one line, before any work: a scene file edited since
+// the image (until the scene is given again), an image with no request, an adaptive render a
+// clock stopped (until the sampling is given), and an output that would replace the image.
+TEST(Cli, LikeRefusesWhatItCannotRenderAgain) {
+  const fs::path scene = output_path("like-edited.json"), image = output_path("like-edited.png");
+  const fs::path out = output_path("like-out.png");
+  ASSERT_EQ(run_rtiow("scene materials -o " + scene.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow("render -q " + scene.string() + " --width 16 --spp 2 -o " + image.string())
+                .exit_code,
+            0);
+  std::string text = slurp(scene);
+  const std::string ground = "\"radius\":100.0";
+  ASSERT_NE(text.find(ground), std::string::npos);
+  text.replace(text.find(ground), ground.size(), "\"radius\":101.0");  // a bigger ground
+  { std::ofstream(scene, std::ios::binary) << text; }
+  CommandResult r = run_rtiow("render -q --like " + image.string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("changed since"), std::string::npos) << r.stderr_text;
+  EXPECT_FALSE(fs::exists(out));
+  r = run_rtiow("render -q --like " + image.string() + " " + scene.string() + " -o " +
+                out.string());
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+
+  const fs::path hdr = output_path("like.hdr");
+  ASSERT_EQ(run_rtiow("render -q --scene cover --width 16 --spp 1 -o " + hdr.string()).exit_code,
+            0);
+  r = run_rtiow("render -q --like " + hdr.string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("holds no rtiow provenance"), std::string::npos) << r.stderr_text;
+
+  const fs::path timed = output_path("like-timed.png");
+  ASSERT_EQ(run_rtiow("render -q --scene cover --width 16 --adaptive --time-limit 0.1 -o " +
+                      timed.string())
+                .exit_code,
+            0);
+  r = run_rtiow("render -q --like " + timed.string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("time limit"), std::string::npos) << r.stderr_text;
+  r = run_rtiow("render -q --like " + timed.string() + " --spp 2 -o " + out.string());
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+
+  r = run_rtiow("render -q --like " + image.string() + " -o " + image.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("input"), std::string::npos) << r.stderr_text;
+}
+
 TEST(Cli, ReproducibleFilesAreByteIdenticalAcrossThreadCounts) {
   const fs::path one = output_path("threads1.png"), two = output_path("threads2.png");
   const std::string common = "render -q --reproducible --scene cover --width 40 --spp 3 ";
@@ -699,11 +823,13 @@ TEST(Cli, FilesCarryNoWallClockDate) {
 namespace {
 
 TEST(Cli, BenchWritesFiguresAndPlot) {
-  const fs::path json_path = output_path("bench.json"), plot = output_path("bench.png");
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "bench-out";
+  fs::remove_all(dir);
+  const fs::path json_path = dir / "bench.json", plot = dir / "bench.png";
   const CommandResult r = run_rtiow(
       "bench --width 32 --height 18 --spp 1 --depth 4 --scaling-width 24 --scaling-height 14 "
-      "--scaling-spp 1 --scaling-depth 3 --max-spheres 100 --repeat 1 --json " +
-      json_path.string() + " --plot " + plot.string());
+      "--scaling-spp 1 --scaling-depth 3 --max-spheres 100 --repeat 1 --out " +
+      dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text << r.stdout_text;
   EXPECT_NE(r.stdout_text.find("embree / naive"), std::string::npos) << r.stdout_text;
   EXPECT_NE(r.stdout_text.find("render / raw trace rate"), std::string::npos);
@@ -714,6 +840,60 @@ TEST(Cli, BenchWritesFiguresAndPlot) {
     EXPECT_NE(figures.find(key), std::string::npos) << key;
   }
   EXPECT_TRUE(fs::exists(plot)) << r.stdout_text;
+
+  // docs/performance.md shows a run of the program: each line this run prints has a line of
+  // that form there (numbers, paths and alignment aside), and each line there but the ones of
+  // a naive loop over its time budget is printed here.
+  const auto form = [](const std::string& line) {
+    return std::regex_replace(
+        output_form(std::regex_replace(line, std::regex(R"(^(figures|plot): .*)"), "$1: PATH")), std::regex(" +"),
+        " ");
+  };
+  const std::string docs = slurp(fs::path(RTIOW_SOURCE_DIR) / "docs" / "performance.md");
+  const std::size_t begin = docs.find("$ build/bin/rtiow bench");
+  ASSERT_NE(begin, std::string::npos) << "docs/performance.md shows no run of rtiow bench";
+  std::set<std::string> shown, printed;
+  {
+    std::istringstream in(docs.substr(begin, docs.find("```", begin) - begin));
+    std::string line;
+    std::getline(in, line);  // the command
+    while (std::getline(in, line)) {
+      if (!line.empty() && line.find("skipped") == std::string::npos &&
+          line.find("naive stopped") == std::string::npos) {
+        shown.insert(form(line));
+      }
+    }
+  }
+  std::istringstream out(r.stdout_text);
+  for (std::string line; std::getline(out, line);) {
+    if (!line.empty()) printed.insert(form(line));
+  }
+  for (const std::string& line : printed) {
+    EXPECT_TRUE(shown.count(line)) << "docs/performance.md has no line like: " << line;
+  }
+  for (const std::string& line : shown) {
+    EXPECT_TRUE(printed.count(line)) << "rtiow bench prints no line like: " << line;
+  }
+}
+
+// --quick gives bench and accuracy the settings of a short run, but for the options given.
+TEST(Cli, QuickRunsTakeTheirOwnSettingsButTheOptionsGiven) {
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "quick-runs";
+  fs::remove_all(dir);
+  CommandResult r = run_rtiow("bench --quick --max-spheres 100 --out " + (dir / "b").string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const auto bench = nlohmann::json::parse(slurp(dir / "b" / "bench.json"));
+  EXPECT_EQ(bench["cover"]["width"], 200);
+  EXPECT_EQ(bench["repeat"], 1);
+  EXPECT_EQ(bench["scaling"].size(), 2u);  // 10 and 100 spheres: --max-spheres is the user's
+  r = run_rtiow("accuracy -q --quick --width 48 --out " + (dir / "a").string() + " --cache-dir " +
+                (dir / "cache").string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const auto accuracy = nlohmann::json::parse(slurp(dir / "a" / "accuracy.json"));
+  EXPECT_EQ(accuracy["width"], 48);
+  EXPECT_EQ(accuracy["max_spp"], 256);
+  EXPECT_EQ(accuracy["reference_spp"], 1024);
+  EXPECT_EQ(accuracy["repeat"], 1);
 }
 
 TEST(Cli, AdaptiveRenderWritesStatisticsChannelsAndItsSampleCounts) {

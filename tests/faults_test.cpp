@@ -418,8 +418,8 @@ TEST(Faults, LostStandardOutputIsAnError) {
   const std::string bench = rtiow +
                             " bench --width 16 --height 9 --spp 1 --scaling-width 16 "
                             "--scaling-height 9 --scaling-spp 1 --max-spheres 10 --repeat 1 "
-                            "--json " +
-                            (dir / "b.json").string() + " --plot " + (dir / "b.png").string();
+                            "--out " +
+                            (dir / "bench").string();
   const std::string image = (dir / "i.png").string();
   ASSERT_EQ(shell(rtiow + " render -q --width 40 --spp 2 -o " + image), 0);
   for (const std::string& command :

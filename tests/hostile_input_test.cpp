@@ -588,7 +588,14 @@ std::vector<Case> output_cases() {
        "not an image format",
        {"merge", "part0.exr", "part1.exr", "-o", "x.null"}},
       {"MergeOutputEmpty", 2, "the path is empty", {"merge", "part0.exr", "part1.exr", "-o", ""}},
-      {"BenchJsonDirectory", 2, "is a directory", {"bench", "--json", "adir.png"}},
+      {"BenchOutIsAFile",
+       2,
+       "--out 'keep.png': is not a directory",
+       {"bench", "--out", "keep.png"}},
+      {"BenchOutHoldsADirectoryForItsFigures",
+       2,
+       "is a directory",
+       {"bench", "--out", "bench-dir-clash"}},
       {"AccuracyOutIsAFile",
        2,
        "--out 'keep.png': is not a directory",
@@ -721,6 +728,7 @@ fs::path make_users_directory(const Case& c) {
   const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile" / c.name;
   fs::remove_all(dir);
   fs::create_directories(dir / "adir.png");
+  fs::create_directories(dir / "bench-dir-clash" / "bench.json");  // where bench writes a file
   const fs::path fixture = fixtures();
   for (const auto& entry : fs::directory_iterator(fixture)) {
     if (entry.path().extension() == ".exr")

@@ -84,12 +84,14 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
         metadata.emplace_back(key::kSppBudget, std::int64_t(*a->per_pixel));
       }
     }
-    metadata.insert(metadata.end(), {
-                                        {key::kSppMin, std::int64_t(*least)},
-                                        {key::kSppMax, std::int64_t(*most)},
-                                        {key::kSppMean, mean_samples(r)},
-                                        {key::kSppLimit, std::int64_t(limit)},
-                                    });
+    metadata.insert(metadata.end(),
+                    {
+                        {key::kMinSpp, std::int64_t(least_samples(s.samples).value_or(0))},
+                        {key::kSppMin, std::int64_t(*least)},
+                        {key::kSppMax, std::int64_t(*most)},
+                        {key::kSppMean, mean_samples(r)},
+                        {key::kSppLimit, std::int64_t(limit)},
+                    });
   } else {
     metadata.emplace_back(key::kSpp, std::int64_t(r.samples_completed));
   }

@@ -1,0 +1,327 @@
+#include "app/image_request.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <map>
+#include <sstream>
+
+#include "core/io/image_backend.h"
+#include "core/io/image_file.h"
+#include "core/io/image_output.h"
+#include "core/io/output_path.h"
+#include "core/limits/error.h"
+#include "core/limits/input_limits.h"
+#include "core/render/render_metadata.h"
+#include "core/scene/scene_digest.h"
+
+namespace rtiow {
+namespace {
+
+using Recorded = std::map<std::string, std::string>;  // key (without "rtiow:") -> text
+
+// A float attribute (EXR stores doubles as floats) as the shortest text that reads back as
+// that float: 0.05f is "0.05", the value the user typed, not 0.0500000007.
+std::string float_text(float v) {
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
+}
+
+void add_json_keys(const std::string& description, Recorded& recorded) {
+  const auto all = nlohmann::json::parse(description, nullptr, /*allow_exceptions=*/false);
+  if (!all.is_object()) return;
+  const std::string prefix = kMetadataPrefix;
+  for (const auto& [name, value] : all.items()) {
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string key = name.substr(prefix.size());
+    if (value.is_string()) {
+      recorded[key] = value.get<std::string>();
+    } else if (value.is_number_integer()) {
+      recorded[key] = value.dump();
+    } else if (value.is_number_float()) {
+      char text[32];
+      recorded[key] =
+          std::string(text, std::to_chars(text, text + sizeof text, value.get<double>()).ptr);
+    }
+  }
+}
+
+// Every rtiow:* key of the header: its own attributes (PNG, EXR), or the JSON object in the
+// image description (JPEG, TIFF).
+Recorded recorded_keys(const ImageHeader& header) {
+  Recorded recorded;
+  const std::string prefix = kMetadataPrefix;
+  for (const ImageAttribute& a : header.attributes) {
+    if (a.name == "ImageDescription") {
+      if (const auto* text = std::get_if<std::string>(&a.value)) add_json_keys(*text, recorded);
+      continue;
+    }
+    if (a.name.rfind(prefix, 0) != 0) continue;
+    const std::string key = a.name.substr(prefix.size());
+    if (const auto* i = std::get_if<int>(&a.value)) recorded[key] = std::to_string(*i);
+    if (const auto* f = std::get_if<float>(&a.value)) recorded[key] = float_text(*f);
+    if (const auto* s = std::get_if<std::string>(&a.value)) recorded[key] = *s;
+  }
+  return recorded;
+}
+
+std::optional<double> number(const std::string& text) {
+  double value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+// "x,y,z" as a vector; nothing when it is not three numbers.
+std::optional<Vec3d> triple(const std::string& text) {
+  std::istringstream parts(text);
+  std::string part;
+  double v[3];
+  int n = 0;
+  while (std::getline(parts, part, ',')) {
+    const auto value = number(part);
+    if (!value || n == 3) return std::nullopt;
+    v[n++] = *value;
+  }
+  if (n != 3) return std::nullopt;
+  return Vec3d{v[0], v[1], v[2]};
+}
+
+class RequestBuilder {
+ public:
+  RequestBuilder(std::string image, Recorded recorded)
+      : image_(std::move(image)), recorded_(std::move(recorded)) {}
+
+  const std::string* find(const char* key) const {
+    const auto it = recorded_.find(key);
+    return it == recorded_.end() ? nullptr : &it->second;
+  }
+  const std::string& need(const char* key) const {
+    if (const std::string* value = find(key)) return *value;
+    throw InvalidInput(image_ + " has no rtiow:" + key +
+                       ": it was written before rtiow recorded the whole request, or its "
+                       "metadata was edited since");
+  }
+  [[noreturn]] void refuse(const std::string& why) const {
+    throw InvalidInput(image_ + ": " + why);
+  }
+
+  void add(const std::string& group, const std::string& name, std::vector<std::string> values) {
+    request_.options.push_back({group, name, std::move(values), {}});
+  }
+  // A part of the request no render repeats: refused unless the user gives that part.
+  void unrepeatable(const std::string& group, const std::string& why) {
+    request_.options.push_back({group, "", {}, image_ + ": " + why});
+  }
+  void add_copy(const char* key, const std::string& option) {
+    if (const std::string* value = find(key)) add(option, option, {*value});
+  }
+
+  // The camera as render_metadata() writes it: "--lookfrom x,y,z --lookat ... --focus-dist f".
+  void add_camera() {
+    std::istringstream words(need(metadata_key::kCamera));
+    std::string name, value;
+    CameraOverrides& c = request_.camera;
+    while (words >> name >> value) {
+      const bool vector = name == "--lookfrom" || name == "--lookat" || name == "--vup";
+      const std::optional<Vec3d> v = vector ? triple(value) : std::nullopt;
+      const std::optional<double> x = vector ? std::nullopt : number(value);
+      if (vector && !v) refuse("rtiow:camera: " + name + " is not x,y,z");
+      if (!vector && !x) refuse("rtiow:camera: " + name + " is not a number");
+      if (name == "--lookfrom")
+        c.lookfrom = v;
+      else if (name == "--lookat")
+        c.lookat = v;
+      else if (name == "--vup")
+        c.vup = v;
+      else if (name == "--vfov")
+        c.vfov_degrees = x;
+      else if (name == "--aperture")
+        c.aperture = x;
+      else if (name == "--focus-dist")
+        c.focus_distance = x;
+      else
+        refuse("rtiow:camera: unknown setting " + quote_value(name));
+      add(name, name, {value});
+    }
+  }
+
+  // How many samples, and how they were spent: one group, replaced whole by any sampling
+  // option the user gives.
+  void add_samples() {
+    namespace key = metadata_key;
+    const char* group = "samples";
+    if (const std::string* spp = find(key::kSpp)) {
+      // Uniform: the count completed, also where a signal or a time limit stopped it early.
+      add(group, "--spp", {*spp});
+      return;
+    }
+    if (const std::string* stopped = find(key::kStopped)) {
+      unrepeatable(group, "its adaptive render was stopped early (" + quote_value(*stopped) +
+                              "): where each pixel stopped depends on when; give the sampling "
+                              "(--spp, --target-error, ...)");
+      return;
+    }
+    if (const std::string* target = find(key::kTargetError)) {
+      add(group, "--target-error", {*target});
+      add(group, "--spp", {need(key::kSppLimit)});
+    } else if (const std::string* image_error = find(key::kImageError)) {
+      add(group, "--image-error", {*image_error});
+      add(group, "--spp", {need(key::kSppLimit)});
+    } else if (find(key::kAdaptive)) {
+      const std::string* budget = find(key::kSppBudget);
+      if (!budget) {
+        unrepeatable(group,
+                     "its adaptive budget was a time limit, which gives another image on "
+                     "another machine; give the sampling (--spp, --time-limit, ...)");
+        return;
+      }
+      add(group, "--adaptive", {});
+      add(group, "--spp", {*budget});
+    } else {
+      need(key::kSpp);
+    }
+    if (const std::string* least = find(key::kMinSpp)) add(group, "--min-spp", {*least});
+  }
+
+  ImageRequest build(const ImageHeader& header) {
+    namespace key = metadata_key;
+    if (recorded_.empty()) {
+      refuse(
+          "holds no rtiow provenance (HDR, PPM, BMP and TGA keep none; PNG, EXR, JPEG and "
+          "TIFF do)");
+    }
+    if (find("part_samples")) {
+      refuse(
+          "is a part of a shared render: merge the parts (rtiow merge) and use the merged "
+          "image");
+    }
+    request_.scene_digest = need(key::kSceneDigest);
+    request_.version = need(key::kVersion);
+    if (const std::string* file = find(key::kSceneFile)) {
+      add("scene", "scene_file", {*file});
+      request_.scene_file = *file;
+    } else {
+      add("scene", "--scene", {need(key::kScene)});
+      if (const std::string* seed = find(key::kSceneSeed)) {
+        add("--scene-seed", "--scene-seed", {*seed});
+      }
+    }
+    add("size", "--width", {std::to_string(header.width)});
+    add("size", "--height", {std::to_string(header.height)});
+    add_samples();
+    add("--depth", "--depth", {need(key::kDepth)});
+    add("--seed", "--seed", {need(key::kSeed)});
+    add("--sampler", "--sampler", {need(key::kSampler)});
+    add_copy(key::kAccelerator, "--accel");
+    add_camera();
+    if (const std::string* fresnel = find(key::kFresnel)) {
+      // One model for all the glass: as --fresnel gave it, or as the scene said (the same).
+      if (const auto model = parse_fresnel(*fresnel)) {
+        request_.fresnel = model;
+        add("--fresnel", "--fresnel", {*fresnel});
+      }
+    }
+    // The statistics channels, or two replicates in a uniform render (adaptive renders keep
+    // two whatever was asked): --stats-channels was given.
+    const std::string* replicates = find(key::kReplicates);
+    const auto& channels = header.channel_names;
+    if (std::find(channels.begin(), channels.end(), "variance.R") != channels.end() ||
+        (replicates && *replicates == "2" && find(key::kSpp))) {
+      add("--stats-channels", "--stats-channels", {});
+    }
+    if (!find(key::kRenderSeconds)) add("--reproducible", "--reproducible", {});
+    return std::move(request_);
+  }
+
+ private:
+  std::string image_;
+  Recorded recorded_;
+  ImageRequest request_;
+};
+
+}  // namespace
+
+ImageRequest read_image_request(const std::string& path) {
+  const std::string name = "--like image " + quote_value(path);
+  const auto in = open_input_image(path, name, limits::kMaxPartFileBytes, "image");
+  RequestBuilder builder(name, recorded_keys(in->header()));
+  return builder.build(in->header());
+}
+
+namespace {
+
+// The options that replace a group: any of its members given by the user.
+std::vector<std::string> members(const std::string& group) {
+  // A seed of the layout goes with a built-in scene, not a file.
+  if (group == "scene") return {"scene_file", "--scene"};
+  if (group == "--scene-seed") return {"--scene-seed", "scene_file"};
+  if (group == "size") return {"--width", "--height"};
+  if (group == "samples") {
+    return {"--spp", "--target-error", "--image-error", "--adaptive", "--min-spp", "--time-limit"};
+  }
+  return {group};
+}
+
+bool given(CLI::App& render, const std::string& group) {
+  for (const std::string& name : members(group)) {
+    if (render.get_option(name)->count() > 0) return true;
+  }
+  return false;
+}
+
+// Two replicates give other pixels than one sequence, and only .exr holds the channels that
+// --stats-channels adds: the image's pixels are rendered again only into an .exr.
+void check_room_for_replicates(CLI::App& render) {
+  CLI::Option* output = render.get_option("--output");
+  const ImageFormat* format =
+      output->count() > 0 ? image_format(output->as<std::string>()) : nullptr;
+  if (format && format->extra_channels) return;
+  const std::string image = render.get_option("--like")->as<std::string>();
+  throw InvalidInput("--like image " + quote_value(image) +
+                     " was rendered with --stats-channels, whose two replicates give other "
+                     "pixels than one sequence: render it again into an .exr (-o NAME.exr)");
+}
+
+}  // namespace
+
+bool apply_image_request(const ImageRequest& request, CLI::App& render) {
+  std::vector<const ImageRequest::Option*> taken;
+  for (const ImageRequest::Option& o : request.options) {
+    if (!given(render, o.group)) taken.push_back(&o);
+  }
+  const bool scene_chosen = given(render, "scene") || given(render, "--scene-seed");
+  for (const ImageRequest::Option* o : taken) {
+    if (!o->unrepeatable.empty()) throw InvalidInput(o->unrepeatable);
+    CLI::Option* option = render.get_option(o->name);
+    if (o->name == "--stats-channels") check_room_for_replicates(render);
+    if (o->values.empty()) {
+      option->add_result(std::string("true"));  // a flag
+    } else {
+      for (const std::string& value : o->values) option->add_result(value);
+    }
+    option->run_callback();  // checks the value and sets the option's variable
+  }
+  return scene_chosen;
+}
+
+void check_scene_of_image(const ImageRequest& request, const Scene& scene,
+                          const std::string& image) {
+  RenderRequest as_recorded;
+  as_recorded.camera = request.camera;
+  as_recorded.fresnel = request.fresnel;
+  const std::string digest = scene_digest(resolve(scene, as_recorded).scene);
+  if (digest == request.scene_digest) return;
+  const std::string which =
+      request.scene_file.empty()
+          ? "built-in scene " + quote_value(scene.name) + " is not the one rtiow " +
+                quote_value(request.version) + " rendered it from"
+          : "scene file " + quote_value(request.scene_file) +
+                " is not the scene it was rendered from; the file changed since";
+  throw InvalidInput("--like image " + quote_value(image) + ": " + which + " (digest " +
+                     request.scene_digest + " then, " + digest +
+                     " now); give the scene (a file or --scene) to render it anyway");
+}
+
+}  // namespace rtiow
