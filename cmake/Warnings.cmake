@@ -15,7 +15,10 @@ function(rtiow_set_codegen target)
   # both sides of a select and keep one, which lets branch-free lane loops (the camera's
   # eight rays) vectorise. It changes no value (Clang's default); only the exception flags.
   target_compile_options(${target} PRIVATE -ffp-contract=off -fno-math-errno -fno-trapping-math)
+  # Portable unless asked: the hot loops choose their instruction set when the program loads
+  # (core/parallel/instruction_sets.h). RTIOW_NATIVE compiles everything for this CPU alone.
   if(RTIOW_NATIVE)
     target_compile_options(${target} PRIVATE -march=native)
+    target_compile_definitions(${target} PRIVATE RTIOW_NO_DISPATCH)
   endif()
 endfunction()

@@ -8,6 +8,7 @@
 #include "core/geometry/ray_offset.h"
 #include "core/geometry/sphere_bounds.h"
 #include "core/geometry/sphere_intersect.h"
+#include "core/parallel/instruction_sets.h"
 #include "core/parallel/thread_sanitizer.h"
 
 namespace rtiow {
@@ -99,7 +100,7 @@ void packet_intersect(const SphereSet& s, unsigned i, const RTCIntersectFunction
 // Called for each sphere whose box a ray enters: N = 1 for rtcIntersect1, 8 for the camera
 // rays of rtcIntersect8 (the rays of the packet that entered it are `valid`); any other N
 // (Embree's to choose) one ray at a time.
-void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
+RTIOW_DISPATCHED void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
   const auto& s = *static_cast<const SphereSet*>(args->geometryUserPtr);
   const unsigned i = args->primID;
   // The context is the one EmbreeAccel passed, extended (Embree's documented way).

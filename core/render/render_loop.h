@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "core/film/film.h"
@@ -28,6 +29,9 @@
 #include "core/scene/camera.h"
 
 namespace rtiow {
+
+class EmbreeAccel;
+class NaiveAccel;
 
 inline constexpr int kTileSize = 16;
 
@@ -76,8 +80,9 @@ struct RunAccumulators {
 // same whatever thread runs it and however the samples are split.
 // Returns the rays traced.
 template <typename Accel>
-std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& run,
-                             RunAccumulators out) {
+[[gnu::always_inline]] inline std::uint64_t accumulate_run_inlined(const RenderContext<Accel>& ctx,
+                                                                   const PixelRun& run,
+                                                                   RunAccumulators out) {
   const RenderSettings& settings = ctx.settings;
   const Camera& camera = ctx.camera;
   const float inv_w = 1.0f / float(settings.width), inv_h = 1.0f / float(settings.height);
@@ -135,6 +140,23 @@ std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& ru
     }
   }
   return total_rays;
+}
+
+// accumulate_run for the renderer's own accelerators, compiled for several instruction sets
+// and chosen at run time (core/render/render_kernels.cpp).
+std::uint64_t accumulate_run_dispatched(const RenderContext<EmbreeAccel>& ctx, const PixelRun& run,
+                                        RunAccumulators out);
+std::uint64_t accumulate_run_dispatched(const RenderContext<NaiveAccel>& ctx, const PixelRun& run,
+                                        RunAccumulators out);
+
+template <typename Accel>
+std::uint64_t accumulate_run(const RenderContext<Accel>& ctx, const PixelRun& run,
+                             RunAccumulators out) {
+  if constexpr (std::is_same_v<Accel, EmbreeAccel> || std::is_same_v<Accel, NaiveAccel>) {
+    return accumulate_run_dispatched(ctx, run, out);
+  } else {
+    return accumulate_run_inlined(ctx, run, out);
+  }
 }
 
 // Runs `body` over `range` with tbb::parallel_for in an arena of the settings' thread

@@ -9,6 +9,7 @@
 
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/parallel/instruction_sets.h"
 #include "core/sampling/sampling.h"
 #include "core/sampling/unit_circle.h"
 
@@ -119,7 +120,7 @@ Ray Camera::generate_ray(float s, float t, float lens_u, float lens_v) const {
   return Ray{origin_ + offset, film - offset};
 }
 
-void Camera::generate_rays(const Lanes& in, Ray* out) const {
+RTIOW_DISPATCHED void Camera::generate_rays(const Lanes& in, Ray* out) const {
   alignas(32) float ox[kLanes], oy[kLanes], oz[kLanes], dx[kLanes], dy[kLanes], dz[kLanes];
   const bool lens = lens_radius_ != 0.0f;
   for (int k = 0; k < kLanes; ++k) {
