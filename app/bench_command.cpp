@@ -20,6 +20,7 @@
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/render/render.h"
+#include "core/render/render_request.h"
 #include "core/scene/builtin_scenes.h"
 
 namespace rtiow {
@@ -99,17 +100,23 @@ json measure_render(const Scene& scene, RenderSettings settings, int repeat, dou
           {"mrays_per_second", double(rays) / s * 1e-6}};
 }
 
+// The book's job as measured: its independent sampler, seed 0.
+ResolvedRender book_job(Scene scene, int width, int height, int spp, int depth, int threads,
+                        AccelKind accel) {
+  RenderRequest r;
+  r.width = width, r.height = height, r.spp = spp, r.max_depth = depth;
+  r.threads = threads, r.accel = accel;
+  r.seed = 0, r.sampler = SamplerKind::Independent;
+  return resolve(std::move(scene), r);
+}
+
 int run_point(const PointOptions& o) {
   const double baseline_mb = current_rss_mb();
   const auto scene_start = Clock::now();
-  const Scene scene = make_builtin_scene(o.scene, 1);
+  Scene made = make_builtin_scene(o.scene, kDefaultSceneSeed);
   const double scene_seconds = std::chrono::duration<double>(Clock::now() - scene_start).count();
-  RenderSettings settings;
-  settings.width = o.width, settings.height = o.height;
-  settings.samples = FixedSamples{o.spp}, settings.max_depth = o.depth;
-  settings.threads = o.threads;
-  settings.seed = 0, settings.sampler = SamplerKind::Independent;  // the book's, as measured
-  settings.accel = parse_accel(o.accel);
+  const auto [scene, settings] =
+      book_job(std::move(made), o.width, o.height, o.spp, o.depth, o.threads, parse_accel(o.accel));
   json result = measure_render(scene, settings, o.repeat, o.budget);
   result["scene"] = o.scene;
   result["spheres"] = scene.spheres.size();
@@ -144,12 +151,8 @@ json run_point_in_child(const BenchOptions& o, std::uint64_t spheres, const std:
 }
 
 json bench_cover(const BenchOptions& o) {
-  const Scene scene = make_builtin_scene("cover", 1);
-  RenderSettings settings;
-  settings.width = o.width, settings.height = o.height;
-  settings.samples = FixedSamples{o.spp}, settings.max_depth = o.depth;
-  settings.threads = o.threads;
-  settings.seed = 0, settings.sampler = SamplerKind::Independent;  // the book's, as measured
+  auto [scene, settings] = book_job(make_builtin_scene("cover", kDefaultSceneSeed), o.width,
+                                    o.height, o.spp, o.depth, o.threads, AccelKind::Embree);
 
   json cover = {{"scene", "cover"}, {"spheres", scene.spheres.size()},
                 {"width", o.width}, {"height", o.height},
@@ -225,10 +228,9 @@ int run_bench(const BenchOptions& o) {
     check_output_path(json_path, {}, "--out");
     check_output_path(plot_path, {}, "--out");
   }
-  RenderSettings check;
-  check.width = o.width, check.height = o.height, check.samples = FixedSamples{o.spp};
-  check.max_depth = o.depth, check.threads = o.threads;
-  validate(check);
+  // The cover's settings checked before any work.
+  book_job(make_builtin_scene("cover", kDefaultSceneSeed), o.width, o.height, o.spp, o.depth,
+           o.threads, AccelKind::Embree);
 
   json results = {{"threads", all_threads(o.threads)},
                   {"repeat", o.repeat},

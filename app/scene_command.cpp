@@ -21,7 +21,7 @@ namespace {
 
 struct SceneOptions {
   std::string name;
-  std::uint64_t scene_seed = 1;
+  std::uint64_t scene_seed = kDefaultSceneSeed;
   std::string output;
 };
 

@@ -1,13 +1,11 @@
 #include "core/render/render_metadata.h"
 
-#include <algorithm>
 #include <charconv>
-#include <cstdio>
 #include <string>
 #include <variant>
 
 #include "core/limits/input_limits.h"
-#include "core/render/render_statistics.h"
+#include "core/render/render_outcome.h"
 #include "core/scene/scene_digest.h"
 #include "core/version.h"
 
@@ -64,9 +62,9 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
                                       {key::kAccelerator, to_string(s.accel)},
                                       {key::kRaysTraced, std::int64_t(r.rays_traced)},
                                   });
+  const RenderOutcome outcome = describe_outcome(s, r);
   if (is_adaptive(s)) {
     // Each pixel has its own count: the range and the mean, not one "spp".
-    const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
     std::uint32_t limit = limits::kMostAdaptiveSamples;
     if (const auto* t = std::get_if<PixelErrorTarget>(&s.samples)) {
       metadata.emplace_back(key::kTargetError, t->error);
@@ -87,23 +85,18 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
     metadata.insert(metadata.end(),
                     {
                         {key::kMinSpp, std::int64_t(least_samples(s.samples).value_or(0))},
-                        {key::kSppMin, std::int64_t(*least)},
-                        {key::kSppMax, std::int64_t(*most)},
-                        {key::kSppMean, mean_samples(r)},
+                        {key::kSppMin, std::int64_t(outcome.least)},
+                        {key::kSppMax, std::int64_t(outcome.most)},
+                        {key::kSppMean, outcome.mean},
                         {key::kSppLimit, std::int64_t(limit)},
                     });
   } else {
     metadata.emplace_back(key::kSpp, std::int64_t(r.samples_completed));
   }
-  if (r.stopped) {
-    if (const auto* fixed = std::get_if<FixedSamples>(&s.samples))
-      metadata.emplace_back(key::kSppRequested, std::int64_t(fixed->per_pixel));
-    metadata.emplace_back(key::kStopped, std::string("interrupted by a signal"));
-  } else if (r.time_limited) {
-    char limit[64];
-    std::snprintf(limit, sizeof limit, "time limit of %g s", s.time_limit_seconds);
-    metadata.emplace_back(key::kStopped, std::string(limit));
+  if (const auto* fixed = std::get_if<FixedSamples>(&s.samples); fixed && r.stopped) {
+    metadata.emplace_back(key::kSppRequested, std::int64_t(fixed->per_pixel));
   }
+  if (!outcome.stopped.empty()) metadata.emplace_back(key::kStopped, outcome.stopped);
   if (!reproducible) metadata.emplace_back(key::kRenderSeconds, r.render_seconds);
   return metadata;
 }

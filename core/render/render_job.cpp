@@ -1,0 +1,152 @@
+#include "core/render/render_job.h"
+
+#include <filesystem>
+#include <system_error>
+#include <utility>
+#include <variant>
+
+#include "core/io/output_path.h"
+#include "core/limits/error.h"
+#include "core/limits/input_limits.h"
+#include "core/parallel/thread_count.h"
+#include "core/render/render_part.h"
+#include "core/render/render_statistics.h"
+#include "core/render/sample_share.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/scene/scene_file.h"
+
+namespace rtiow {
+namespace {
+
+Scene load_scene(const JobRequest& r) {
+  if (r.scene_file.empty()) return make_builtin_scene(r.scene, r.scene_seed);
+  if (r.scene_named) throw InvalidInput("give a scene file or --scene, not both");
+  // `rtiow render cover`, as `rtiow scene cover` takes it: the built-in scene is --scene cover.
+  std::error_code no_file;
+  if (!std::filesystem::exists(r.scene_file, no_file) && is_builtin_scene_name(r.scene_file)) {
+    throw InvalidInput("no scene file " + quote_value(r.scene_file) +
+                       "; the built-in scene is rendered with --scene " + r.scene_file);
+  }
+  return load_scene_file(r.scene_file);
+}
+
+// The output: as given (an empty -o is an error, not the default), or named after the scene.
+std::string output_path(const JobRequest& r, const Scene& scene) {
+  if (r.output_given && r.output.empty()) throw InvalidInput("-o/--output: the path is empty");
+  return r.output_given ? r.output : safe_file_stem(scene.name) + ".png";
+}
+
+// "A:B" or "i/n" into the share of samples this process renders; nothing when neither.
+// The job is the settings' fixed sample count; a share must lie within it.
+void apply_share(const JobRequest& r, const std::string& output, RenderSettings& settings) {
+  if (r.sample_range.empty() && r.part.empty()) return;
+  if (!r.sample_range.empty() && !r.part.empty()) {
+    throw InvalidInput("give --sample-range or --part, not both");
+  }
+  if (image_format(output) == nullptr || !image_format(output)->extra_channels) {
+    throw InvalidInput("output " + quote_value(output) +
+                       ": a share of a render is written as a part file, which must be .exr");
+  }
+  const std::uint64_t total =
+      shareable_samples(settings, r.part.empty() ? "--sample-range" : "--part");
+  restrict_to(
+      r.part.empty() ? parse_sample_range(r.sample_range, total) : parse_part(r.part, total),
+      settings);
+}
+
+// Under mpirun: this rank's equal share of the samples of every pixel.
+void apply_rank_share(const JobRequest& r, RenderSettings& settings) {
+  if (r.ranks <= 1) return;
+  if (!r.sample_range.empty() || !r.part.empty()) {
+    throw InvalidInput(
+        "--sample-range and --part are for separate jobs; under mpirun the ranks "
+        "share the samples themselves");
+  }
+  const std::uint64_t total = shareable_samples(settings, "mpirun");
+  const auto ranks = std::uint64_t(r.ranks);
+  if (total < ranks) {
+    throw InvalidInput(std::to_string(total) + " samples per pixel cannot be shared by " +
+                       std::to_string(ranks) + " ranks");
+  }
+  restrict_to(equal_share(total, std::uint64_t(r.rank), ranks), settings);
+}
+
+// Adaptive sampling decides each pixel's stop on all its samples, so it cannot be split
+// into shares; the statistics channels need a format with room for them.
+void check_adaptive_options(const JobRequest& r, const std::string& output) {
+  const ImageFormat* format = image_format(output);
+  if (r.stats_channels && format && !format->extra_channels) {
+    throw InvalidInput("--stats-channels: output " + quote_value(output) +
+                       " must be .exr to hold the spp and variance channels");
+  }
+  const RenderRequest& q = r.request;
+  const char* adaptive = q.target_error > 0  ? "--target-error"
+                         : q.image_error > 0 ? "--image-error"
+                         : q.adaptive        ? "--adaptive"
+                                             : nullptr;
+  if (adaptive && (!r.sample_range.empty() || !r.part.empty() || r.ranks > 1)) {
+    throw InvalidInput(std::string(adaptive) +
+                       " needs all of a pixel's samples in one process: it cannot be combined "
+                       "with --sample-range, --part or mpirun");
+  }
+  // (A part with --stats-channels keeps two replicates, so that 'rtiow merge --stats-channels'
+  // can write the whole render's variances; the part file holds its exact spreads, not channels.)
+}
+
+}  // namespace
+
+std::vector<std::string> input_files(const JobRequest& r) {
+  std::vector<std::string> inputs;
+  if (!r.scene_file.empty()) inputs.push_back(r.scene_file);
+  inputs.insert(inputs.end(), r.other_inputs.begin(), r.other_inputs.end());
+  return inputs;
+}
+
+RenderJob prepare_job(const JobRequest& r) {
+  // Cheap checks of the output first, so a bad -o is refused before a large scene loads.
+  if (r.output_given) check_output_path(output_path(r, Scene{}), input_files(r));
+  RenderJob job;
+  // A generated scene is built in parallel: within the request's threads, as the render is (a
+  // count out of range is refused by name once the request is resolved).
+  const int asked = r.request.threads;
+  const int threads = asked >= 0 && asked <= limits::kMaxThreads ? asked : 0;
+  Scene scene = with_threads(threads, [&] { return load_scene(r); });
+  if (r.check_loaded_scene) r.check_loaded_scene(scene);
+  job.output = output_path(r, scene);
+  // The whole job, resolved and checked before it is cut into a share.
+  ResolvedRender resolved = resolve(std::move(scene), r.request);
+  job.scene = std::move(resolved.scene);
+  job.settings = resolved.settings;
+  // A shared job's whole count, which the shares are cut from and which combines them again.
+  if (const auto* fixed = std::get_if<FixedSamples>(&job.settings.samples)) {
+    job.samples_asked = std::uint64_t(fixed->per_pixel);
+  }
+  check_adaptive_options(r, job.output);
+  job.share = !r.sample_range.empty() || !r.part.empty();
+  apply_share(r, job.output, job.settings);
+  apply_rank_share(r, job.settings);
+  check_image_output(job.output, input_files(r), r.stats_channels);
+  validate(job.scene, job.settings);
+  return job;
+}
+
+void write_job_result(const JobRequest& r, const RenderJob& job, const RenderResult& result,
+                      const Metadata& metadata) {
+  if (!job.share) {
+    write_image(job.output, result.film, metadata,
+                r.stats_channels ? statistics_channels(result) : std::vector<ExtraChannel>{});
+    return;
+  }
+  RenderPart part;
+  part.width = job.settings.width, part.height = job.settings.height;
+  part.first_sample = job.settings.first_sample;
+  part.samples = std::uint64_t(result.samples_completed);
+  part.job_samples = job.samples_asked;
+  part.digest = render_digest(job.scene, job.settings);
+  part.metadata = metadata;
+  part.sums = result.sums;  // copied: kept in the result, should the write fail
+  part.spreads = result.spreads;
+  write_part(job.output, part);
+}
+
+}  // namespace rtiow

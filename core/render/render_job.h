@@ -1,0 +1,58 @@
+#pragma once
+// A render as a command asks for it: which scene (a file or a built-in one), what to change
+// about it (a RenderRequest), where the image goes, and which share of the samples this
+// process renders. prepare_job() checks all of it before any work; write_job_result() writes
+// the image, or the part file of a share.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/io/image_output.h"
+#include "core/render/render.h"
+#include "core/render/render_request.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/scene/scene.h"
+
+namespace rtiow {
+
+struct JobRequest {
+  std::string scene_file;  // a path, or "-" for standard input; empty: the built-in `scene`
+  std::string scene = "cover";
+  std::uint64_t scene_seed = kDefaultSceneSeed;
+  bool scene_named = false;  // `scene` was given (then a scene file is refused with it)
+  std::string output;        // used when `output_given`; else <scene>.png
+  bool output_given = false;
+  RenderRequest request;
+  // A share of the samples, at most one: "A:B" (--sample-range) or "i/n" (--part).
+  std::string sample_range, part;
+  int rank = 0, ranks = 1;  // under mpirun, this rank's equal share
+  bool stats_channels = false;
+  std::vector<std::string> other_inputs;  // files read besides the scene, never overwritten
+  // Called with the scene once it is loaded, before anything is changed about it.
+  std::function<void(const Scene&)> check_loaded_scene;
+};
+
+// A render as the request asks for it, checked: the scene, the settings of this process's
+// share, and where it goes.
+struct RenderJob {
+  Scene scene;
+  RenderSettings settings;
+  std::string output;
+  std::uint64_t samples_asked = 0;  // a shared job's whole count, before it is cut
+  bool share = false;               // written as a part file
+};
+
+// Throws InvalidInput naming what is wrong, before any work (a bad -o before a large scene
+// loads).
+RenderJob prepare_job(const JobRequest& request);
+
+// The image (with the statistics channels where asked) or, for a share, the part file.
+void write_job_result(const JobRequest& request, const RenderJob& job, const RenderResult& result,
+                      const Metadata& metadata);
+
+// The files the request reads: the scene file and the others.
+std::vector<std::string> input_files(const JobRequest& request);
+
+}  // namespace rtiow

@@ -1,0 +1,71 @@
+#include "core/render/render_outcome.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <variant>
+
+#include "core/render/render_statistics.h"
+
+namespace rtiow {
+namespace {
+
+// The adaptive goal and, for an error-driven render that stopped at its cap, how far it got.
+std::string adaptive_goal(const RenderSettings& s, const RenderResult& r) {
+  char goal[128] = "adaptive";
+  if (const auto* t = std::get_if<PixelErrorTarget>(&s.samples)) {
+    if (r.pixels_above_target > 0) {
+      std::snprintf(goal, sizeof goal, "target error %g not reached by %llu pixels at %d spp",
+                    t->error, static_cast<unsigned long long>(r.pixels_above_target), t->most);
+    } else {
+      std::snprintf(goal, sizeof goal, "target error %g", t->error);
+    }
+  }
+  if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) {
+    if (r.estimated_image_error > i->error && !r.stopped && !r.time_limited) {
+      std::snprintf(goal, sizeof goal, "image error %g not reached: %.3g at %d spp", i->error,
+                    r.estimated_image_error, i->most);
+    } else {
+      std::snprintf(goal, sizeof goal, "image error %g", i->error);
+    }
+  }
+  return goal;
+}
+
+std::string what_was_asked(const SampleBudget& b) {
+  const std::optional<int> spp = spp_option(b);
+  if (!spp) return {};
+  const bool budget = std::holds_alternative<AdaptiveBudget>(b);
+  const bool cap =
+      std::holds_alternative<PixelErrorTarget>(b) || std::holds_alternative<ImageErrorTarget>(b);
+  return (budget ? " (of a budget of "
+          : cap  ? " (of a cap of "
+                 : " (of ") +
+         std::to_string(*spp) + (budget || cap ? " spp)" : " asked)");
+}
+
+}  // namespace
+
+RenderOutcome describe_outcome(const RenderSettings& s, const RenderResult& r) {
+  RenderOutcome o;
+  char text[192];
+  if (is_adaptive(s.samples)) {
+    const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
+    o.least = *least, o.most = *most, o.mean = mean_samples(r);
+    std::snprintf(text, sizeof text, "%u-%u spp (mean %.1f, %s)", o.least, o.most, o.mean,
+                  adaptive_goal(s, r).c_str());
+  } else {
+    o.least = o.most = std::uint32_t(r.samples_completed), o.mean = r.samples_completed;
+    std::snprintf(text, sizeof text, "%d spp", r.samples_completed);
+  }
+  o.samples = text;
+  if (r.stopped) {
+    o.asked = what_was_asked(s.samples);
+    o.stopped = "interrupted by a signal";
+  } else if (r.time_limited) {
+    std::snprintf(text, sizeof text, "time limit of %g s", s.time_limit_seconds);
+    o.stopped = text;
+  }
+  return o;
+}
+
+}  // namespace rtiow
