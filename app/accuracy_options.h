@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/render/render.h"
 #include "core/render/render_request.h"
+#include "core/render/render_settings.h"
 #include "core/scene/builtin_scenes.h"
 
 namespace rtiow {

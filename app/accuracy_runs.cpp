@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/render/render.h"
 #include "core/render/render_statistics.h"
 
 namespace rtiow {

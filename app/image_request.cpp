@@ -14,7 +14,7 @@
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
 #include "core/render/render_metadata.h"
-#include "core/scene/scene_digest.h"
+#include "core/scene_file/scene_digest.h"
 
 namespace rtiow {
 namespace {

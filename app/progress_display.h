@@ -9,7 +9,7 @@
 #include <mutex>
 #include <thread>
 
-#include "core/render/render.h"
+#include "core/render/render_settings.h"
 
 namespace rtiow {
 

@@ -14,7 +14,7 @@
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/scene/builtin_scenes.h"
-#include "core/scene/scene_file.h"
+#include "core/scene_file/scene_file.h"
 
 namespace rtiow {
 namespace {

@@ -8,6 +8,6 @@
 #include "core/render/render_request.h"  // RenderRequest, resolve: what the command line does
 #include "core/scene/builtin_scenes.h"   // make_builtin_scene
 #include "core/scene/scene.h"            // Scene, CameraSettings, Background
-#include "core/scene/scene_file.h"       // load_scene_file, scene_to_json
+#include "core/scene_file/scene_file.h"       // load_scene_file, scene_to_json
 #include "core/version.h"                // version
 #include "materials/material.h"          // Lambertian, Metal, Dielectric

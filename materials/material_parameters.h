@@ -1,7 +1,7 @@
 #pragma once
 // A material's parameters, declared once in the material's own file (its static
 // `parameters()`): name, type, accepted range, default and one line of documentation. The
-// range check below, the scene reader and writer (core/scene/material_json.*) and the scene
+// range check below, the scene reader and writer (core/scene_file/material_json.*) and the scene
 // format's table in docs/scene-format.md are all driven from that declaration, so adding a
 // material or a parameter touches the material's file alone.
 //

@@ -19,7 +19,7 @@
 #include "core/render/render.h"
 #include "core/render/render_state.h"
 #include "core/scene/builtin_scenes.h"
-#include "core/scene/scene_file.h"
+#include "core/scene_file/scene_file.h"
 #include "tests/test_files.h"
 
 namespace rtiow {

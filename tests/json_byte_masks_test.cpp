@@ -1,4 +1,4 @@
-// The 64-byte classifier the scene scan uses (core/scene/json_byte_masks.h) against a byte
+// The 64-byte classifier the scene scan uses (core/scene_file/json_byte_masks.h) against a byte
 // at a time, on random blocks dense in the bytes it looks for and the bytes it must not take
 // for them.
 
@@ -8,7 +8,7 @@
 #include <random>
 #include <string>
 
-#include "core/scene/json_byte_masks.h"
+#include "core/scene_file/json_byte_masks.h"
 
 namespace rtiow {
 namespace {

@@ -1,4 +1,4 @@
-// A float written as JSON (core/scene/json_float.h) reads back to the same float, in the
+// A float written as JSON (core/scene_file/json_float.h) reads back to the same float, in the
 // fewest significant digits that do, laid out as nlohmann::json lays out the double it
 // reads as (the writer rtiow used before, and still uses for everything but floats).
 
@@ -15,8 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/scene/json_float.h"
-#include "core/scene/json_reader.h"
+#include "core/scene_file/json_float.h"
+#include "core/scene_file/json_reader.h"
 
 namespace rtiow {
 namespace {

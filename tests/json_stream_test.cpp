@@ -2,7 +2,7 @@
 // them (RapidJSON's own full-precision reader has known misroundings), tokens and error
 // positions right across buffer boundaries and short reads, and names interned densely.
 
-#include "core/scene/json_stream.h"
+#include "core/scene_file/json_stream.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "core/limits/error.h"
-#include "core/scene/name_index.h"
+#include "core/scene_file/name_index.h"
 
 namespace rtiow {
 namespace {

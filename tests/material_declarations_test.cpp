@@ -10,8 +10,8 @@
 #include <string>
 
 #include "core/limits/error.h"
-#include "core/scene/material_json.h"
-#include "core/scene/scene_file.h"
+#include "core/scene_file/material_json.h"
+#include "core/scene_file/scene_file.h"
 
 namespace rtiow {
 namespace {

@@ -7,7 +7,7 @@
 #include "core/limits/error.h"
 #include "core/sampling/sampler.h"
 #include "core/scene/scene.h"
-#include "core/scene/scene_file.h"
+#include "core/scene_file/scene_file.h"
 #include "materials/material.h"
 
 namespace rtiow {

@@ -20,7 +20,7 @@
 #include "core/render/sample_allocation.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/scene/camera.h"
-#include "core/scene/material_json.h"
+#include "core/scene_file/material_json.h"
 #include "tests/film_equality.h"
 
 namespace rtiow {

@@ -1,7 +1,7 @@
 // Scene files: every built-in scene survives the round trip to JSON bit for bit, and every
 // kind of bad file is refused with one line naming the file, the place and the problem.
 
-#include "core/scene/scene_file.h"
+#include "core/scene_file/scene_file.h"
 
 #include <gtest/gtest.h>
 

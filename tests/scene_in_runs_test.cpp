@@ -1,4 +1,4 @@
-// A big scene file parsed on every core (read_scene_in_runs, core/scene/json_split.h) gives
+// A big scene file parsed on every core (read_scene_in_runs, core/scene_file/json_split.h) gives
 // the scene the one-piece parse gives, bit for bit, whatever the windows and runs it is cut
 // into; and it gives nothing (so the caller parses in one piece, for the message) for every
 // text the one-piece parse refuses, including thousands of random corruptions of a valid one.
@@ -19,7 +19,7 @@
 
 #include "core/limits/error.h"
 #include "core/scene/builtin_scenes.h"
-#include "core/scene/scene_file.h"
+#include "core/scene_file/scene_file.h"
 
 namespace rtiow {
 namespace {

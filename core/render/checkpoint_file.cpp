@@ -21,7 +21,7 @@
 #include "core/io/input_file.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
-#include "core/scene/scene_digest.h"
+#include "core/scene_file/scene_digest.h"
 #include "core/version.h"
 
 namespace rtiow {

@@ -23,7 +23,7 @@
 #include <optional>
 #include <string>
 
-#include "core/render/render.h"
+#include "core/render/render_settings.h"
 #include "core/render/render_state.h"
 #include "core/scene/scene.h"
 

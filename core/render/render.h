@@ -3,95 +3,10 @@
 // of (scene, settings without `threads`, seed): identical for any thread count and for
 // either accelerator.
 
-#include <atomic>
-#include <cstdint>
-#include <limits>
-#include <string>
-#include <vector>
-
-#include "core/film/film.h"
-#include "core/film/pixel_variance.h"
-#include "core/film/sample_sum.h"
-#include "core/render/sample_budget.h"
-#include "core/sampling/sampler.h"
+#include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
 namespace rtiow {
-
-enum class AccelKind { Embree, Naive };
-
-std::string to_string(AccelKind kind);
-AccelKind parse_accel(const std::string& name);  // throws InvalidInput
-
-struct RenderSettings {
-  int width = 0;
-  int height = 0;
-  // How many samples per pixel and what ends the render (core/render/sample_budget.h)...
-  SampleBudget samples = FixedSamples{1};
-  std::uint64_t first_sample = 0;  // ...starting at this sample index (a share of a render)
-  int max_depth = 50;
-  std::uint64_t seed = 1;
-  int threads = 0;                  // 0: all cores
-  double time_limit_seconds = 0.0;  // > 0: stop after the pass that reaches this much time
-  AccelKind accel = AccelKind::Embree;
-  // Sobol: at equal time 2.3-5.4x lower relMSE than independent sampling on every built-in
-  // scene (docs/accuracy.md); the book's sampler is Independent.
-  SamplerKind sampler = SamplerKind::Sobol;
-  // Keep what an estimate of each pixel's error needs: two independent replicates of the
-  // sampler's sequence (core/sampling/sampler.h). The variance channels ask for it; the adaptive
-  // modes always have it. Without it a render draws one sequence, and its image is less noisy.
-  bool estimate_error = false;
-};
-
-// Whether pixels get different sample counts (any adaptive mode).
-inline bool is_adaptive(const RenderSettings& s) {
-  return is_adaptive(s.samples);
-}
-
-// How many independent replicates a pixel's samples alternate between: kReplicates where the
-// render estimates its error (or the sampler's samples are independent anyway), else 1.
-inline int replicates(const RenderSettings& s) {
-  return s.estimate_error || is_adaptive(s) || s.sampler == SamplerKind::Independent ? kReplicates
-                                                                                     : 1;
-}
-
-// Throws InvalidInput naming the setting: non-positive size or spp, negative depth,
-// an image too large to hold in memory, negative threads, a bad target error.
-void validate(const RenderSettings& settings);
-
-// Shared with other threads while the render runs: counters it updates (for a progress
-// display) and a request to stop that it honours at the end of the current pass.
-struct RenderProgress {
-  std::atomic<std::uint64_t> samples_done{0};  // pixel samples, over all pixels
-  // Of samples_done, those a resumed render started with (from its checkpoint): the rate of
-  // this run's work, and so its time to go, leaves them out.
-  std::atomic<std::uint64_t> samples_resumed{0};
-  std::atomic<std::uint64_t> rays_traced{0};  // by this run
-  std::atomic<bool> stop_requested{false};
-};
-
-struct RenderResult {
-  Film film;                                 // the mean of the samples completed
-  std::vector<PixelSum> sums;                // their exact sums, for merging shares of a render
-  std::vector<PixelSpread> spreads;          // for each pixel's variance
-  std::vector<std::uint32_t> pixel_samples;  // each pixel's sample count
-  std::vector<std::uint64_t> pixel_rays;     // the rays each pixel's samples traced
-  std::vector<std::uint32_t> targets;        // adaptive: the round's targets (a state's)
-  bool last_round = false;                   // adaptive: the round under way is the last
-  std::uint64_t first_sample = 0;            // each pixel's samples start at this index
-  SamplerKind sampler = SamplerKind::Independent;  // what drew them
-  int replicates = kReplicates;                    // in how many independent sequences
-  int samples_completed = 0;    // per pixel (the most any pixel took when adaptive)
-  bool stopped = false;         // a stop request ended the render early
-  bool time_limited = false;    // the time limit ended it (with the samples completed)
-  double build_seconds = 0.0;   // accelerator construction
-  double render_seconds = 0.0;  // the sample loop
-  std::uint64_t rays_traced = 0;
-  // Where the error-driven modes ended: --image-error's estimated relative RMS error of the
-  // image, and --target-error's count of pixels still above the target at the --spp cap.
-  double estimated_image_error = 0.0;
-  std::uint64_t pixels_above_target = 0;
-};
 
 // Everything a render checks before any work: the settings, the scene, and that the camera
 // rays of this image size are traceable. Throws InvalidInput.

@@ -9,11 +9,12 @@
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
 #include "core/parallel/thread_count.h"
+#include "core/render/render.h"
 #include "core/render/render_part.h"
 #include "core/render/render_statistics.h"
 #include "core/render/sample_share.h"
 #include "core/scene/builtin_scenes.h"
-#include "core/scene/scene_file.h"
+#include "core/scene_file/scene_file.h"
 
 namespace rtiow {
 namespace {

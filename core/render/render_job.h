@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/io/image_output.h"
-#include "core/render/render.h"
 #include "core/render/render_request.h"
+#include "core/render/render_settings.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/scene/scene.h"
 

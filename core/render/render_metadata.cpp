@@ -6,7 +6,7 @@
 
 #include "core/limits/input_limits.h"
 #include "core/render/render_outcome.h"
-#include "core/scene/scene_digest.h"
+#include "core/scene_file/scene_digest.h"
 #include "core/version.h"
 
 namespace rtiow {

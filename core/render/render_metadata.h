@@ -4,7 +4,7 @@
 // reads back what rendering wrote.
 
 #include "core/io/image_output.h"
-#include "core/render/render.h"
+#include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
 namespace rtiow::metadata_key {
@@ -37,7 +37,7 @@ inline constexpr const char* kSppBudget = "spp_budget";  // --adaptive: the unif
 inline constexpr const char* kStopped = "stopped";       // why it ended early
 inline constexpr const char* kRenderSeconds = "render_seconds";  // left out if reproducible
 // What makes the render again, beyond the scene's name: rtiow's version, the digest of the
-// scene rendered (core/scene/scene_digest.h: its spheres, materials, camera, sky and image
+// scene rendered (core/scene_file/scene_digest.h: its spheres, materials, camera, sky and image
 // settings), the camera used (after any override) and the glass's reflectance model.
 inline constexpr const char* kVersion = "version";
 inline constexpr const char* kSceneDigest = "scene_digest";

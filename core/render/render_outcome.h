@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/render/render.h"
+#include "core/render/render_settings.h"
 
 namespace rtiow {
 

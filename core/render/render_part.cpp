@@ -17,7 +17,7 @@
 #include "core/render/render_metadata.h"
 #include "core/render/sample_share.h"
 #include "core/sampling/rng.h"
-#include "core/scene/scene_digest.h"
+#include "core/scene_file/scene_digest.h"
 
 namespace rtiow {
 namespace {

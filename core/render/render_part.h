@@ -15,7 +15,7 @@
 #include "core/film/pixel_variance.h"
 #include "core/film/sample_sum.h"
 #include "core/io/image_output.h"
-#include "core/render/render.h"
+#include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
 namespace rtiow {

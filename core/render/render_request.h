@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "core/geometry/vec3.h"
-#include "core/render/render.h"
+#include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 #include "materials/fresnel.h"
 

@@ -9,7 +9,7 @@
 
 #include "core/film/image_error.h"
 #include "core/io/image_output.h"
-#include "core/render/render.h"
+#include "core/render/render_settings.h"
 
 namespace rtiow {
 

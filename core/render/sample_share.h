@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/render/render.h"
+#include "core/render/render_settings.h"
 
 namespace rtiow {
 

@@ -18,7 +18,7 @@
 #include "core/sampling/sampler.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/builtin_scenes.h"
-#include "core/scene/scene_file.h"
+#include "core/scene_file/scene_file.h"
 #include "materials/material.h"
 
 namespace rtiow {

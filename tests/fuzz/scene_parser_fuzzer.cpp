@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "core/scene/scene_file.h"
+#include "core/scene_file/scene_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

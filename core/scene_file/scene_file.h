@@ -44,7 +44,7 @@ inline constexpr std::size_t kSplitWindowBytes = std::size_t(4) << 20;
 inline constexpr std::size_t kSplitRunBytes = kSplitWindowBytes;
 
 // Scene JSON from `source` (named `name` in errors) parsed in runs of members on every core of
-// the calling thread's arena (core/scene/json_split.h), to the same scene as parse_scene; or
+// the calling thread's arena (core/scene_file/json_split.h), to the same scene as parse_scene; or
 // nothing when that fails for any reason, including every error in the text (parse it in one
 // piece then, for the error's message).
 std::optional<Scene> read_scene_in_runs(

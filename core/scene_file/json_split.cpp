@@ -1,4 +1,4 @@
-#include "core/scene/json_split.h"
+#include "core/scene_file/json_split.h"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <mutex>
 #include <utility>
 
-#include "core/scene/json_byte_masks.h"
+#include "core/scene_file/json_byte_masks.h"
 
 namespace rtiow {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/scene/json_stream.h"
+#include "core/scene_file/json_stream.h"
 
 #include <algorithm>
 #include <charconv>

@@ -19,7 +19,7 @@
 #include "core/geometry/vec3.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
-#include "core/scene/json_stream.h"
+#include "core/scene_file/json_stream.h"
 
 namespace rtiow::scene_json {
 

@@ -1,4 +1,4 @@
-#include "core/scene/json_float.h"
+#include "core/scene_file/json_float.h"
 
 #include <charconv>
 #include <cmath>

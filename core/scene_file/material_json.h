@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "core/scene/json_reader.h"
+#include "core/scene_file/json_reader.h"
 #include "materials/material.h"
 
 namespace rtiow {

@@ -1,4 +1,4 @@
-#include "core/scene/scene_digest.h"
+#include "core/scene_file/scene_digest.h"
 
 #include <cinttypes>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/io/checksum.h"
-#include "core/scene/scene_file.h"
+#include "core/scene_file/scene_file.h"
 #include "materials/material.h"
 
 namespace rtiow {

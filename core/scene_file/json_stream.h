@@ -22,7 +22,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/scene/rapidjson.h"
+#include "core/scene_file/rapidjson.h"
 
 namespace rtiow {
 

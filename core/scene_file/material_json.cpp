@@ -1,11 +1,11 @@
-#include "core/scene/material_json.h"
+#include "core/scene_file/material_json.h"
 
 #include <nlohmann/json.hpp>
 #include <string_view>
 #include <type_traits>
 #include <vector>
 
-#include "core/scene/json_float.h"
+#include "core/scene_file/json_float.h"
 
 namespace rtiow {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/scene/scene_file.h"
+#include "core/scene_file/scene_file.h"
 
 #include <algorithm>
 #include <atomic>
@@ -29,13 +29,13 @@
 #include "core/io/input_file.h"
 #include "core/limits/input_limits.h"
 #include "core/parallel/thread_sanitizer.h"
-#include "core/scene/json_float.h"
-#include "core/scene/json_reader.h"
-#include "core/scene/json_split.h"
-#include "core/scene/json_stream.h"
-#include "core/scene/material_json.h"
-#include "core/scene/name_index.h"
-#include "core/scene/rapidjson.h"
+#include "core/scene_file/json_float.h"
+#include "core/scene_file/json_reader.h"
+#include "core/scene_file/json_split.h"
+#include "core/scene_file/json_stream.h"
+#include "core/scene_file/material_json.h"
+#include "core/scene_file/name_index.h"
+#include "core/scene_file/rapidjson.h"
 
 namespace rtiow {
 namespace {
