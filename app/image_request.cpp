@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <map>
 #include <sstream>
 
@@ -69,7 +70,9 @@ Recorded recorded_keys(const ImageHeader& header) {
 std::optional<double> number(const std::string& text) {
   double value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+    return std::nullopt;
+  }
   return value;
 }
 
@@ -296,12 +299,18 @@ bool apply_image_request(const ImageRequest& request, CLI::App& render) {
     if (!o->unrepeatable.empty()) throw InvalidInput(o->unrepeatable);
     CLI::Option* option = render.get_option(o->name);
     if (o->name == "--stats-channels") check_room_for_replicates(render);
-    if (o->values.empty()) {
-      option->add_result(std::string("true"));  // a flag
-    } else {
-      for (const std::string& value : o->values) option->add_result(value);
+    try {
+      if (o->values.empty()) {
+        option->add_result(std::string("true"));  // a flag
+      } else {
+        for (const std::string& value : o->values) option->add_result(value);
+      }
+      option->run_callback();  // checks the value and sets the option's variable
+    } catch (const CLI::Error& e) {
+      throw InvalidInput("--like image " +
+                         quote_value(render.get_option("--like")->as<std::string>()) +
+                         " records a value rtiow cannot use: " + e.what());
     }
-    option->run_callback();  // checks the value and sets the option's variable
   }
   return scene_chosen;
 }

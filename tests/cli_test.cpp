@@ -1,6 +1,7 @@
 // The rtiow executable as a user meets it: exit codes, one-line errors, no file written
 // on refusal, the file and its metadata on success.
 
+#include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -790,6 +791,26 @@ TEST(Cli, LikeRefusesWhatItCannotRenderAgain) {
   r = run_rtiow("render -q --like " + image.string() + " -o " + image.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.stderr_text.find("input"), std::string::npos) << r.stderr_text;
+
+  // Metadata edited into what no option takes: refused as the image's, exit 2.
+  const fs::path base = output_path("like-hostile-base.png");
+  ASSERT_EQ(run_rtiow("render -q --scene cover --width 16 --spp 1 -o " + base.string()).exit_code,
+            0);
+  for (const auto& [key, value] :
+       std::vector<std::pair<std::string, std::string>>{{"rtiow:spp", "ten"},
+                                                        {"rtiow:sampler", "bogus"},
+                                                        {"rtiow:camera", "--lookfrom nan,1,1"},
+                                                        {"rtiow:camera", "--lookfrom 1,2"}}) {
+    SCOPED_TRACE(key + "=" + value);
+    const fs::path edited = output_path("like-hostile.png");
+    OIIO::ImageBuf buffer(base.string());
+    ASSERT_TRUE(buffer.read());
+    buffer.specmod().attribute(key, value);
+    ASSERT_TRUE(buffer.write(edited.string()));
+    r = run_rtiow("render -q --like " + edited.string() + " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find("--like image"), std::string::npos) << r.stderr_text;
+  }
 }
 
 TEST(Cli, ReproducibleFilesAreByteIdenticalAcrossThreadCounts) {
@@ -846,8 +867,8 @@ TEST(Cli, BenchWritesFiguresAndPlot) {
   // a naive loop over its time budget is printed here.
   const auto form = [](const std::string& line) {
     return std::regex_replace(
-        output_form(std::regex_replace(line, std::regex(R"(^(figures|plot): .*)"), "$1: PATH")), std::regex(" +"),
-        " ");
+        output_form(std::regex_replace(line, std::regex(R"(^(figures|plot): .*)"), "$1: PATH")),
+        std::regex(" +"), " ");
   };
   const std::string docs = slurp(fs::path(RTIOW_SOURCE_DIR) / "docs" / "performance.md");
   const std::size_t begin = docs.find("$ build/bin/rtiow bench");
