@@ -5,7 +5,6 @@
 #include <new>
 #include <optional>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "app/checkpoint_session.h"
@@ -42,12 +41,8 @@ RenderResult render_with_progress(const RenderOptions& o, const RenderJob& job,
                                   const Checkpointing* checkpointing) {
   std::unique_ptr<ProgressDisplay> display;
   if (!o.quiet && mpi.rank() == 0) {
-    const RenderSettings& s = job.settings;
-    const auto* fixed = std::get_if<FixedSamples>(&s.samples);
-    display = std::make_unique<ProgressDisplay>(
-        progress,
-        fixed ? std::uint64_t(s.width) * std::uint64_t(s.height) * std::uint64_t(fixed->per_pixel)
-              : 0);
+    display = std::make_unique<ProgressDisplay>(progress,
+                                                uniform_total_samples(job.settings).value_or(0));
   }
   return render(job.scene, job.settings, &progress, checkpointing);
 }
@@ -140,9 +135,9 @@ void write_or_keep(const RenderOptions& o, const JobRequest& request, const Rend
 // count is accepted (a farm or a long night may mean it), but not silently.
 void note_long_request(const RenderJob& job) {
   const RenderSettings& s = job.settings;
-  const auto* fixed = std::get_if<FixedSamples>(&s.samples);
-  if (!fixed || s.time_limit_seconds > 0) return;
-  const double samples = double(s.width) * double(s.height) * double(fixed->per_pixel);
+  const std::optional<std::uint64_t> total = uniform_total_samples(s);
+  if (!total || s.time_limit_seconds > 0) return;
+  const double samples = double(*total);
   constexpr double kSamplesPerSecond = 5e6, kDay = 86400;
   const double days = samples / kSamplesPerSecond / kDay;
   if (days < 1) return;
@@ -150,7 +145,7 @@ void note_long_request(const RenderJob& job) {
                "rtiow: note: %d spp at %dx%d is %.3g samples, about %.3g days on a 2-core machine; "
                "a signal (Ctrl-C) keeps what is done and --resume continues it, --time-limit "
                "bounds it\n",
-               fixed->per_pixel, s.width, s.height, samples, days);
+               *spp_option(s.samples), s.width, s.height, samples, days);
 }
 
 // A signal that arrived where the render could not stop for it (the scene's load, the final

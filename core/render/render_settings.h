@@ -6,7 +6,9 @@
 #include <atomic>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/film/film.h"
@@ -52,6 +54,15 @@ inline bool is_adaptive(const RenderSettings& s) {
 inline int replicates(const RenderSettings& s) {
   return s.estimate_error || is_adaptive(s) || s.sampler == SamplerKind::Independent ? kReplicates
                                                                                      : 1;
+}
+
+// The pixel samples a uniform render takes in all (width x height x spp): what a progress
+// display counts toward; none where that is not known in advance (adaptive sampling, a bare
+// time limit).
+inline std::optional<std::uint64_t> uniform_total_samples(const RenderSettings& s) {
+  const auto* fixed = std::get_if<FixedSamples>(&s.samples);
+  if (!fixed) return std::nullopt;
+  return std::uint64_t(s.width) * std::uint64_t(s.height) * std::uint64_t(fixed->per_pixel);
 }
 
 // Throws InvalidInput naming the setting: non-positive size or spp, negative depth,
