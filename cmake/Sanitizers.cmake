@@ -16,7 +16,7 @@ function(rtiow_add_sanitized_test kind name)
     if(kind STREQUAL "tsan")
       # The instruction-set choice is an ifunc, resolved while the program loads, before
       # ThreadSanitizer's runtime is up (it crashes there): one instruction set under TSan.
-      target_compile_definitions(rtiow_core_${kind} PRIVATE RTIOW_NO_DISPATCH)
+      target_compile_definitions(rtiow_core_${kind} PUBLIC RTIOW_NO_DISPATCH)
     endif()
   endif()
   set(target ${name}_${kind})

@@ -19,6 +19,6 @@ function(rtiow_set_codegen target)
   # (core/parallel/instruction_sets.h). RTIOW_NATIVE compiles everything for this CPU alone.
   if(RTIOW_NATIVE)
     target_compile_options(${target} PRIVATE -march=native)
-    target_compile_definitions(${target} PRIVATE RTIOW_NO_DISPATCH)
+    target_compile_definitions(${target} PUBLIC RTIOW_NO_DISPATCH)
   endif()
 endfunction()

@@ -1,15 +1,21 @@
 #include "core/accel/naive_accel.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "core/geometry/sphere_intersect.h"
 #include "core/parallel/instruction_sets.h"
 
 namespace rtiow {
 
-RTIOW_DISPATCHED std::optional<Hit> NaiveAccel::intersect(const Ray& ray, float t_max,
-                                                          std::uint32_t skip) const {
-  const SphereSet& s = *spheres_;
+namespace {
+
+// The loop, cloned for each instruction set. File-local: a cloned function declared in a
+// header without the attribute is an ODR mismatch to GCC's link-time optimiser.
+RTIOW_DISPATCHED std::optional<Hit> closest_hit(const SphereSet& s, const Ray& ray, float t_max,
+                                                std::uint32_t skip) {
+  constexpr std::size_t kBlock = 256;
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   const std::size_t n = s.size();
   float closest = t_max;
   std::uint32_t found = kNone;
@@ -35,6 +41,12 @@ RTIOW_DISPATCHED std::optional<Hit> NaiveAccel::intersect(const Ray& ray, float 
   }
   if (found == kNone) return std::nullopt;
   return Hit{closest, found};
+}
+
+}  // namespace
+
+std::optional<Hit> NaiveAccel::intersect(const Ray& ray, float t_max, std::uint32_t skip) const {
+  return closest_hit(*spheres_, ray, t_max, skip);
 }
 
 }  // namespace rtiow

@@ -28,8 +28,6 @@ class NaiveAccel {
   std::optional<Hit> intersect(const Ray& ray, float t_max, std::uint32_t skip = kNoSphere) const;
 
  private:
-  static constexpr std::size_t kBlock = 256;
-  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   const SphereSet* spheres_;
 };
 

@@ -120,14 +120,26 @@ Ray Camera::generate_ray(float s, float t, float lens_u, float lens_v) const {
   return Ray{origin_ + offset, film - offset};
 }
 
-RTIOW_DISPATCHED void Camera::generate_rays(const Lanes& in, Ray* out) const {
+namespace {
+
+// A camera's frame, as generate_rays needs it.
+struct Frame {
+  Vec3 origin, upper_left, horizontal, vertical, u, v;
+  float lens_radius;
+};
+
+// The lanes' loop, cloned for each instruction set. File-local: a cloned member function
+// declared in the header without the attribute is an ODR mismatch to GCC's link-time
+// optimiser.
+RTIOW_DISPATCHED void lanes_to_rays(const Frame& f, const Camera::Lanes& in, Ray* out) {
+  constexpr int kLanes = Camera::kLanes;
   alignas(32) float ox[kLanes], oy[kLanes], oz[kLanes], dx[kLanes], dy[kLanes], dz[kLanes];
-  const bool lens = lens_radius_ != 0.0f;
+  const bool lens = f.lens_radius != 0.0f;
   for (int k = 0; k < kLanes; ++k) {
     const float s = in.s[k], t = in.t[k];
-    const float film_x = upper_left_.x + s * horizontal_.x + t * vertical_.x;
-    const float film_y = upper_left_.y + s * horizontal_.y + t * vertical_.y;
-    const float film_z = upper_left_.z + s * horizontal_.z + t * vertical_.z;
+    const float film_x = f.upper_left.x + s * f.horizontal.x + t * f.vertical.x;
+    const float film_y = f.upper_left.y + s * f.horizontal.y + t * f.vertical.y;
+    const float film_z = f.upper_left.z + s * f.horizontal.z + t * f.vertical.z;
     // sample_in_unit_disk's operations in its order, its branches as selects.
     const float a = 2.0f * in.lens_u[k] - 1.0f, b = 2.0f * in.lens_v[k] - 1.0f;
     const bool centre = a == 0.0f && b == 0.0f;
@@ -140,24 +152,30 @@ RTIOW_DISPATCHED void Camera::generate_rays(const Lanes& in, Ray* out) const {
     const float turns = along_a ? eighth : 0.25f - eighth;
     const CirclePoint angle = circle_point(turns);
     const float disk_cos = radius * angle.cos, disk_sin = radius * angle.sin;
-    const float disk_x = lens_radius_ * (centre ? 0.0f : disk_cos);
-    const float disk_y = lens_radius_ * (centre ? 0.0f : disk_sin);
-    const float offset_x = disk_x * u_.x + disk_y * v_.x;
-    const float offset_y = disk_x * u_.y + disk_y * v_.y;
-    const float offset_z = disk_x * u_.z + disk_y * v_.z;
+    const float disk_x = f.lens_radius * (centre ? 0.0f : disk_cos);
+    const float disk_y = f.lens_radius * (centre ? 0.0f : disk_sin);
+    const float offset_x = disk_x * f.u.x + disk_y * f.v.x;
+    const float offset_y = disk_x * f.u.y + disk_y * f.v.y;
+    const float offset_z = disk_x * f.u.z + disk_y * f.v.z;
     // A pinhole's rays as generate_ray makes them, without the (zero) offset's signed zeros.
-    const float lens_ox = origin_.x + offset_x, lens_oy = origin_.y + offset_y,
-                lens_oz = origin_.z + offset_z;
+    const float lens_ox = f.origin.x + offset_x, lens_oy = f.origin.y + offset_y,
+                lens_oz = f.origin.z + offset_z;
     const float lens_dx = film_x - offset_x, lens_dy = film_y - offset_y,
                 lens_dz = film_z - offset_z;
-    ox[k] = lens ? lens_ox : origin_.x;
-    oy[k] = lens ? lens_oy : origin_.y;
-    oz[k] = lens ? lens_oz : origin_.z;
+    ox[k] = lens ? lens_ox : f.origin.x;
+    oy[k] = lens ? lens_oy : f.origin.y;
+    oz[k] = lens ? lens_oz : f.origin.z;
     dx[k] = lens ? lens_dx : film_x;
     dy[k] = lens ? lens_dy : film_y;
     dz[k] = lens ? lens_dz : film_z;
   }
   for (int k = 0; k < kLanes; ++k) out[k] = Ray{{ox[k], oy[k], oz[k]}, {dx[k], dy[k], dz[k]}};
+}
+
+}  // namespace
+
+void Camera::generate_rays(const Lanes& in, Ray* out) const {
+  lanes_to_rays({origin_, upper_left_, horizontal_, vertical_, u_, v_, lens_radius_}, in, out);
 }
 
 }  // namespace rtiow
