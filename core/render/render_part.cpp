@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -71,9 +72,14 @@ std::uint64_t header_number(const ImageHeader& header, const std::string& path,
   return value;
 }
 
-std::int64_t metadata_int(const Metadata& m, const std::string& key) {
-  for (const auto& [k, v] : m) {
-    if (k == key) return std::get<std::int64_t>(v);
+// A count the part recorded (0 where it has none); a part whose count is not a whole number
+// is refused by name, not taken for one.
+std::int64_t metadata_count(const RenderPart& part, const std::string& key) {
+  for (const auto& [k, v] : part.metadata) {
+    if (k != key) continue;
+    if (const auto* n = std::get_if<std::int64_t>(&v)) return *n;
+    throw InvalidInput("part file " + quote_value(part.path) + ": " + kMetadataPrefix + key +
+                       " is not a whole number");
   }
   return 0;
 }
@@ -334,7 +340,14 @@ Metadata merged_metadata(const RenderPart& reference, const std::vector<const Re
                          std::uint64_t samples) {
   namespace field = metadata_key;
   std::int64_t rays = 0;
-  for (const RenderPart* p : parts) rays += metadata_int(p->metadata, field::kRaysTraced);
+  for (const RenderPart* p : parts) {
+    const std::int64_t part_rays = metadata_count(*p, field::kRaysTraced);
+    if (part_rays > std::numeric_limits<std::int64_t>::max() - rays) {
+      throw InvalidInput("part file " + quote_value(p->path) + ": " + kMetadataPrefix +
+                         field::kRaysTraced + " makes the total beyond 2^63");
+    }
+    rays += part_rays;
+  }
   Metadata merged;
   for (const auto& [key, value] : reference.metadata) {
     if (key == field::kSpp) {
