@@ -20,15 +20,15 @@
 #include <string>
 #include <vector>
 
-#include "app/accuracy_command.h"
-#include "app/bench_command.h"
 #include "app/diff_command.h"
 #include "app/help_format.h"
 #include "app/interrupt.h"
+#include "app/measure/accuracy_command.h"
+#include "app/measure/bench_command.h"
 #include "app/merge_command.h"
 #include "app/mpi_session.h"
 #include "app/parse_errors.h"
-#include "app/render_command.h"
+#include "app/render/render_command.h"
 #include "app/scene_command.h"
 #include "core/limits/error.h"
 #include "core/limits/nearest_name.h"

@@ -7,7 +7,7 @@ include(CMakePackageConfigHelpers)
 
 set_target_properties(rtiow_core PROPERTIES EXPORT_NAME rtiow OUTPUT_NAME rtiow)
 install(TARGETS rtiow RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(FILES app/bench_plot.py app/accuracy_plot.py DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(FILES app/measure/bench_plot.py app/measure/accuracy_plot.py DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS rtiow_core EXPORT rtiowTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # The image backend: the rtiow executable loads the shared one from lib/ beside its bin/ when
 # it reads or writes an image. A program that links rtiow::rtiow links the static one in

@@ -36,7 +36,7 @@ bool is_temporary_of(const std::string& target_name, const std::string& name);
 
 // Removes the temporaries of `target` that a killed rtiow left in its directory: only names
 // of rtiow's pattern, only regular files (not links) owned by this user. A caller must hold
-// the target's lock (app/output_lock.h), so no live rtiow is writing them. Returns how many.
+// the target's lock (app/render/output_lock.h), so no live rtiow is writing them. Returns how many.
 int remove_stale_temporaries(const std::string& target);
 
 }  // namespace rtiow

@@ -1,4 +1,4 @@
-#include "app/checkpoint_session.h"
+#include "app/render/checkpoint_session.h"
 
 #include <sys/stat.h>
 #include <unistd.h>

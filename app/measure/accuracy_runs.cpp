@@ -1,4 +1,4 @@
-#include "app/accuracy_runs.h"
+#include "app/measure/accuracy_runs.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "app/output_lock.h"
+#include "app/render/output_lock.h"
 
 #include <fcntl.h>
 #include <sys/file.h>

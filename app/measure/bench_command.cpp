@@ -1,4 +1,4 @@
-#include "app/bench_command.h"
+#include "app/measure/bench_command.h"
 
 #include <sys/resource.h>
 
@@ -14,9 +14,9 @@
 #include <thread>
 #include <vector>
 
-#include "app/bench_report.h"
-#include "app/quick_run.h"
-#include "app/trace_rate.h"
+#include "app/measure/bench_report.h"
+#include "app/measure/quick_run.h"
+#include "app/measure/trace_rate.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/render/render.h"

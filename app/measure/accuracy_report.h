@@ -3,7 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/accuracy_options.h"
+#include "app/measure/accuracy_options.h"
 
 namespace rtiow {
 

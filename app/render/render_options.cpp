@@ -1,4 +1,4 @@
-#include "app/render_options.h"
+#include "app/render/render_options.h"
 
 #include <limits>
 

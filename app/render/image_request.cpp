@@ -1,4 +1,4 @@
-#include "app/image_request.h"
+#include "app/render/image_request.h"
 
 #include <nlohmann/json.hpp>
 

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/accuracy_options.h"
+#include "app/measure/accuracy_options.h"
 #include "core/film/image_error.h"
 #include "core/render/render_request.h"
 #include "core/scene/scene.h"

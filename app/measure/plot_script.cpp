@@ -1,4 +1,4 @@
-#include "app/plot_script.h"
+#include "app/measure/plot_script.h"
 
 #include <cstdio>
 #include <cstdlib>

@@ -1,4 +1,4 @@
-#include "app/render_command.h"
+#include "app/render/render_command.h"
 
 #include <cstdio>
 #include <memory>
@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "app/checkpoint_session.h"
-#include "app/image_request.h"
 #include "app/interrupt.h"
 #include "app/mpi_session.h"
-#include "app/output_lock.h"
 #include "app/progress_display.h"
-#include "app/render_options.h"
+#include "app/render/checkpoint_session.h"
+#include "app/render/image_request.h"
+#include "app/render/output_lock.h"
+#include "app/render/render_options.h"
 #include "core/io/atomic_file.h"
 #include "core/io/image_backend.h"
 #include "core/io/output_path.h"

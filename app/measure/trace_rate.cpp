@@ -1,4 +1,4 @@
-#include "app/trace_rate.h"
+#include "app/measure/trace_rate.h"
 
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/enumerable_thread_specific.h>

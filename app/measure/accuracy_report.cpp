@@ -1,11 +1,11 @@
-#include "app/accuracy_report.h"
+#include "app/measure/accuracy_report.h"
 
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
-#include "app/accuracy_fits.h"
-#include "app/plot_script.h"
+#include "app/measure/accuracy_fits.h"
+#include "app/measure/plot_script.h"
 #include "core/io/atomic_file.h"
 #include "core/limits/error.h"
 

@@ -1,6 +1,6 @@
-#include "app/bench_report.h"
+#include "app/measure/bench_report.h"
 
-#include "app/plot_script.h"
+#include "app/measure/plot_script.h"
 
 #include "core/io/atomic_file.h"
 

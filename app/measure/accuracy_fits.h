@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/accuracy_options.h"
+#include "app/measure/accuracy_options.h"
 
 namespace rtiow {
 

@@ -1,4 +1,4 @@
-#include "app/accuracy_reference.h"
+#include "app/measure/accuracy_reference.h"
 
 #include <cstdio>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "app/accuracy_command.h"
+#include "app/measure/accuracy_command.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,13 +11,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/accuracy_fits.h"
-#include "app/accuracy_options.h"
-#include "app/accuracy_reference.h"
-#include "app/accuracy_report.h"
-#include "app/accuracy_runs.h"
 #include "app/cli_checks.h"
-#include "app/quick_run.h"
+#include "app/measure/accuracy_fits.h"
+#include "app/measure/accuracy_options.h"
+#include "app/measure/accuracy_reference.h"
+#include "app/measure/accuracy_report.h"
+#include "app/measure/accuracy_runs.h"
+#include "app/measure/quick_run.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/render/render.h"

@@ -1,4 +1,4 @@
-#include "app/accuracy_fits.h"
+#include "app/measure/accuracy_fits.h"
 
 #include <algorithm>
 #include <cmath>
