@@ -32,10 +32,11 @@ struct MemberRun {
   std::string_view text;    // in its window's text
 };
 
-// What one window of input gives: its text (kept alive for as long as the runs are read) and
-// the runs of whole members in it, in document order.
+// What one window of input gives: its text (kept alive for as long as the runs are read, and
+// the reader's to change: it may parse in place) and the runs of whole members in it, in
+// document order.
 struct SplitWindow {
-  std::shared_ptr<const std::string> text;
+  std::shared_ptr<std::string> text;
   std::vector<MemberRun> runs;
 };
 

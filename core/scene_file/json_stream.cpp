@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <unordered_set>
 #include <vector>
 
@@ -153,6 +154,45 @@ bool is_number_char(char c) {
   return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' || c == 'e' || c == 'E';
 }
 
+}  // namespace
+
+std::optional<JsonValue> read_json_number(std::string_view text, std::string& error) {
+  const char* first = text.data();
+  const char* last = first + text.size();
+  const bool whole = std::none_of(text.begin(), text.end(),
+                                  [](char c) { return c == '.' || c == 'e' || c == 'E'; });
+  if (whole) {
+    // A whole number: exact as an integer if it fits 64 bits, else a double (as JSON does).
+    if (text.front() == '-') {
+      std::int64_t i = 0;
+      if (const auto r = std::from_chars(first, last, i); r.ec == std::errc() && r.ptr == last) {
+        return JsonValue(i);
+      }
+    } else {
+      std::uint64_t u = 0;
+      if (const auto r = std::from_chars(first, last, u); r.ec == std::errc() && r.ptr == last) {
+        return JsonValue(u);
+      }
+    }
+  }
+  double d = 0.0;
+  const auto r = std::from_chars(first, last, d);
+  if (r.ec == std::errc::result_out_of_range) {
+    // Too large is an error; too small rounds to zero or a subnormal, as strtod does.
+    d = std::strtod(std::string(text).c_str(), nullptr);
+    if (!std::isfinite(d)) {
+      error = "number overflow parsing " + quote_value(text, 40);
+      return std::nullopt;
+    }
+  } else if (r.ec != std::errc() || r.ptr != last) {
+    error = "cannot read the number " + quote_value(text, 40);
+    return std::nullopt;
+  }
+  return JsonValue(d);
+}
+
+namespace {
+
 // The SAX events of RapidJSON's reader, building small values. Handler failures are kept in
 // `error` and reported by returning false, so that the reader says where it stopped.
 class BoundedBuilder {
@@ -248,34 +288,8 @@ class BoundedBuilder {
   }
 
   bool add_number(std::string_view text) {
-    const char* first = text.data();
-    const char* last = first + text.size();
-    const bool whole = std::none_of(text.begin(), text.end(),
-                                    [](char c) { return c == '.' || c == 'e' || c == 'E'; });
-    if (whole) {
-      // A whole number: exact as an integer if it fits 64 bits, else a double (as JSON does).
-      if (text.front() == '-') {
-        std::int64_t i = 0;
-        if (const auto r = std::from_chars(first, last, i); r.ec == std::errc() && r.ptr == last) {
-          return add(JsonValue(i));
-        }
-      } else {
-        std::uint64_t u = 0;
-        if (const auto r = std::from_chars(first, last, u); r.ec == std::errc() && r.ptr == last) {
-          return add(JsonValue(u));
-        }
-      }
-    }
-    double d = 0.0;
-    const auto r = std::from_chars(first, last, d);
-    if (r.ec == std::errc::result_out_of_range) {
-      // Too large is an error; too small rounds to zero or a subnormal, as strtod does.
-      d = std::strtod(std::string(text).c_str(), nullptr);
-      if (!std::isfinite(d)) return fail("number overflow parsing " + quote_value(text, 40));
-    } else if (r.ec != std::errc() || r.ptr != last) {
-      return fail("cannot read the number " + quote_value(text, 40));
-    }
-    return add(JsonValue(d));
+    std::optional<JsonValue> value = read_json_number(text, error_);
+    return value && add(std::move(*value));
   }
 
   bool is_streamed_container() const { return stream_ && stack_.size() == stream_level_; }

@@ -19,6 +19,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -142,6 +143,11 @@ struct StreamedMember {
 void parse_json_stream(JsonInput& input, const std::string& source,
                        const std::map<std::string, StreamedMember, std::less<>>& streamed,
                        JsonDocument& root);
+
+// The value a number's text reads as: a whole number that fits 64 bits as that integer, any
+// other as the nearest double (std::from_chars; one too small for a double rounds to zero or
+// a subnormal, as strtod does); nothing, and `error` set, for one too large or not a number.
+std::optional<JsonValue> read_json_number(std::string_view text, std::string& error);
 
 // Parses a run of a streamed container's members, given as a container of its own ("[" run
 // "]" or "{" run "}", matching `members.is_object`), with the limits that hold for them inside

@@ -1,6 +1,9 @@
 #include "core/scene_file/material_json.h"
 
+#include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string_view>
 #include <type_traits>
 #include <vector>
@@ -54,6 +57,55 @@ M read_fields(const Reader& r, const JsonValue& v, const Place& p) {
   M m{};
   for_each_parameter<M>([&](const auto& d) { read_parameter(r, v, p, d, m); });
   return m;
+}
+
+// The same rules over a member's flat fields (material_from_fields).
+template <typename M>
+bool take_parameter(const MemberFields& fields, const ColorParameter<M>& d, M& m) {
+  const MemberField* field = fields.find(d.name);
+  if (!field || field->kind != MemberField::kTriple) return false;
+  m.*d.member = Color(Vec3d{field->numbers[0], field->numbers[1], field->numbers[2]});
+  return true;
+}
+
+template <typename M>
+bool take_parameter(const MemberFields& fields, const NumberParameter<M>& d, M& m) {
+  const MemberField* field = fields.find(d.name);
+  if (!field) {
+    if (d.fallback) m.*d.member = *d.fallback;
+    return d.fallback.has_value();
+  }
+  const double value = field->numbers[0];
+  if (field->kind != MemberField::kNumber ||
+      std::abs(value) > double(std::numeric_limits<float>::max())) {
+    return false;
+  }
+  m.*d.member = d.from_file(float(value));
+  return true;
+}
+
+template <typename M, typename E, std::size_t N>
+bool take_parameter(const MemberFields& fields, const ChoiceParameter<M, E, N>& d, M& m) {
+  m.*d.member = d.fallback;
+  const MemberField* field = fields.find(d.name);
+  if (!field) return true;
+  if (field->kind != MemberField::kString) return false;
+  const std::optional<E> choice = d.parse(field->text);
+  if (choice) m.*d.member = *choice;
+  return choice.has_value();
+}
+
+template <typename M>
+std::optional<Material> take_fields(const MemberFields& fields) {
+  M m{};
+  bool taken = true;
+  std::size_t present = 1;  // "type"
+  for_each_parameter<M>([&](const auto& d) {
+    taken = taken && take_parameter(fields, d, m);
+    present += fields.find(d.name) != nullptr;
+  });
+  if (!taken || present != fields.size()) return std::nullopt;  // a field M does not have
+  return Material(m);
 }
 
 // Parameters as JSON text, built directly: a million materials are written for a scene's
@@ -144,6 +196,18 @@ Material read_material(const Reader& r, const JsonValue& v, const Place& p) {
     r.fail(field, what);
   }
   return *material;
+}
+
+std::optional<Material> material_from_fields(const MemberFields& fields) {
+  const MemberField* type = fields.find("type");
+  if (!type || type->kind != MemberField::kString) return std::nullopt;
+  std::optional<Material> material;
+  for_each_material_type([&](const auto& kind) {
+    using M = std::decay_t<decltype(kind)>;
+    if (type->text == M::kType) material = take_fields<M>(fields);
+  });
+  if (material && check_parameters(*material)) return std::nullopt;
+  return material;
 }
 
 std::string material_to_json(const Material& material) {

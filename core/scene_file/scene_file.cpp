@@ -14,6 +14,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
@@ -36,6 +37,8 @@
 #include "core/scene_file/material_json.h"
 #include "core/scene_file/name_index.h"
 #include "core/scene_file/rapidjson.h"
+#include "core/scene_file/run_records.h"
+#include "core/scene_file/sphere_json.h"
 
 namespace rtiow {
 namespace {
@@ -217,31 +220,6 @@ class MaterialTable {
   Pending pending_;
 };
 
-// A sphere as read, its material still a name.
-struct SphereRecord {
-  Vec3 center;
-  float radius;
-  std::string material;
-};
-
-// A material as read, with its name.
-struct MaterialRecord {
-  std::string name;
-  Material material;
-};
-
-SphereRecord read_sphere(const Reader& r, const JsonValue& s, const Place& p) {
-  r.object(s, p);
-  r.only(s, p, {"center", "radius", "material"});
-  const Vec3 center(r.vec3(r.require(s, p, "center"), Place(p, "center")));
-  const Place radius_at(p, "radius");
-  const auto radius = float(r.bounded(r.require(s, p, "radius"), radius_at));
-  if (radius == 0.0f) r.fail(radius_at, "must not be 0 (negative makes a hollow sphere)");
-  const std::string_view material =
-      r.string(r.require(s, p, "material"), Place(p, "material"), "a material name");
-  return {center, radius, std::string(material)};
-}
-
 // `hash`: of the sphere's material name (NameIndex::hash).
 void add_sphere(const SphereRecord& s, std::uint64_t hash, MaterialTable& table,
                 SphereSet& spheres) {
@@ -321,52 +299,46 @@ Scene read_scene(const Reader& r, JsonInput& input) {
   return scene;
 }
 
-// What one window's runs read to, before the names are resolved in document order: the
-// records and their names' hashes, in document order.
+// A window's runs and what they read to.
 struct WindowRecords {
-  std::shared_ptr<const std::string> text;  // the window, kept until its runs are read
+  std::shared_ptr<std::string> text;  // the window, kept until its runs are read
   std::vector<MemberRun> runs;
-  std::vector<MaterialRecord> materials;
-  std::vector<SphereRecord> spheres;
-  std::vector<std::uint64_t> hashes;  // of each member's name, in document order
+  RunRecords records;
 };
 
-// Reads the run's members into `records`; false unless the run is exactly the members the
-// scan counted, each valid.
-bool read_run(const Reader& r, const MemberRun& run, WindowRecords& records) {
-  std::string text;
-  text.reserve(run.text.size() + 2);
-  text += run.is_object ? '{' : '[';
-  text += run.text;
-  text += run.is_object ? '}' : ']';
-  JsonInput input(JsonInput::from_text(text), limits::kMaxSceneFileBytes, r.source());
-  StreamedMember members{run.is_object, {}};
-  if (run.key == "materials") {
-    members.on_member = [&](std::string_view key, std::size_t, const JsonValue& v) {
-      records.materials.push_back(
-          {std::string(key), read_material(r, v, Place(kMaterialsAt, key))});
-      records.hashes.push_back(NameIndex::hash(key));
-    };
-  } else {
-    members.on_member = [&](std::string_view, std::size_t i, const JsonValue& v) {
-      records.spheres.push_back(read_sphere(r, v, Place(kSpheresAt, run.first + i)));
-      records.hashes.push_back(NameIndex::hash(records.spheres.back().material));
-    };
+// Windows' records, used again once resolved: fresh vectors for each window cost their
+// page faults and growth again, on the cores that parse.
+class SpareWindows {
+ public:
+  std::unique_ptr<WindowRecords> take() {
+    const std::lock_guard lock(mutex_);
+    if (spare_.empty()) return std::make_unique<WindowRecords>();
+    std::unique_ptr<WindowRecords> window = std::move(spare_.back());
+    spare_.pop_back();
+    return window;
   }
-  try {
-    return parse_json_members(input, r.source(), members) == run.members;
-  } catch (const InvalidInput&) {
-    return false;
+  void give(std::unique_ptr<WindowRecords> window) {
+    window->runs.clear();
+    window->records.materials.clear();
+    window->records.spheres.clear();
+    window->records.hashes.clear();
+    const std::lock_guard lock(mutex_);
+    spare_.push_back(std::move(window));
   }
-}
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<WindowRecords>> spare_;
+};
 
 // Adds a window's records to the table and the spheres in document order, prefetching the
 // table's slots some names ahead.
-void add_records(const WindowRecords& records, MaterialTable& table, SphereSet& spheres) {
+void add_records(const WindowRecords& window, MaterialTable& table, SphereSet& spheres) {
   constexpr std::size_t kAhead = 16;
+  const RunRecords& records = window.records;
   const std::vector<std::uint64_t>& hashes = records.hashes;
   std::size_t name = 0, material = 0, sphere = 0;
-  for (const MemberRun& run : records.runs) {
+  for (const MemberRun& run : window.runs) {
     const bool materials = run.key == "materials";
     for (std::size_t k = 0; k < run.members; ++k, ++name) {
       if (name + kAhead < hashes.size()) table.prefetch(hashes[name + kAhead]);
@@ -401,6 +373,7 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
     // Windows pass between the stages as plain pointers (TBB's copies of them are its own
     // business), owned by the stage that holds them.
     using Window = WindowRecords*;
+    SpareWindows spare;
     const auto cut = tbb::make_filter<void, Window>(
         tbb::filter_mode::serial_in_order, [&](tbb::flow_control& control) {
           tsan_acquire(&tsan_fork_sync);
@@ -413,7 +386,7 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
             if (!splitter.next(source, limits::kMaxSceneFileBytes, window, done, skeleton)) {
               failed = true;
             }
-            records = std::make_unique<WindowRecords>();
+            records = spare.take();
             records->text = std::move(window.text);
             records->runs = std::move(window.runs);
           }
@@ -425,7 +398,7 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
         tbb::make_filter<Window, Window>(tbb::filter_mode::parallel, [&](Window records) {
           tsan_acquire(&cut_order);
           for (const MemberRun& run : records->runs) {
-            if (failed || !read_run(r, run, *records)) {
+            if (failed || !read_run_records(*records->text, run, records->records)) {
               failed = true;
               break;
             }
@@ -436,7 +409,7 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
         });
     const auto resolve =
         tbb::make_filter<Window, void>(tbb::filter_mode::serial_in_order, [&](Window window) {
-          const std::unique_ptr<WindowRecords> records(window);
+          std::unique_ptr<WindowRecords> records(window);
           tsan_acquire(&read_order);
           tsan_acquire(&resolve_order);
           if (!failed) {
@@ -446,6 +419,7 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
               failed = true;
             }
           }
+          spare.give(std::move(records));
           tsan_release(&resolve_order);
           tsan_release(&tsan_join_sync);
         });
@@ -556,9 +530,9 @@ Scene load_scene_file(const std::string& path) {
     }
     return n;
   };
-  // A big file is parsed on every core; if that fails, or the file is not one it can cut,
-  // it is read again in one piece, which says what is wrong and where.
-  if (bytes >= kSplitFileBytes && tbb::this_task_arena::max_concurrency() > 1) {
+  // A big file is parsed in runs, on every core; if that fails, or the file is not one it can
+  // cut, it is read again in one piece, which says what is wrong and where.
+  if (bytes >= kSplitFileBytes) {
     if (std::optional<Scene> scene =
             read_scene_in_runs(read, path, kSplitRunBytes, kSplitWindowBytes)) {
       return std::move(*scene);

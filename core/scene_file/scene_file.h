@@ -37,14 +37,17 @@ Scene parse_scene(const std::string& text, const std::string& source);
 // for unreadable files).
 Scene load_scene_file(const std::string& path);
 
-// A scene file this big or bigger is parsed on every core (read_scene_in_runs), read
-// kSplitWindowBytes at a time, each window's members in one run per container.
+// A scene file this big or bigger is parsed in runs (read_scene_in_runs), on every core there
+// is, read kSplitWindowBytes at a time, each window's members in one run per container. (Also
+// on one core: its members are read straight into records, without the JSON values the
+// one-piece parse builds for its messages.)
 inline constexpr std::uint64_t kSplitFileBytes = std::uint64_t(4) << 20;
 inline constexpr std::size_t kSplitWindowBytes = std::size_t(4) << 20;
 inline constexpr std::size_t kSplitRunBytes = kSplitWindowBytes;
 
 // Scene JSON from `source` (named `name` in errors) parsed in runs of members on every core of
-// the calling thread's arena (core/scene_file/json_split.h), to the same scene as parse_scene; or
+// the calling thread's arena (core/scene_file/json_split.h, run_records.h), to the same scene as
+// parse_scene; or
 // nothing when that fails for any reason, including every error in the text (parse it in one
 // piece then, for the error's message).
 std::optional<Scene> read_scene_in_runs(
