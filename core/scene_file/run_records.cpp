@@ -97,13 +97,6 @@ bool is_space(char c) {
   return c == ' ' || c == '\n' || c == '\r' || c == '\t';
 }
 
-// True when every byte is below 0x80: ASCII is valid UTF-8, so its strings need no check.
-bool is_ascii(std::string_view text) {
-  unsigned char high = 0;
-  for (const char c : text) high |= static_cast<unsigned char>(c);  // vectorised
-  return high < 0x80;
-}
-
 // Reads the run's members, at `begin` in their window, with RapidJSON's `flags`.
 template <unsigned kFlags>
 bool read_members(char* begin, const MemberRun& run, RunRecords& records) {
@@ -153,10 +146,10 @@ bool read_members(char* begin, const MemberRun& run, RunRecords& records) {
 
 bool read_run_records(std::string& window, const MemberRun& run, RunRecords& records) {
   char* const begin = window.data() + (run.text.data() - window.data());
-  constexpr unsigned kFlags = rapidjson::kParseInsituFlag | rapidjson::kParseNumbersAsStringsFlag |
+  constexpr unsigned kFlags = rapidjson::kParseInsituFlag | rapidjson::kParseValidateEncodingFlag |
+                              rapidjson::kParseNumbersAsStringsFlag |
                               rapidjson::kParseStopWhenDoneFlag;
-  if (is_ascii(run.text)) return read_members<kFlags>(begin, run, records);
-  return read_members<kFlags | rapidjson::kParseValidateEncodingFlag>(begin, run, records);
+  return read_members<kFlags>(begin, run, records);
 }
 
 }  // namespace rtiow

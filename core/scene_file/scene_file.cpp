@@ -14,7 +14,6 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
@@ -306,31 +305,6 @@ struct WindowRecords {
   RunRecords records;
 };
 
-// Windows' records, used again once resolved: fresh vectors for each window cost their
-// page faults and growth again, on the cores that parse.
-class SpareWindows {
- public:
-  std::unique_ptr<WindowRecords> take() {
-    const std::lock_guard lock(mutex_);
-    if (spare_.empty()) return std::make_unique<WindowRecords>();
-    std::unique_ptr<WindowRecords> window = std::move(spare_.back());
-    spare_.pop_back();
-    return window;
-  }
-  void give(std::unique_ptr<WindowRecords> window) {
-    window->runs.clear();
-    window->records.materials.clear();
-    window->records.spheres.clear();
-    window->records.hashes.clear();
-    const std::lock_guard lock(mutex_);
-    spare_.push_back(std::move(window));
-  }
-
- private:
-  std::mutex mutex_;
-  std::vector<std::unique_ptr<WindowRecords>> spare_;
-};
-
 // Adds a window's records to the table and the spheres in document order, prefetching the
 // table's slots some names ahead.
 void add_records(const WindowRecords& window, MaterialTable& table, SphereSet& spheres) {
@@ -373,7 +347,6 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
     // Windows pass between the stages as plain pointers (TBB's copies of them are its own
     // business), owned by the stage that holds them.
     using Window = WindowRecords*;
-    SpareWindows spare;
     const auto cut = tbb::make_filter<void, Window>(
         tbb::filter_mode::serial_in_order, [&](tbb::flow_control& control) {
           tsan_acquire(&tsan_fork_sync);
@@ -386,7 +359,7 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
             if (!splitter.next(source, limits::kMaxSceneFileBytes, window, done, skeleton)) {
               failed = true;
             }
-            records = spare.take();
+            records = std::make_unique<WindowRecords>();
             records->text = std::move(window.text);
             records->runs = std::move(window.runs);
           }
@@ -409,7 +382,7 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
         });
     const auto resolve =
         tbb::make_filter<Window, void>(tbb::filter_mode::serial_in_order, [&](Window window) {
-          std::unique_ptr<WindowRecords> records(window);
+          const std::unique_ptr<WindowRecords> records(window);
           tsan_acquire(&read_order);
           tsan_acquire(&resolve_order);
           if (!failed) {
@@ -419,7 +392,6 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
               failed = true;
             }
           }
-          spare.give(std::move(records));
           tsan_release(&resolve_order);
           tsan_release(&tsan_join_sync);
         });
