@@ -16,9 +16,12 @@
 namespace rtiow {
 
 // Follows a path on from its first ray, already traced (and counted): `hit` is what it hit.
+// Inlined into the sample loop, so that it is compiled for each of the loop's instruction sets
+// (core/parallel/instruction_sets.h) rather than once for the baseline.
 template <Accelerator Accel>
-Color continue_path(const Scene& scene, const Accel& accel, Ray ray, std::optional<Hit> hit,
-                    int max_depth, SampleStream& rng, std::uint64_t& rays_traced) {
+[[gnu::always_inline]] inline Color continue_path(const Scene& scene, const Accel& accel, Ray ray,
+                                                  std::optional<Hit> hit, int max_depth,
+                                                  SampleStream& rng, std::uint64_t& rays_traced) {
   Color throughput{1.0f, 1.0f, 1.0f};
   for (int depth = 1;; ++depth) {
     if (!hit) return throughput * scene.background(ray.direction);
