@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include <oneapi/tbb/task_arena.h>
 #include <nlohmann/json.hpp>
 
 #include "core/limits/error.h"
@@ -34,9 +35,23 @@ std::function<std::size_t(char*, std::size_t)> reader(const std::string& text, s
   };
 }
 
+// Whether two reads agree: both nothing, or scenes that are the same (expect_same, below).
+bool same_scene(const std::optional<Scene>& a, const std::optional<Scene>& b) {
+  if (a.has_value() != b.has_value()) return false;
+  return !a || (scene_to_json(*a) == scene_to_json(*b) &&
+                a->spheres.material == b->spheres.material && a->name == b->name);
+}
+
+// In runs on this machine's cores, and again on 8 threads, where each window's names are
+// resolved shard by shard on several cores (sharded_names.h): both must give the same.
 std::optional<Scene> in_runs(const std::string& text, std::size_t run, std::size_t window,
                              std::size_t chunk = 1 << 20) {
-  return read_scene_in_runs(reader(text, chunk), "t.json", run, window);
+  std::optional<Scene> here = read_scene_in_runs(reader(text, chunk), "t.json", run, window);
+  std::optional<Scene> on_eight;
+  tbb::task_arena(8).execute(
+      [&] { on_eight = read_scene_in_runs(reader(text, chunk), "t.json", run, window); });
+  EXPECT_TRUE(same_scene(here, on_eight)) << "on 8 threads, window " << window << ", run " << run;
+  return here;
 }
 
 std::optional<Scene> in_one_piece(const std::string& text) {
