@@ -201,18 +201,6 @@ class BoundedBuilder {
                  JsonDocument& root)
       : streamed_(streamed), root_(root), scratch_(scratch_buffer_, sizeof scratch_buffer_) {}
 
-  // A builder for a run of a streamed container's members, parsed as a root container of
-  // its own: its members go to `members`, and nesting counts the container's place in the
-  // whole document (one level below the root).
-  BoundedBuilder(const StreamedMember& members, JsonDocument& root)
-      : BoundedBuilder(kNoStreamed, root) {
-    root_stream_ = &members;
-    stream_level_ = 1;
-    depth_offset_ = 1;
-  }
-
-  std::size_t streamed_count() const { return streamed_count_; }
-
   const std::string& error() const { return error_; }
 
   bool Null() { return add(JsonValue()); }
@@ -292,11 +280,11 @@ class BoundedBuilder {
     return value && add(std::move(*value));
   }
 
-  bool is_streamed_container() const { return stream_ && stack_.size() == stream_level_; }
+  bool is_streamed_container() const { return stream_ && stack_.size() == kStreamLevel; }
 
   // Values inside a streamed member live in the scratch pool, the rest in the document's.
   rapidjson::MemoryPoolAllocator<>& allocator() {
-    return stream_ && stack_.size() >= stream_level_ ? scratch_ : root_.GetAllocator();
+    return stream_ && stack_.size() >= kStreamLevel ? scratch_ : root_.GetAllocator();
   }
 
   // Places a complete value: hands it over if it is a streamed member, else stores it.
@@ -326,7 +314,7 @@ class BoundedBuilder {
   }
 
   bool open(rapidjson::Type type) {
-    if (int(stack_.size()) + depth_offset_ >= limits::kMaxJsonDepth) {
+    if (int(stack_.size()) >= limits::kMaxJsonDepth) {
       return fail("nested deeper than the limit of " + std::to_string(limits::kMaxJsonDepth) +
                   " levels");
     }
@@ -337,10 +325,6 @@ class BoundedBuilder {
         root_.SetArray();
       }
       stack_.push_back({&root_, nullptr});
-      if (root_stream_ && root_stream_->is_object == (type == rapidjson::kObjectType)) {
-        stream_ = root_stream_;
-        streamed_count_ = 0;
-      }
       return true;
     }
     if (is_streamed_container()) {
@@ -369,7 +353,7 @@ class BoundedBuilder {
 
   bool close() {
     stack_.pop_back();
-    if (stream_ && stack_.size() + 1 == stream_level_) {
+    if (stream_ && stack_.size() + 1 == kStreamLevel) {
       stream_ = nullptr;  // the streamed container itself is complete
     } else if (is_streamed_container()) {
       deliver(element_);
@@ -377,12 +361,9 @@ class BoundedBuilder {
     return true;
   }
 
-  static inline const std::map<std::string, StreamedMember, std::less<>> kNoStreamed;
-
   const std::map<std::string, StreamedMember, std::less<>>& streamed_;
-  const StreamedMember* root_stream_ = nullptr;  // a run's builder: the root's members
-  std::size_t stream_level_ = 2;  // the stack depth of a streamed container's members' parent
-  int depth_offset_ = 0;          // levels above the parsed text's root
+  // The stack depth of a streamed container's members' parent (the root, then the container).
+  static constexpr std::size_t kStreamLevel = 2;
   JsonDocument& root_;
   char scratch_buffer_[1 << 14];
   rapidjson::MemoryPoolAllocator<> scratch_;
@@ -435,16 +416,6 @@ void parse_json_stream(JsonInput& input, const std::string& source,
                        const std::map<std::string, StreamedMember, std::less<>>& streamed,
                        JsonDocument& root) {
   parse_with(input, source, std::make_unique<BoundedBuilder>(streamed, root));
-}
-
-std::size_t parse_json_members(JsonInput& input, const std::string& source,
-                               const StreamedMember& members) {
-  JsonDocument root;
-  const auto builder = std::make_unique<BoundedBuilder>(members, root);
-  parse_with(input, source, builder);
-  const bool expected = members.is_object ? root.IsObject() : root.IsArray();
-  if (!expected) throw InvalidInput(source + ": not a run of members");
-  return builder->streamed_count();
 }
 
 }  // namespace rtiow

@@ -149,11 +149,4 @@ void parse_json_stream(JsonInput& input, const std::string& source,
 // a subnormal, as strtod does); nothing, and `error` set, for one too large or not a number.
 std::optional<JsonValue> read_json_number(std::string_view text, std::string& error);
 
-// Parses a run of a streamed container's members, given as a container of its own ("[" run
-// "]" or "{" run "}", matching `members.is_object`), with the limits that hold for them inside
-// the whole document (they nest one level deeper there). Each member goes to the callback;
-// returns how many did.
-std::size_t parse_json_members(JsonInput& input, const std::string& source,
-                               const StreamedMember& members);
-
 }  // namespace rtiow

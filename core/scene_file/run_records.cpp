@@ -97,9 +97,13 @@ bool is_space(char c) {
   return c == ' ' || c == '\n' || c == '\r' || c == '\t';
 }
 
-// Reads the run's members, at `begin` in their window, with RapidJSON's `flags`.
-template <unsigned kFlags>
-bool read_members(char* begin, const MemberRun& run, RunRecords& records) {
+}  // namespace
+
+bool read_run_records(std::string& window, const MemberRun& run, RunRecords& records) {
+  constexpr unsigned kFlags = rapidjson::kParseInsituFlag | rapidjson::kParseValidateEncodingFlag |
+                              rapidjson::kParseNumbersAsStringsFlag |
+                              rapidjson::kParseStopWhenDoneFlag;
+  char* const begin = window.data() + (run.text.data() - window.data());
   // The window ends in a NUL: a parse that runs past the run (a member the scan cut wrongly)
   // stops there at the latest, and is refused below.
   const char* const end = begin + run.text.size();
@@ -140,16 +144,6 @@ bool read_members(char* begin, const MemberRun& run, RunRecords& records) {
     ++in.src_;
   }
   return members == run.members;
-}
-
-}  // namespace
-
-bool read_run_records(std::string& window, const MemberRun& run, RunRecords& records) {
-  char* const begin = window.data() + (run.text.data() - window.data());
-  constexpr unsigned kFlags = rapidjson::kParseInsituFlag | rapidjson::kParseValidateEncodingFlag |
-                              rapidjson::kParseNumbersAsStringsFlag |
-                              rapidjson::kParseStopWhenDoneFlag;
-  return read_members<kFlags>(begin, run, records);
 }
 
 }  // namespace rtiow
