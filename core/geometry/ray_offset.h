@@ -63,7 +63,8 @@ inline SurfaceHit make_surface_hit(const SphereSet& spheres, const Ray& ray, con
       Vec3(1e-14 * (abs(center) + Vec3d(std::abs(radius), std::abs(radius), std::abs(radius))));
   const Vec3 outward(radius < 0.0 ? -unit_offset : unit_offset);
   s.front_face = dot(ray.direction, outward) < 0.0f;
-  s.normal = s.front_face ? outward : -outward;
+  // A sign, not a branch: which face a ray meets is random at a dielectric.
+  s.normal = (s.front_face ? 1.0f : -1.0f) * outward;
   s.material = spheres.material[hit.sphere];
   return s;
 }

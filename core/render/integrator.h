@@ -25,11 +25,12 @@ template <Accelerator Accel>
   Color throughput{1.0f, 1.0f, 1.0f};
   for (int depth = 1;; ++depth) {
     if (!hit) return throughput * scene.background(ray.direction);
-    const SurfaceHit surface = make_surface_hit(scene.spheres, ray, *hit);
     // Every bounce takes the same dimensions whatever it hits (core/sampling/sample_layout.h);
-    // the sampler computes only those the material reads.
-    const Material& material = scene.materials[surface.material];
+    // the sampler computes only those the material reads. Drawn before the hit point, whose
+    // square root and division it does not wait for.
+    const Material& material = scene.materials[scene.spheres.material[hit->sphere]];
     const BounceSample u = rng.next_bounce(bounce_uses(material));
+    const SurfaceHit surface = make_surface_hit(scene.spheres, ray, *hit);
     const std::optional<Scattered> scattered = scatter(material, ray.direction, surface, u);
     if (!scattered) return Color{};  // absorbed
     throughput *= scattered->attenuation;
