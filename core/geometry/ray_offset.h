@@ -23,18 +23,21 @@ constexpr float float_error_gamma(int n) {
   return float(n) * u / (1.0f - float(n) * u);
 }
 
-// The float next to v toward +infinity (`up`) or -infinity (pbrt-v4 NextFloatUp/Down), as
-// selects on the bits: a spawned ray's offset points up or down at random per component, and
-// as branches (std::nextafter is also a library call) they were mispredicted about half the
-// time. An infinity already at the end it moves to stays.
+// The float next to v toward +infinity (`up`) or -infinity (pbrt-v4 NextFloatUp/Down), by
+// arithmetic on the bits: a spawned ray's offset points up or down at random per component,
+// and as branches (std::nextafter is also a library call; GCC also turned a select on the
+// direction into one) they were mispredicted about half the time. The rare cases (a zero, an
+// infinity already at the end it moves to, which stays) may branch.
 inline float next_float_toward(float v, bool up) {
   const std::uint32_t bits = std::bit_cast<std::uint32_t>(v);
   const bool negative = (bits >> 31) != 0;
   const std::uint32_t magnitude = bits << 1;
   const bool zero = magnitude == 0;  // +0 or -0: to the smallest subnormal of that side
   const bool at_end = magnitude == 0xff000000u && negative != up;
-  const std::uint32_t moved =
-      zero ? (up ? 1u : 0x80000001u) : (up != negative ? bits + 1 : bits - 1);
+  // Away from zero (+1) when the direction and the sign agree, toward it (-1) otherwise.
+  const std::uint32_t moved = bits + 1u - 2u * std::uint32_t(up == negative);
+  if (zero) [[unlikely]]
+    return std::bit_cast<float>(up ? 1u : 0x80000001u);
   return std::bit_cast<float>(at_end ? bits : moved);
 }
 
