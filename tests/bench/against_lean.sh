@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # rtiow's render loop against the lean tracer (lean_tracer.cpp) on the book's job, in
-# alternating rounds on this machine, and the ratio of their medians:
+# alternating rounds on this machine, and the ratio of their medians; also against the lean
+# tracer with rtiow's kind of spawn (--robust-offset), which prices the robust offsets:
 #   bash tests/bench/against_lean.sh [rounds=5] [threads=2] [build dir=build]
 set -euo pipefail
 rounds=${1:-5}
@@ -11,14 +12,18 @@ job=(--width 400 --height 225 --spp 100 --depth 50 --threads "$threads")
 rate() { grep -o '"mrays_per_second":[0-9.]*' | cut -d: -f2; }
 median() { sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
 
-rtiow_rates=() lean_rates=()
+rtiow_rates=() lean_rates=() robust_rates=()
 for ((round = 1; round <= rounds; ++round)); do
   rtiow_rates+=("$("$bin/rtiow" bench-point --scene cover "${job[@]}" --repeat 1 | tail -1 | rate)")
   lean_rates+=("$("$bin/rtiow_lean_tracer" "${job[@]}" --repeat 1 | rate)")
+  robust_rates+=("$("$bin/rtiow_lean_tracer" "${job[@]}" --repeat 1 --robust-offset | rate)")
 done
 rtiow_median=$(printf '%s\n' "${rtiow_rates[@]}" | median)
 lean_median=$(printf '%s\n' "${lean_rates[@]}" | median)
+robust_median=$(printf '%s\n' "${robust_rates[@]}" | median)
 echo "rtiow bench-point (Mrays/s): ${rtiow_rates[*]}"
 echo "lean tracer       (Mrays/s): ${lean_rates[*]}"
-awk -v r="$rtiow_median" -v l="$lean_median" -v t="$threads" \
-  'BEGIN {printf "medians: rtiow %.2f, lean %.2f Mrays/s, %d threads: rtiow at %.3fx the lean tracer\n", r, l, t, r / l}'
+echo "lean, robust spawn (Mrays/s): ${robust_rates[*]}"
+awk -v r="$rtiow_median" -v l="$lean_median" -v o="$robust_median" -v t="$threads" \
+  'BEGIN {printf "medians: rtiow %.2f, lean %.2f Mrays/s, %d threads: rtiow at %.3fx the lean tracer\n", r, l, t, r / l
+          printf "against the lean tracer with the robust spawn (%.2f Mrays/s): %.3fx\n", o, r / o}'
