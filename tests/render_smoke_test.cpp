@@ -259,13 +259,13 @@ TEST(Render, DepthZeroIsBlackAsInTheBook) {
   EXPECT_EQ(r.rays_traced, 0u);
 }
 
-// The depth limit, exactly: inside a closed diffuse sphere no path escapes or is absorbed,
-// so every path traces exactly max_depth rays and ends black. One bounce more or less
-// changes the count by a sample's worth.
+// The depth limit, exactly: inside a closed white diffuse sphere no path escapes, is absorbed
+// or plays the roulette (its throughput stays 1), so every path traces exactly max_depth rays
+// and ends black. One bounce more or less changes the count by a sample's worth.
 TEST(Render, EveryPathTracesExactlyMaxDepthRaysInAClosedRoom) {
   Scene room = make_builtin_scene("materials", 1);
   room.spheres = SphereSet{};
-  room.spheres.add({0, 0, 0}, 50.0f, room.add_material(Lambertian{{0.5f, 0.5f, 0.5f}}));
+  room.spheres.add({0, 0, 0}, 50.0f, room.add_material(Lambertian{{1.0f, 1.0f, 1.0f}}));
   RenderSettings settings = tiny(room);
   for (int depth : {1, 2, 5}) {
     settings.max_depth = depth;
@@ -278,16 +278,16 @@ TEST(Render, EveryPathTracesExactlyMaxDepthRaysInAClosedRoom) {
 }
 
 // The sample layout is the integrator's: a path draws the camera's dimensions and then the
-// same number per bounce whatever it hits. In closed rooms every ray hits, so a path of
-// depth D always draws camera + D bounces, for each material and each sampler.
+// same number per bounce whatever it hits. In closed white rooms every ray hits and no path
+// plays the roulette, so a path of depth D always draws camera + D bounces, for each material
+// and each sampler.
 TEST(Render, EveryBounceDrawsTheSameDimensionsWhateverTheMaterial) {
-  const Material materials[] = {Lambertian{{0.5f, 0.5f, 0.5f}},
-                                make_metal({0.9f, 0.9f, 0.9f}, 0.3f), make_metal({1, 1, 1}, 0.0f),
-                                Dielectric{1.5f}};
+  const Material materials[] = {Lambertian{{1.0f, 1.0f, 1.0f}}, make_metal({1, 1, 1}, 0.3f),
+                                make_metal({1, 1, 1}, 0.0f), Dielectric{1.5f}};
   for (const Material& inner : materials) {
     Scene room = make_builtin_scene("materials", 1);
     room.spheres = SphereSet{};
-    room.spheres.add({0, 0, 0}, 50.0f, room.add_material(Lambertian{{0.5f, 0.5f, 0.5f}}));
+    room.spheres.add({0, 0, 0}, 50.0f, room.add_material(Lambertian{{1.0f, 1.0f, 1.0f}}));
     room.spheres.add({0, 0, -20}, 10.0f, room.add_material(inner));
     const NaiveAccel accel(room.spheres);
     for (const SamplerKind kind :

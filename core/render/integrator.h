@@ -1,7 +1,8 @@
 #pragma once
 // The book's path tracer as an iterative loop: follow one path for at most `max_depth`
 // rays, multiplying the throughput by each material's attenuation, until it escapes to
-// the background or is absorbed. No recursion, no allocation. The first ray is traced by
+// the background, is absorbed or, carrying almost nothing, loses the Russian roulette
+// (core/render/russian_roulette.h). No recursion, no allocation. The first ray is traced by
 // the sample loop (core/render/render_loop.h), with other samples' first rays in a packet.
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 
 #include "core/accel/accelerator.h"
 #include "core/geometry/ray_offset.h"
+#include "core/render/russian_roulette.h"
 #include "core/sampling/sampler.h"
 #include "core/scene/scene.h"
 
@@ -29,7 +31,14 @@ template <Accelerator Accel>
     // the sampler computes only those the material reads. Drawn before the hit point, whose
     // square root and division it does not wait for.
     const Material& material = scene.materials[scene.spheres.material[hit->sphere]];
-    const BounceSample u = rng.next_bounce(bounce_uses(material));
+    const unsigned uses = bounce_uses(material);
+    const bool plays = plays_roulette(depth, throughput);
+    const BounceSample u = rng.next_bounce(plays ? uses | roulette_use(uses) : uses);
+    if (plays) {
+      const std::optional<Color> goes_on = roulette(throughput, roulette_number(u, uses));
+      if (!goes_on) return Color{};
+      throughput = *goes_on;
+    }
     const SurfaceHit surface = make_surface_hit(scene.spheres, ray, *hit);
     const std::optional<Scattered> scattered = scatter(material, ray.direction, surface, u);
     if (!scattered) return Color{};  // absorbed

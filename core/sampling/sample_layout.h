@@ -34,6 +34,16 @@ enum BounceUse : unsigned {
   kUsesAll = 7,
 };
 
+// Russian roulette's number at a bounce: the lobe dimension where the material does not read
+// it, else the radius (a dielectric reads the lobe; no material reads both). So the decision
+// keeps a dimension of its own at every bounce, and the material's numbers are unchanged.
+constexpr unsigned roulette_use(unsigned material_uses) {
+  return (material_uses & kUsesLobe) != 0 ? unsigned(kUsesRadius) : unsigned(kUsesLobe);
+}
+constexpr float roulette_number(const BounceSample& u, unsigned material_uses) {
+  return (material_uses & kUsesLobe) != 0 ? u.radius : u.lobe;
+}
+
 // The dimension a bounce's numbers start at (bounce 0 is the camera ray's hit).
 constexpr int bounce_dimension(int bounce) {
   return kCameraDimensions + kBounceDimensions * bounce;
