@@ -436,8 +436,8 @@ int main(int argc, char** argv) {
   std::printf(
       "{\"tracer\":\"lean\",\"sphere_test\":\"%s\",\"offset\":\"%s\",\"threads\":%d,"
       "\"rays\":%llu,\"mrays_per_second\":%.3f,\"image_mean\":%.5f}\n",
-      use_float ? "float" : "double", robust_offset ? "robust" : "t_min", threads, static_cast<unsigned long long>(total_rays),
-      rates[rates.size() / 2], mean);
+      use_float ? "float" : "double", robust_offset ? "robust" : "t_min", threads,
+      static_cast<unsigned long long>(total_rays), rates[rates.size() / 2], mean);
   rtcReleaseScene(rscene);
   rtcReleaseDevice(device);
   return 0;
