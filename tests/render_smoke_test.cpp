@@ -21,6 +21,7 @@
 #include "core/scene/builtin_scenes.h"
 #include "core/scene/camera.h"
 #include "core/scene_file/material_json.h"
+#include "tests/closed_room.h"
 #include "tests/film_equality.h"
 
 namespace rtiow {
@@ -263,9 +264,7 @@ TEST(Render, DepthZeroIsBlackAsInTheBook) {
 // or plays the roulette (its throughput stays 1), so every path traces exactly max_depth rays
 // and ends black. One bounce more or less changes the count by a sample's worth.
 TEST(Render, EveryPathTracesExactlyMaxDepthRaysInAClosedRoom) {
-  Scene room = make_builtin_scene("materials", 1);
-  room.spheres = SphereSet{};
-  room.spheres.add({0, 0, 0}, 50.0f, room.add_material(Lambertian{{1.0f, 1.0f, 1.0f}}));
+  const Scene room = closed_room(Lambertian{{1.0f, 1.0f, 1.0f}});
   RenderSettings settings = tiny(room);
   for (int depth : {1, 2, 5}) {
     settings.max_depth = depth;
@@ -285,21 +284,15 @@ TEST(Render, EveryBounceDrawsTheSameDimensionsWhateverTheMaterial) {
   const Material materials[] = {Lambertian{{1.0f, 1.0f, 1.0f}}, make_metal({1, 1, 1}, 0.3f),
                                 make_metal({1, 1, 1}, 0.0f), Dielectric{1.5f}};
   for (const Material& inner : materials) {
-    Scene room = make_builtin_scene("materials", 1);
-    room.spheres = SphereSet{};
-    room.spheres.add({0, 0, 0}, 50.0f, room.add_material(Lambertian{{1.0f, 1.0f, 1.0f}}));
+    Scene room = closed_room(Lambertian{{1.0f, 1.0f, 1.0f}});
     room.spheres.add({0, 0, -20}, 10.0f, room.add_material(inner));
     const NaiveAccel accel(room.spheres);
     for (const SamplerKind kind :
          {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
       for (std::uint64_t sample = 0; sample < 16; ++sample) {
-        SampleStream rng(kind, 3, 0, 0, sample);
-        const auto u = rng.next_camera();
-        const Ray first{{0, 0, 0}, normalize(Vec3{u[0] - 0.5f, u[1] - 0.5f, -1.0f})};
-        std::uint64_t rays = 1;
-        continue_path(room, accel, first, accel.intersect(first, kInfinity), 7, rng, rays);
-        EXPECT_EQ(rays, 7u) << "every ray hits a wall or the inner sphere";
-        EXPECT_EQ(rng.dimension(), bounce_dimension(7)) << to_string(kind);
+        const RoomPath path = trace_from_centre(room, accel, kind, sample, 7);
+        EXPECT_EQ(path.rays, 7u) << "every ray hits a wall or the inner sphere";
+        EXPECT_EQ(path.dimensions, bounce_dimension(7)) << to_string(kind);
       }
     }
   }

@@ -10,13 +10,10 @@
 #include <limits>
 #include <optional>
 
-#include "core/accel/naive_accel.h"
-#include "core/render/integrator.h"
 #include "core/render/russian_roulette.h"
 #include "core/sampling/sample_layout.h"
-#include "core/sampling/sampler.h"
-#include "core/scene/builtin_scenes.h"
 #include "materials/material.h"
+#include "tests/closed_room.h"
 
 namespace rtiow {
 namespace {
@@ -91,31 +88,22 @@ TEST(RussianRoulette, ItsNumberIsADimensionTheMaterialDoesNotRead) {
 // In a closed dark room every path plays from kRouletteFromDepth on; one that goes on through
 // every bounce draws camera + D bounces, as one that never plays, and one that ends stops early.
 TEST(RussianRoulette, APathThatPlaysKeepsTheSampleLayout) {
-  Scene room = make_builtin_scene("materials", 1);
-  room.spheres = SphereSet{};
-  room.spheres.add({0, 0, 0}, 50.0f, room.add_material(Lambertian{{0.3f, 0.3f, 0.3f}}));
+  const Scene room = closed_room(Lambertian{{0.3f, 0.3f, 0.3f}});
   const NaiveAccel accel(room.spheres);
   constexpr int kDepth = 6;
   int ended = 0, went_on = 0;
   for (const SamplerKind kind :
        {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
     for (std::uint64_t sample = 0; sample < 64; ++sample) {
-      SampleStream rng(kind, 3, 0, 0, sample);
-      const auto u = rng.next_camera();
-      const Ray first{{0, 0, 0}, normalize(Vec3{u[0] - 0.5f, u[1] - 0.5f, -1.0f})};
-      std::uint64_t rays = 1;
-      const Color c = continue_path(room, accel, first,
-                                    accel.intersect(first, std::numeric_limits<float>::infinity()),
-                                    kDepth, rng, rays);
-      EXPECT_EQ(c, (Color{0, 0, 0})) << "no light in a closed room";
-      if (rays == kDepth) {
+      const RoomPath path = trace_from_centre(room, accel, kind, sample, kDepth);
+      EXPECT_EQ(path.color, (Color{0, 0, 0})) << "no light in a closed room";
+      if (path.rays == kDepth) {
         ++went_on;
-        EXPECT_EQ(rng.dimension(), bounce_dimension(kDepth)) << to_string(kind);
       } else {
         ++ended;
-        EXPECT_GE(rays, std::uint64_t(kRouletteFromDepth)) << "no path ends before it plays";
-        EXPECT_EQ(rng.dimension(), bounce_dimension(int(rays))) << to_string(kind);
+        EXPECT_GE(path.rays, std::uint64_t(kRouletteFromDepth)) << "no path ends before it plays";
       }
+      EXPECT_EQ(path.dimensions, bounce_dimension(int(path.rays))) << to_string(kind);
     }
   }
   EXPECT_GT(ended, 0);
