@@ -127,6 +127,12 @@ class CheckpointFile : public ::testing::Test {
   Scene scene_ = make_builtin_scene("cover", 1);
   RenderSettings settings_ = small(SamplerKind::Sobol);
 
+  // The suite leaves nothing behind in the shared temporary directory.
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove(path_, ignored);
+  }
+
   RenderState saved_state() {
     RenderState saved{0};
     Checkpointing keep;

@@ -148,6 +148,7 @@ fs::path fixtures() {
   crafted("huge-job.exr", [](auto& s) { s.attribute("rtiow:part_job_samples", "1099511627776"); });
   crafted("no-job.exr", [](auto& s) { s.erase_attribute("rtiow:part_job_samples"); });
   crafted("negative-samples.exr", [](auto& s) { s.attribute("rtiow:part_samples", "-2"); });
+  crafted("older-version.exr", [](auto& s) { s.attribute("rtiow:version", "0.0.1"); });
   const std::string part = slurp(work / "part0.exr");
   write_file(work / "truncated.exr", part.substr(0, part.size() / 2));
   write_file(work / "complete", "");
@@ -616,6 +617,8 @@ std::vector<Case> part_cases() {
       {"MergeSamePartThroughALink", 2, "overlap", merge({"part0.exr", "part-alias.exr"})},
       {"MergeDifferentRenders", 2, "a share of a different render",
        merge({"part0.exr", "other-render.exr"})},
+      {"MergeAnotherVersionsShare", 2, "by rtiow 0.0.1: versions may draw other samples",
+       merge({"older-version.exr", "part1.exr"})},
       {"MergeSceneFile", 2, "cannot read", merge({"scene.json"})},
       {"MergeUsersImage", 2, "cannot read", merge({"keep.png"})},
       {"MergePlainExr", 2, "not a part file", merge({"plain.exr"})},

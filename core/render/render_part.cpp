@@ -296,10 +296,24 @@ RenderPart read_part(ImageReader& in, const std::string& path) {
 
 namespace {
 
-// Parts of one render: same scene and settings (digest), size and job.
+// The rtiow version a part records ("unknown" if none): versions may draw other samples.
+std::string part_version(const RenderPart& part) {
+  for (const auto& [name, value] : part.metadata) {
+    if (name != metadata_key::kVersion) continue;
+    if (const auto* text = std::get_if<std::string>(&value)) return *text;
+  }
+  return "unknown";
+}
+
+// Parts of one render: same rtiow, same scene and settings (digest), size and job.
 void check_same_render(const std::vector<const RenderPart*>& parts) {
   const RenderPart& reference = *parts.front();
   for (const RenderPart* p : parts) {
+    if (part_version(*p) != part_version(reference)) {
+      throw InvalidInput("merge: " + p->path + " was rendered by rtiow " + part_version(*p) +
+                         " and " + reference.path + " by rtiow " + part_version(reference) +
+                         ": versions may draw other samples, so their shares do not add up");
+    }
     if (p->digest != reference.digest || p->width != reference.width ||
         p->height != reference.height || p->job_samples != reference.job_samples) {
       throw InvalidInput("merge: " + p->path + " is a share of a different render than " +
