@@ -707,7 +707,8 @@ TEST(Cli, LikeRendersTheSameFileAgainFromEveryFormatThatHoldsTheRequest) {
   for (const Case& c : {Case{".png", "--spp 3"}, Case{".jpg", "--spp 2 --scene-seed 4"},
                         Case{".tif", "--image-error 0.2 --spp 40 --min-spp 3"},
                         Case{".exr", "--target-error 0.07 --spp 30 --min-spp 5 --stats-channels"},
-                        Case{".exr", "--adaptive --spp 20"}}) {
+                        Case{".exr", "--adaptive --spp 20"},
+                        Case{".exr", "--adaptive --spp 20 --stats-channels"}}) {
     SCOPED_TRACE(std::string(c.ext) + " " + c.sampling);
     const fs::path first = output_path(std::string("like-first") + c.ext);
     const fs::path again = output_path(std::string("like-again") + c.ext);

@@ -55,10 +55,19 @@ void print_budget_table(const json& r) {
     const std::string name = to_string(kind);
     for (std::size_t i = 0; i < r["budget"][name].size(); ++i) {
       const json& row = r["budget"][name][i];
-      std::printf("  %-12s %5.0f %9.1f %9.4f %10.3e %+9.5f +- %7.5f %10.2fx\n", name.c_str(),
+      // A render of one sequence estimates no error: its difference stands without one.
+      const json& error = row["mean_difference_error"];
+      char difference[32];
+      if (error.is_null()) {
+        std::snprintf(difference, sizeof difference, "%+9.5f           ",
+                      row["mean_difference"].get<double>());
+      } else {
+        std::snprintf(difference, sizeof difference, "%+9.5f +- %7.5f",
+                      row["mean_difference"].get<double>(), error.get<double>());
+      }
+      std::printf("  %-12s %5.0f %9.1f %9.4f %10.3e %s %10.2fx\n", name.c_str(),
                   row["parameter"].get<double>(), row["spp_mean"].get<double>(),
-                  row["seconds"].get<double>(), row["rel_mse"].get<double>(),
-                  row["mean_difference"].get<double>(), row["mean_difference_error"].get<double>(),
+                  row["seconds"].get<double>(), row["rel_mse"].get<double>(), difference,
                   s["budget_equal_time_factors"][name][i]["factor"].get<double>());
     }
     std::printf("  %-12s median over N >= 32: %.2fx lower relMSE than uniform at equal time\n",

@@ -226,12 +226,12 @@ class RequestBuilder {
         add("--fresnel", "--fresnel", {*fresnel});
       }
     }
-    // The statistics channels, or two replicates in a uniform render (adaptive renders keep
-    // two whatever was asked): --stats-channels was given.
+    // The statistics channels, or two replicates in a uniform render or on an adaptive budget
+    // (the error targets keep two whatever was asked): --stats-channels was given.
     const std::string* replicates = find(key::kReplicates);
     const auto& channels = header.channel_names;
     if (std::find(channels.begin(), channels.end(), "variance.R") != channels.end() ||
-        (replicates && *replicates == "2" && find(key::kSpp))) {
+        (replicates && *replicates == "2" && (find(key::kSpp) || find(key::kAdaptive)))) {
       add("--stats-channels", "--stats-channels", {});
     }
     if (!find(key::kRenderSeconds)) add("--reproducible", "--reproducible", {});

@@ -39,8 +39,8 @@ struct RenderSettings {
   // scene (docs/accuracy.md); the book's sampler is Independent.
   SamplerKind sampler = SamplerKind::Sobol;
   // Keep what an estimate of each pixel's error needs: two independent replicates of the
-  // sampler's sequence (core/sampling/sampler.h). The variance channels ask for it; the adaptive
-  // modes always have it. Without it a render draws one sequence, and its image is less noisy.
+  // sampler's sequence (core/sampling/sampler.h). The variance channels ask for it; the error
+  // targets always have it. Without it a render draws one sequence, and its image is less noisy.
   bool estimate_error = false;
 };
 
@@ -50,10 +50,14 @@ inline bool is_adaptive(const RenderSettings& s) {
 }
 
 // How many independent replicates a pixel's samples alternate between: kReplicates where the
-// render estimates its error (or the sampler's samples are independent anyway), else 1.
+// render estimates its error (or the sampler's samples are independent anyway), else 1. An
+// adaptive budget (--adaptive) draws one sequence: it only compares pixels with one another to
+// share its samples out, for which one sequence's sample variance serves (docs/accuracy.md);
+// an error target (--image-error, --target-error) needs the calibrated error of two.
 inline int replicates(const RenderSettings& s) {
-  return s.estimate_error || is_adaptive(s) || s.sampler == SamplerKind::Independent ? kReplicates
-                                                                                     : 1;
+  const bool error_target = is_adaptive(s) && !std::holds_alternative<AdaptiveBudget>(s.samples);
+  return s.estimate_error || error_target || s.sampler == SamplerKind::Independent ? kReplicates
+                                                                                   : 1;
 }
 
 // The pixel samples a uniform render takes in all (width x height x spp): what a progress

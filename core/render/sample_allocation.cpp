@@ -51,10 +51,14 @@ std::vector<double> neighbourhood_relative_variance(const RenderSettings& settin
                                                     const PixelAccumulators& pixels,
                                                     Pooling pooling) {
   // Each pixel's relative variance per sample scaled to what its mean really has: the
-  // sampler's gain over independent samples, from its neighbours' replicates.
+  // sampler's gain over independent samples, from its neighbours' replicates. One sequence has
+  // no replicates: its sample variance serves as it is (it overstates a Sobol mean's error, but
+  // a budget only weighs pixels against one another).
   const std::vector<Vec3d> ratio =
-      replicate_ratios(settings.width, settings.height, pixels.sums, pixels.spreads, pixels.samples,
-                       settings.first_sample, settings.sampler);
+      replicates(settings) > 1
+          ? replicate_ratios(settings.width, settings.height, pixels.sums, pixels.spreads,
+                             pixels.samples, settings.first_sample, settings.sampler)
+          : std::vector<Vec3d>(pixels.samples.size(), Vec3d(1, 1, 1));
   std::vector<double> own(pixels.samples.size());
   for (std::size_t p = 0; p < own.size(); ++p) {
     own[p] =
