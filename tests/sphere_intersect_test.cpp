@@ -130,7 +130,7 @@ TEST(SphereIntersect, LanesGiveTheScalarTestBitForBit) {
   Pcg32 rng(31, 7);
   auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * rng.next_float(); };
   constexpr int kLanes = 8;
-  int hits = 0, cases = 0;
+  int hits = 0, cases = 0, skipped = 0;
   for (int trial = 0; trial < 20000; ++trial) {
     const float scale = std::pow(10.0f, uniform(-3.0f, 6.0f));
     const Vec3 center{uniform(-1, 1) * scale, uniform(-1, 1) * scale, uniform(-1, 1) * scale};
@@ -156,11 +156,23 @@ TEST(SphereIntersect, LanesGiveTheScalarTestBitForBit) {
       if (k % 4 == 1 && root < kInf) t_min[k] = root;
       if (k % 4 == 3 && root < kInf) t_max[k] = root;
     }
-    const RayLanes<kLanes> lanes{{ox, oy, oz}, {dx, dy, dz}, t_min, t_max};
-    sphere_hit_distances_exact(center, radius, lanes, t);
+    double inv_a[kLanes];
+    inverse_length_squared<kLanes>(dx, dy, dz, inv_a);
+    const RayLanes<kLanes> lanes{{ox, oy, oz}, {dx, dy, dz}, t_min, t_max, inv_a};
+    // Embree's valid mask: every lane, or some (then only they count for leaving early).
+    int active[kLanes];
+    for (int k = 0; k < kLanes; ++k) active[k] = trial % 3 == 0 || rng.next_float() < 0.5f ? -1 : 0;
+    const bool tested = sphere_hit_distances_exact(center, radius, lanes, active, t);
+    skipped += !tested;
     for (int k = 0; k < kLanes; ++k) {
       const Ray ray{{ox[k], oy[k], oz[k]}, {dx[k], dy[k], dz[k]}};
       const float scalar = sphere_hit_distance(center, radius, ray, t_min[k], t_max[k]);
+      if (!tested) {  // left early: no active lane may have a hit
+        if (active[k]) {
+          ASSERT_EQ(scalar, kInf) << "trial " << trial << " lane " << k;
+        }
+        continue;
+      }
       ASSERT_EQ(std::bit_cast<std::uint32_t>(t[k]), std::bit_cast<std::uint32_t>(scalar))
           << "trial " << trial << " lane " << k << ": " << t[k] << " against " << scalar;
       hits += scalar < kInf;
@@ -169,6 +181,30 @@ TEST(SphereIntersect, LanesGiveTheScalarTestBitForBit) {
   }
   EXPECT_GT(hits, cases / 4);
   EXPECT_LT(hits, cases * 3 / 4);
+  EXPECT_GT(skipped, 100);  // the early way out is taken, and checked above
+}
+
+// A packet whose every ray passes beside the sphere leaves before the square roots; one ray
+// that grazes it is enough to test them all.
+TEST(SphereIntersect, LanesLeaveEarlyOnlyWhenNoActiveRayCanHit) {
+  constexpr int kLanes = 8;
+  float ox[kLanes], oy[kLanes], oz[kLanes], dx[kLanes], dy[kLanes], dz[kLanes];
+  float t_min[kLanes], t_max[kLanes], t[kLanes];
+  int active[kLanes];
+  for (int k = 0; k < kLanes; ++k) {
+    ox[k] = -5, oy[k] = 1.5f + float(k), oz[k] = 0, dx[k] = 1, dy[k] = 0, dz[k] = 0;
+    t_min[k] = 0, t_max[k] = kInf, active[k] = -1;
+  }
+  double inv_a[kLanes];
+  inverse_length_squared<kLanes>(dx, dy, dz, inv_a);
+  const RayLanes<kLanes> lanes{{ox, oy, oz}, {dx, dy, dz}, t_min, t_max, inv_a};
+  EXPECT_FALSE(sphere_hit_distances_exact(Vec3{0, 0, 0}, 1.0f, lanes, active, t));
+  oy[5] = 1.0f;  // grazes the top
+  ASSERT_TRUE(sphere_hit_distances_exact(Vec3{0, 0, 0}, 1.0f, lanes, active, t));
+  EXPECT_EQ(t[5], 5.0f);
+  EXPECT_EQ(t[0], kInf);
+  active[5] = 0;  // a grazing ray outside the box Embree tested does not count
+  EXPECT_FALSE(sphere_hit_distances_exact(Vec3{0, 0, 0}, 1.0f, lanes, active, t));
 }
 
 }  // namespace

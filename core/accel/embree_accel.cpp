@@ -79,13 +79,23 @@ void packet_intersect(const SphereSet& s, unsigned i, const RTCIntersectFunction
   alignas(32) float t_max[kLanes];
   alignas(32) float t[kLanes];
   for (int k = 0; k < kLanes; ++k) t_max[k] = next_float_up(tfar[k]);
+  const float* dx = &RTCRayN_dir_x(rays, kLanes, 0);
+  const float* dy = &RTCRayN_dir_y(rays, kLanes, 0);
+  const float* dz = &RTCRayN_dir_z(rays, kLanes, 0);
+  const double* inv_a =
+      reinterpret_cast<const EmbreeAccel::SkippingContext*>(args->context)->packet_inv_a;
+  alignas(64) double own_inv_a[kLanes];
+  if (!inv_a) {  // a packet that did not come from intersect_packet
+    inverse_length_squared<kLanes>(dx, dy, dz, own_inv_a);
+    inv_a = own_inv_a;
+  }
   const RayLanes<kLanes> lanes{{&RTCRayN_org_x(rays, kLanes, 0), &RTCRayN_org_y(rays, kLanes, 0),
                                 &RTCRayN_org_z(rays, kLanes, 0)},
-                               {&RTCRayN_dir_x(rays, kLanes, 0), &RTCRayN_dir_y(rays, kLanes, 0),
-                                &RTCRayN_dir_z(rays, kLanes, 0)},
+                               {dx, dy, dz},
                                &RTCRayN_tnear(rays, kLanes, 0),
-                               t_max};
-  sphere_hit_distances_exact(s.center(i), s.radius[i], lanes, t);
+                               t_max,
+                               inv_a};
+  if (!sphere_hit_distances_exact(s.center(i), s.radius[i], lanes, args->valid, t)) return;
   for (int k = 0; k < kLanes; ++k) {
     if (!args->valid[k] || t[k] == std::numeric_limits<float>::infinity()) continue;
     const bool has_hit = RTCHitN_geomID(hits, kLanes, k) != RTC_INVALID_GEOMETRY_ID;
@@ -206,6 +216,10 @@ void EmbreeAccel::intersect_packet(const Ray* rays, int count, std::optional<Hit
     packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
     packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
   }
+  // Each ray's 1/|d|^2 once, not once for every sphere it meets.
+  alignas(64) double inv_a[kPacketSize];
+  inverse_length_squared<kPacketSize>(packet.ray.dir_x, packet.ray.dir_y, packet.ray.dir_z, inv_a);
+  context.packet_inv_a = inv_a;
   rtcIntersect8(valid, scene_, &context.embree, &packet);
   for (int k = 0; k < count; ++k) {
     hits[k] = packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID

@@ -32,6 +32,7 @@ class EmbreeAccel {
   struct SkippingContext {
     RTCIntersectContext embree;
     std::uint32_t skip;
+    const double* packet_inv_a = nullptr;  // a camera packet's 1/|d|^2 per ray, else null
   };
 
   // Closest hit with 0 < t < t_max, through rtcIntersect1.
