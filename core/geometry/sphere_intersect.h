@@ -24,7 +24,7 @@
 namespace rtiow {
 
 // The test in two halves, so that a packet can stop after the first when no ray's
-// discriminant is positive. The first: the quadratic's terms for a ray whose 1/|d|^2 is given
+// discriminant is non-negative. The first: the quadratic's terms for a ray whose 1/|d|^2 is given
 // (a ray tested against many spheres divides once).
 template <typename T>
 struct SphereQuadratic {
