@@ -177,5 +177,28 @@ TEST(NameIndex, GivesDenseIndicesInFirstSeenOrder) {
   EXPECT_EQ(names.name(nul), with_nul);
 }
 
+TEST(NameIndex, KeepsEveryNameThroughGrowthWhenHashesCollide) {
+  // The caller gives the hash: names that share one (and whose first slot is the table's
+  // last, so that their probes wrap around) or share its top bits, across many doublings.
+  NameIndex names;
+  std::vector<std::pair<std::string, std::uint64_t>> inserted;
+  for (int i = 0; i < 5000; ++i) {
+    const std::uint64_t hash = i % 3 == 0   ? ~std::uint64_t(0)
+                               : i % 3 == 1 ? (std::uint64_t(i % 7) << 61) | std::uint64_t(i)
+                                            : NameIndex::hash(std::to_string(i));
+    std::string name = "n";  // (append: GCC 12 warns falsely, -Wrestrict, on "n" + string)
+    name.append(std::to_string(i));
+    inserted.push_back({name, hash});
+    ASSERT_EQ(names.intern(inserted.back().first, hash), std::uint32_t(i));
+  }
+  for (std::size_t i = 0; i < inserted.size(); ++i) {
+    EXPECT_EQ(names.intern(inserted[i].first, inserted[i].second), std::uint32_t(i));
+    EXPECT_EQ(names.name(std::uint32_t(i)), inserted[i].first);
+  }
+  EXPECT_EQ(names.size(), inserted.size());
+  EXPECT_EQ(names.intern("", 0), std::uint32_t(inserted.size()));
+  EXPECT_EQ(names.name(std::uint32_t(inserted.size())), "");
+}
+
 }  // namespace
 }  // namespace rtiow

@@ -5,7 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <xmmintrin.h>
+
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -136,6 +140,90 @@ TEST(SceneInRuns, ReadsEscapesAtEveryPlaceInABlockAndAWindow) {
       ASSERT_TRUE(split.has_value()) << "pad " << pad << ", window " << window;
       expect_same(*split, whole, "pad " + std::to_string(pad));
     }
+  }
+}
+
+TEST(SceneInRuns, ReadsEveryShapeOfNumberAsTheOnePieceParseDoes) {
+  // A run reads a number's text straight to a double; the one-piece parse reads a whole
+  // number as an integer first ("-0" is then +0), an underflow through strtod, and a
+  // whole number past 64 bits as a double.
+  const std::vector<std::string> numbers = {"-0",
+                                            "0",
+                                            "-0.0",
+                                            "0e0",
+                                            "-0e-0",
+                                            "1e-400",
+                                            "-4.9e-324",
+                                            "2.2250738585072011e-308",
+                                            "18446744073709551616",
+                                            "-9223372036854775809",
+                                            "9007199254740993",
+                                            "1E2",
+                                            "0.1e1",
+                                            "-12",
+                                            "123456789012345678901234567890",
+                                            "3.4028235677973366e38",
+                                            "1e-45",
+                                            "-1e-40"};
+  for (const std::string& x : numbers) {
+    const std::string fuzz = x.front() == '-' || x.size() > 6 ? "0" : x;
+    const std::string text = R"({"version": 1, "name": "n",
+      "camera": {"lookfrom": [13, 2, 3], "lookat": [0, 0, 0], "vfov": 20},
+      "image": {"width": 40, "height": 20},
+      "materials": {"g": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]},
+                    "m": {"type": "metal", "albedo": [0.7, 0.6, 0.5], "fuzz": )" +
+                             fuzz + R"(}},
+      "spheres": [{"center": [)" +
+                             x + ", " + x + ", " + x + R"(], "radius": 1000,
+                   "material": "g"},
+                  {"center": [1, )" +
+                             x + R"(, 0], "radius": 0.5, "material": "m"}]})";
+    const std::optional<Scene> whole = in_one_piece(text);
+    const std::optional<Scene> split = in_runs(text, 1, 64);
+    ASSERT_EQ(whole.has_value(), split.has_value()) << x;
+    if (!whole) continue;
+    expect_same(*split, *whole, x);
+    for (std::size_t i = 0; i < whole->spheres.size(); ++i) {
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(split->spheres.center_x[i]),
+                std::bit_cast<std::uint32_t>(whole->spheres.center_x[i]))
+          << x;
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(split->spheres.center_y[i]),
+                std::bit_cast<std::uint32_t>(whole->spheres.center_y[i]))
+          << x;
+    }
+  }
+}
+
+TEST(SceneInRuns, ReadsDenormalsAsTheCallerDoesWhateverTheWorkersWereLeftWith) {
+  // TBB's workers run an arena's tasks under the floating-point settings of the thread that
+  // started it; an Embree build that starts TBB leaves them flushing denormals to zero. Here
+  // an arena starts so on purpose, and the split read, most of it on those workers, must
+  // still give each sphere the denormal the one-piece read gives.
+  std::string text = R"({"version": 1,
+    "camera": {"lookfrom": [13, 2, 3], "lookat": [0, 0, 0], "vfov": 20},
+    "image": {"width": 40, "height": 20},
+    "materials": {"g": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}}, "spheres": [)";
+  for (int i = 0; i < 20000; ++i) {
+    text.append(i ? ",\n" : "\n").append(R"({"center": [1e-45, -3e-42, )");
+    text.append(std::to_string(i)).append(R"(], "radius": 0.5, "material": "g"})");
+  }
+  text.append("]}");
+  const Scene whole = parse_scene(text, "t.json");
+  ASSERT_EQ(std::bit_cast<std::uint32_t>(whole.spheres.center_x[0]), 1u);
+  const unsigned settings = _mm_getcsr();
+  _mm_setcsr(settings | 0x8040);  // flush to zero, denormals are zero
+  tbb::task_arena arena(2);
+  arena.initialize();
+  _mm_setcsr(settings);
+  std::optional<Scene> split;
+  arena.execute([&] { split = read_scene_in_runs(reader(text, 1 << 20), "t.json", 4096, 4096); });
+  ASSERT_TRUE(split.has_value());
+  expect_same(*split, whole, "denormals");
+  for (std::size_t i = 0; i < whole.spheres.size(); ++i) {
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(split->spheres.center_x[i]), 1u) << i;
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(split->spheres.center_y[i]),
+              std::bit_cast<std::uint32_t>(whole.spheres.center_y[i]))
+        << i;
   }
 }
 

@@ -13,6 +13,8 @@
 
 #include <optional>
 
+#include "core/parallel/ieee_floating_point.h"
+
 namespace rtiow {
 
 // 0: every core.
@@ -34,6 +36,7 @@ template <typename F>
 auto with_threads(int asked, F&& f) {
   const int threads = thread_count(asked);
   const std::optional<tbb::global_control> allowed = allow_threads(threads);
+  const IeeeFloatingPoint ieee;  // the arena's settings, whatever the caller's
   tbb::task_arena arena(threads);
   return arena.execute(f);
 }

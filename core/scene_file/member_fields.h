@@ -6,17 +6,18 @@
 
 #include <array>
 #include <cstddef>
-#include <string>
 #include <string_view>
 
 namespace rtiow {
 
+// Its key and text lie in the text being read (RapidJSON decodes strings in place there), which
+// outlives the fields: they are made into a sphere or a material before the next member.
 struct MemberField {
   enum Kind { kNumber, kString, kTriple };
-  std::string key;
+  std::string_view key;
   Kind kind = kNumber;
   std::array<double, 3> numbers{};  // kNumber: [0]; kTriple: all three
-  std::string text;                 // kString
+  std::string_view text;            // kString
 };
 
 class MemberFields {
@@ -32,7 +33,7 @@ class MemberFields {
   MemberField* add(std::string_view key) {
     if (count_ == kCapacity || find(key)) return nullptr;
     MemberField& field = fields_[count_++];
-    field.key.assign(key);
+    field.key = key;
     return &field;
   }
 
@@ -46,7 +47,7 @@ class MemberFields {
   MemberField& back() { return fields_[count_ - 1]; }
 
  private:
-  std::array<MemberField, kCapacity> fields_;  // kept, so that their strings keep capacity
+  std::array<MemberField, kCapacity> fields_;
   std::size_t count_ = 0;
 };
 

@@ -1,5 +1,6 @@
 #include "core/scene_file/run_records.h"
 
+#include <charconv>
 #include <string_view>
 
 #include "core/limits/input_limits.h"
@@ -23,33 +24,33 @@ class MemberHandler : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, Mem
     fields_.clear();
   }
 
-  const std::string& key() const { return key_; }
+  std::string_view key() const { return key_; }
   const MemberFields& fields() const { return fields_; }
 
   bool Default() { return false; }
   bool RawNumber(const char* text, rapidjson::SizeType length, bool) {
-    std::optional<JsonValue> value = read_json_number({text, length}, error_);
+    const std::optional<double> value = read_number(std::string_view(text, length));
     if (!value) return false;
     if (state_ == kValue) {
       field_->kind = MemberField::kNumber;
-      field_->numbers[0] = value->GetDouble();
+      field_->numbers[0] = *value;
       state_ = kFieldKey;
       return true;
     }
     if (state_ != kTriple || numbers_ == 3) return false;
-    field_->numbers[numbers_++] = value->GetDouble();
+    field_->numbers[numbers_++] = *value;
     return true;
   }
   bool String(const char* text, rapidjson::SizeType length, bool) {
     if (length > limits::kMaxJsonStringBytes) return false;
     if (state_ == kKey) {
-      key_.assign(text, length);
+      key_ = std::string_view(text, length);
       state_ = kDone;
       return true;
     }
     if (state_ != kValue) return false;
     field_->kind = MemberField::kString;
-    field_->text.assign(text, length);
+    field_->text = std::string_view(text, length);
     state_ = kFieldKey;
     return true;
   }
@@ -85,12 +86,29 @@ class MemberHandler : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, Mem
   bool done() const { return state_ == kDone; }
 
  private:
+  // The double the one-piece reading makes of a number (read_json_number, then GetDouble),
+  // read straight from its text: that reading's whole numbers, converted, are the correctly
+  // rounded value too, except "-0", an integer zero there. What from_chars does not take
+  // whole goes that reading's way.
+  std::optional<double> read_number(std::string_view text) {
+    double d = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), d);
+    if (error == std::errc() && end == text.data() + text.size()) {
+      if (d == 0.0 && text.find_first_of(".eE") == std::string_view::npos) return 0.0;
+      return d;
+    }
+    const std::optional<JsonValue> value = read_json_number(text, error_);
+    if (!value) return std::nullopt;
+    return value->GetDouble();
+  }
+
   enum State { kKey, kMember, kFieldKey, kValue, kTriple, kDone };
   State state_ = kDone;
   MemberFields fields_;
   MemberField* field_ = nullptr;
   std::size_t numbers_ = 0;
-  std::string key_, error_;
+  std::string_view key_;  // in the text, as the fields' (member_fields.h)
+  std::string error_;
 };
 
 bool is_space(char c) {
@@ -129,7 +147,7 @@ bool read_run_records(std::string& window, const MemberRun& run, RunRecords& rec
     if (materials) {
       std::optional<Material> material = material_from_fields(handler.fields());
       if (!material) return false;
-      records.materials.push_back({handler.key(), *material});
+      records.materials.push_back({std::string(handler.key()), *material});
       records.hashes.push_back(NameIndex::hash(handler.key()));
     } else {
       std::optional<SphereRecord> sphere = sphere_from_fields(handler.fields());

@@ -25,9 +25,11 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/parallel_pipeline.h>
 #include <oneapi/tbb/task_arena.h>
+#include <oneapi/tbb/task_group.h>
 
 #include "core/io/input_file.h"
 #include "core/limits/input_limits.h"
+#include "core/parallel/ieee_floating_point.h"
 #include "core/parallel/thread_sanitizer.h"
 #include "core/scene_file/json_float.h"
 #include "core/scene_file/json_reader.h"
@@ -153,18 +155,21 @@ class MaterialTable {
   void resolve_pending() {
     if (pending_.kind == Pending::kNone) return;
     const std::uint32_t index = lookup(pending_.name, pending_.hash);
-    Slot& slot = slots_[index];
+    Use& use = uses_[index];
     if (pending_.kind == Pending::kDefine) {
-      if (slot.defined) {
+      if (use == Use::kDefined) {
         const Place root;
         const Place materials(root, "materials");
         r_.fail(Place(materials, pending_.name), "a second material of this name (duplicate key)");
       }
-      slot.defined = true;
-      slot.material = pending_.material;
+      use = Use::kDefined;
+      materials_[index] = pending_.material;
     } else {
       spheres_.material[pending_.sphere] = index;
-      if (!slot.defined && slot.first_user == kNoUser) slot.first_user = pending_.sphere;
+      if (use == Use::kNone) {
+        use = Use::kReferred;
+        first_users_.push_back({index, pending_.sphere});
+      }
     }
     pending_.kind = Pending::kNone;
   }
@@ -172,29 +177,24 @@ class MaterialTable {
   // All materials, once every name a sphere used is defined.
   std::vector<Material> take() {
     resolve_pending();
-    std::vector<Material> materials;
-    materials.reserve(slots_.size());
-    const Place root;
-    const Place spheres(root, "spheres");
-    for (std::uint32_t index = 0; index < slots_.size(); ++index) {
-      const Slot& slot = slots_[index];
-      if (!slot.defined) {
-        const Place sphere(spheres, slot.first_user);
-        r_.fail(Place(sphere, "material"),
-                "no material named " + quote_value(names_.name(index), 40) + " in /materials");
-      }
-      materials.push_back(slot.material);
+    const auto undefined = std::find(uses_.begin(), uses_.end(), Use::kReferred);
+    if (undefined != uses_.end()) {
+      const auto index = std::uint32_t(undefined - uses_.begin());
+      const auto user = std::find_if(first_users_.begin(), first_users_.end(),
+                                     [&](const auto& first) { return first.first == index; });
+      const Place root;
+      const Place spheres(root, "spheres");
+      const Place sphere(spheres, user->second);
+      r_.fail(Place(sphere, "material"),
+              "no material named " + quote_value(names_.name(index), 40) + " in /materials");
     }
-    return materials;
+    return std::move(materials_);
   }
 
  private:
-  static constexpr std::size_t kNoUser = ~std::size_t(0);
-  struct Slot {
-    Material material{Lambertian{}};
-    bool defined = false;
-    std::size_t first_user = kNoUser;
-  };
+  // What has been seen of a name: only spheres referring to it (the first is kept in
+  // first_users_), or its definition.
+  enum class Use : std::uint8_t { kNone, kReferred, kDefined };
   struct Pending {
     enum Kind { kNone, kDefine, kRefer } kind = kNone;
     std::string name;
@@ -208,14 +208,21 @@ class MaterialTable {
       r_.fail(Place(), "more materials than rtiow indexes");
     }
     const std::uint32_t index = names_.intern(name, hash);
-    if (index == slots_.size()) slots_.emplace_back();
+    if (index == uses_.size()) {
+      uses_.push_back(Use::kNone);
+      materials_.emplace_back(Lambertian{});
+    }
     return index;
   }
 
+  // By name index, in arrays of their own rather than one of records: a million names' table
+  // is copied each time it doubles, and the materials are the scene's as they stand.
   const Reader& r_;
   SphereSet& spheres_;
   NameIndex names_;
-  std::vector<Slot> slots_;
+  std::vector<Material> materials_;
+  std::vector<Use> uses_;
+  std::vector<std::pair<std::uint32_t, std::size_t>> first_users_;  // (name, sphere)
   Pending pending_;
 };
 
@@ -330,6 +337,7 @@ void add_records(const WindowRecords& window, MaterialTable& table, SphereSet& s
 
 std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, const std::string& name,
                                         std::size_t run_bytes, std::size_t window_bytes) {
+  const IeeeFloatingPoint ieee;
   const Reader r(one_line(name, 120));
   Scene scene;
   MaterialTable table(r, scene.spheres);
@@ -396,8 +404,13 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
           tsan_release(&tsan_join_sync);
         });
     const auto tokens = std::size_t(2 * tbb::this_task_arena::max_concurrency());
+    // The stages' tasks convert numbers under IEEE's settings (ieee_floating_point.h), as
+    // the one-piece read does, whatever the arena's.
+    tbb::task_group_context context(
+        tbb::task_group_context::bound,
+        tbb::task_group_context::default_traits | tbb::task_group_context::fp_settings);
     tsan_release(&tsan_fork_sync);
-    tbb::parallel_pipeline(tokens, cut & read & resolve);
+    tbb::parallel_pipeline(tokens, cut & read & resolve, context);
     tsan_acquire(&tsan_join_sync);
     if (failed) return std::nullopt;
     // The skeleton's split containers are empty: a member there means the scan was wrong.
@@ -422,6 +435,7 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
 namespace {
 
 Scene read_scene_from(JsonInput::Source source, std::uint64_t max_bytes, const std::string& name) {
+  const IeeeFloatingPoint ieee;  // as the split read (read_scene_in_runs)
   const std::string shown = one_line(name, 120);
   JsonInput input(std::move(source), max_bytes, shown);
   Scene scene = read_scene(Reader(shown), input);

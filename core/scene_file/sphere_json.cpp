@@ -38,7 +38,7 @@ std::optional<SphereRecord> sphere_from_fields(const MemberFields& fields) {
   }
   const auto r = float(radius->numbers[0]);
   if (r == 0.0f) return std::nullopt;
-  return SphereRecord{Vec3(Vec3d{c[0], c[1], c[2]}), r, material->text};
+  return SphereRecord{Vec3(Vec3d{c[0], c[1], c[2]}), r, std::string(material->text)};
 }
 
 }  // namespace rtiow
