@@ -147,7 +147,7 @@ bool read_run_records(std::string& window, const MemberRun& run, RunRecords& rec
     if (materials) {
       std::optional<Material> material = material_from_fields(handler.fields());
       if (!material) return false;
-      records.materials.push_back({std::string(handler.key()), *material});
+      records.materials.push_back({handler.key(), *material});
       records.hashes.push_back(NameIndex::hash(handler.key()));
     } else {
       std::optional<SphereRecord> sphere = sphere_from_fields(handler.fields());

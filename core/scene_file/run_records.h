@@ -18,9 +18,9 @@
 
 namespace rtiow {
 
-// A material as read, with its name.
+// A material as read, with its name (a view into the window, as a sphere's material name).
 struct MaterialRecord {
-  std::string name;
+  std::string_view name;
   Material material;
 };
 
@@ -33,7 +33,8 @@ struct RunRecords {
 
 // Reads the members of `run` (of "materials" or of "spheres"), which lies in `window`, into
 // `records`; false unless the run is exactly the members the scan counted, each valid. The
-// window's text is parsed in place (strings are decoded where they lie): it is not read again.
+// window's text is parsed in place (strings are decoded where they lie), and the records' names
+// are views into it: keep it until they are resolved.
 bool read_run_records(std::string& window, const MemberRun& run, RunRecords& records);
 
 }  // namespace rtiow

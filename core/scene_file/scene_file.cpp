@@ -19,6 +19,7 @@
 #include <optional>
 #include <sstream>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <oneapi/tbb/blocked_range.h>
@@ -132,7 +133,8 @@ class MaterialTable {
  public:
   MaterialTable(const Reader& r, SphereSet& spheres) : r_(r), spheres_(spheres) {}
 
-  // `hash`: NameIndex::hash(name), which a caller may have computed on another core.
+  // `hash`: NameIndex::hash(name), which a caller may have computed on another core. The name
+  // is copied: it is resolved when the next one comes.
   void define(std::string_view name, std::uint64_t hash, const Material& m) {
     resolve_pending();
     pending_ = {Pending::kDefine, std::string(name), hash, m, 0};
@@ -146,33 +148,37 @@ class MaterialTable {
     names_.prefetch(hash);
   }
 
-  // Starts loading where a name of this hash will be looked up (a caller with many names at
-  // hand hides the miss better than the one-element delay can).
-  void prefetch(std::uint64_t hash) const { names_.prefetch(hash); }
-
   // Resolves the name read last. Call it before reading the next element, so that its error
   // (a duplicate name) comes before any error of the next.
   void resolve_pending() {
-    if (pending_.kind == Pending::kNone) return;
-    const std::uint32_t index = lookup(pending_.name, pending_.hash);
-    Use& use = uses_[index];
-    if (pending_.kind == Pending::kDefine) {
-      if (use == Use::kDefined) {
-        const Place root;
-        const Place materials(root, "materials");
-        r_.fail(Place(materials, pending_.name), "a second material of this name (duplicate key)");
-      }
-      use = Use::kDefined;
-      materials_[index] = pending_.material;
-    } else {
-      spheres_.material[pending_.sphere] = index;
-      if (use == Use::kNone) {
-        use = Use::kReferred;
-        first_users_.push_back({index, pending_.sphere});
-      }
-    }
-    pending_.kind = Pending::kNone;
+    const Pending::Kind kind = std::exchange(pending_.kind, Pending::kNone);
+    if (kind == Pending::kDefine) define_now(pending_.name, pending_.hash, pending_.material);
+    if (kind == Pending::kRefer) refer_now(pending_.name, pending_.hash, pending_.sphere);
   }
+
+  // define() and refer() at once, for a caller that hides the table's misses itself (by
+  // prefetch(), some names ahead).
+  void define_now(std::string_view name, std::uint64_t hash, const Material& m) {
+    const std::uint32_t index = lookup(name, hash);
+    if (uses_[index] == Use::kDefined) {
+      const Place root;
+      const Place materials(root, "materials");
+      r_.fail(Place(materials, name), "a second material of this name (duplicate key)");
+    }
+    uses_[index] = Use::kDefined;
+    materials_[index] = m;
+  }
+  void refer_now(std::string_view name, std::uint64_t hash, std::size_t sphere) {
+    const std::uint32_t index = lookup(name, hash);
+    spheres_.material[sphere] = index;
+    if (uses_[index] == Use::kNone) {
+      uses_[index] = Use::kReferred;
+      first_users_.push_back({index, sphere});
+    }
+  }
+
+  // Starts loading where a name of this hash will be looked up.
+  void prefetch(std::uint64_t hash) const { names_.prefetch(hash); }
 
   // All materials, once every name a sphere used is defined.
   std::vector<Material> take() {
@@ -307,7 +313,7 @@ Scene read_scene(const Reader& r, JsonInput& input) {
 
 // A window's runs and what they read to.
 struct WindowRecords {
-  std::shared_ptr<std::string> text;  // the window, kept until its runs are read
+  std::shared_ptr<std::string> text;  // the window, kept until the records' names are resolved
   std::vector<MemberRun> runs;
   RunRecords records;
 };
@@ -325,9 +331,11 @@ void add_records(const WindowRecords& window, MaterialTable& table, SphereSet& s
       if (name + kAhead < hashes.size()) table.prefetch(hashes[name + kAhead]);
       if (materials) {
         const MaterialRecord& m = records.materials[material++];
-        table.define(m.name, hashes[name], m.material);
+        table.define_now(m.name, hashes[name], m.material);
       } else {
-        add_sphere(records.spheres[sphere++], hashes[name], table, spheres);
+        const SphereRecord& s = records.spheres[sphere++];
+        spheres.add(s.center, s.radius, 0);
+        table.refer_now(s.material, hashes[name], spheres.size() - 1);
       }
     }
   }
@@ -384,7 +392,6 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
               break;
             }
           }
-          records->text.reset();
           tsan_release(&read_order);
           return records;
         });

@@ -18,7 +18,7 @@ SphereRecord read_sphere(const Reader& r, const JsonValue& s, const Place& p) {
   if (radius == 0.0f) r.fail(radius_at, "must not be 0 (negative makes a hollow sphere)");
   const std::string_view material =
       r.string(r.require(s, p, "material"), Place(p, "material"), "a material name");
-  return {center, radius, std::string(material)};
+  return {center, radius, material};
 }
 
 std::optional<SphereRecord> sphere_from_fields(const MemberFields& fields) {
@@ -38,7 +38,7 @@ std::optional<SphereRecord> sphere_from_fields(const MemberFields& fields) {
   }
   const auto r = float(radius->numbers[0]);
   if (r == 0.0f) return std::nullopt;
-  return SphereRecord{Vec3(Vec3d{c[0], c[1], c[2]}), r, std::string(material->text)};
+  return SphereRecord{Vec3(Vec3d{c[0], c[1], c[2]}), r, material->text};
 }
 
 }  // namespace rtiow

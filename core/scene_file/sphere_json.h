@@ -4,7 +4,7 @@
 // Internal to the scene reader (it needs RapidJSON).
 
 #include <optional>
-#include <string>
+#include <string_view>
 
 #include "core/geometry/vec3.h"
 #include "core/scene_file/json_reader.h"
@@ -12,11 +12,12 @@
 
 namespace rtiow {
 
-// A sphere as read, its material still a name.
+// A sphere as read, its material still a name: a view into the text it was read from (a JSON
+// value's, or a window's), which the caller keeps until the name is resolved.
 struct SphereRecord {
   Vec3 center;
   float radius = 0.0f;
-  std::string material;
+  std::string_view material;
 };
 
 // The sphere at `p`; throws InvalidInput naming the place of the first problem.
