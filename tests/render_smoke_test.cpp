@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 #include <oneapi/tbb/task_arena.h>
+#include <xmmintrin.h>
 
 #include <algorithm>
 #include <cmath>
@@ -345,6 +346,37 @@ TEST(Render, SphereFieldIsTheSameForAnyThreadCount) {
   }
   EXPECT_NEAR(double(diffuse) / 30000, 0.80, 0.007);
   EXPECT_NEAR(double(metal) / 30000, 0.15, 0.006);
+}
+
+// A scene at the scale of float's denormals: a render that flushed them to zero would refuse
+// its radii or see no sphere. An application may have set its threads to flush them (Embree
+// advises it); render() keeps IEEE's settings all the same, for its checks and its arenas, so
+// the image is the one a default thread renders. (The naive loop: Embree's own traversal
+// flushes them, so it sees nothing at this scale either way.)
+TEST(Render, DenormalsAreKeptWhateverTheCallersFloatingPointSettings) {
+  Scene scene;
+  scene.camera.lookfrom = {0, 0, 4e-39};
+  scene.camera.lookat = {0, 0, 0};
+  scene.camera.vfov_degrees = 60;
+  const std::uint32_t grey = scene.add_material(Lambertian{Color(0.5f, 0.5f, 0.5f)});
+  scene.spheres.add({0, 0, 0}, 1e-39f, grey);
+  scene.spheres.add({1.5e-39f, 0, -1e-39f}, 0.5e-39f, grey);
+  RenderSettings settings = tiny(scene);
+  settings.width = settings.height = 24;
+  settings.threads = 2;
+  settings.accel = AccelKind::Naive;
+  const RenderResult ieee = render(scene, settings);
+  const unsigned caller = _mm_getcsr();
+  _mm_setcsr(caller | 0x8040);  // flush to zero, denormals are zero
+  const RenderResult flushing = render(scene, settings);
+  _mm_setcsr(caller);
+  EXPECT_TRUE(test::bit_identical(ieee.film, flushing.film));
+  // The spheres are there: the image's centre is darker than the sky's corner.
+  const auto luminance = [&](int x, int y) {
+    const Color c = ieee.film.at(x, y);
+    return c.x + c.y + c.z;
+  };
+  EXPECT_LT(luminance(12, 12), 0.8f * luminance(0, 0));
 }
 
 TEST(Render, RefusesInvalidSettingsBeforeWork) {

@@ -15,6 +15,7 @@
 #include "core/limits/error.h"
 #include "core/limits/image_size.h"
 #include "core/limits/input_limits.h"
+#include "core/parallel/ieee_floating_point.h"
 #include "core/parallel/thread_count.h"
 #include "core/render/adaptive_sampling.h"
 #include "core/render/render_loop.h"
@@ -190,6 +191,7 @@ void validate(const Scene& scene, const RenderSettings& settings) {
 
 RenderResult render(const Scene& scene, const RenderSettings& settings, RenderProgress* progress,
                     const Checkpointing* checkpointing) {
+  const IeeeFloatingPoint ieee;  // the checks and the camera too, whatever the caller's settings
   validate(scene, settings);
   if (checkpointing && checkpointing->resume) check_resumable(*checkpointing->resume, settings);
   const Camera camera(scene.camera, settings.width, settings.height);

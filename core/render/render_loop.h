@@ -21,7 +21,6 @@
 #include "core/film/film.h"
 #include "core/film/pixel_variance.h"
 #include "core/film/sample_sum.h"
-#include "core/parallel/ieee_floating_point.h"
 #include "core/parallel/thread_count.h"
 #include "core/parallel/thread_sanitizer.h"
 #include "core/render/integrator.h"
@@ -166,7 +165,6 @@ template <typename Range, typename Body>
 void parallel_over(const RenderSettings& settings, const Range& range, const Body& body) {
   const int threads = thread_count(settings.threads);
   const std::optional<tbb::global_control> allowed = allow_threads(threads);
-  const IeeeFloatingPoint ieee;  // the arena's settings, whatever the caller's
   tbb::task_arena arena(threads);
   tsan_release(&tsan_fork_sync);  // what the tasks read was written before this
   arena.execute(
