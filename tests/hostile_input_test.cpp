@@ -379,6 +379,11 @@ std::vector<Case> number_cases() {
        "/spheres/0/radius: must not be 0",
        render({"s.json"}),
        {{"s.json", scene_with("\"radius\": 0.5", "\"radius\": 1e-60")}}},
+      {"RadiusDenormal",  // Embree's build would flush its box to nothing
+       2,
+       "/spheres/0/radius: must be at least 1.2e-38 in size",
+       render({"s.json"}),
+       {{"s.json", scene_with("\"radius\": 0.5", "\"radius\": 1e-39")}}},
       {"IorZero",
        2,
        "/materials/glass/ior: must be from 0.001 to 1e+06",

@@ -348,19 +348,19 @@ TEST(Render, SphereFieldIsTheSameForAnyThreadCount) {
   EXPECT_NEAR(double(metal) / 30000, 0.15, 0.006);
 }
 
-// A scene at the scale of float's denormals: a render that flushed them to zero would refuse
-// its radii or see no sphere. An application may have set its threads to flush them (Embree
-// advises it); render() keeps IEEE's settings all the same, for its checks and its arenas, so
-// the image is the one a default thread renders. (The naive loop: Embree's own traversal
-// flushes them, so it sees nothing at this scale either way.)
+// A camera whose position is a float denormal, 5e-39 from spheres 3e-38 away (their sizes
+// within float's normal range, as validate() asks): a render that flushed denormals to zero
+// would see them from the origin. An application may have set its threads to flush them
+// (Embree advises it); render() keeps IEEE's settings all the same, for its checks, its
+// camera and its arenas, so the image is the one a default thread renders.
 TEST(Render, DenormalsAreKeptWhateverTheCallersFloatingPointSettings) {
   Scene scene;
-  scene.camera.lookfrom = {0, 0, 4e-39};
-  scene.camera.lookat = {0, 0, 0};
-  scene.camera.vfov_degrees = 60;
+  scene.camera.lookfrom = {0, 0, 5e-39};
+  scene.camera.lookat = {0, 0, -1e-38};
+  scene.camera.vfov_degrees = 90;
   const std::uint32_t grey = scene.add_material(Lambertian{Color(0.5f, 0.5f, 0.5f)});
-  scene.spheres.add({0, 0, 0}, 1e-39f, grey);
-  scene.spheres.add({1.5e-39f, 0, -1e-39f}, 0.5e-39f, grey);
+  scene.spheres.add({0, 0, -3e-38f}, 2e-38f, grey);
+  scene.spheres.add({3e-38f, 0, -4e-38f}, 1.5e-38f, grey);
   RenderSettings settings = tiny(scene);
   settings.width = settings.height = 24;
   settings.threads = 2;
@@ -377,6 +377,9 @@ TEST(Render, DenormalsAreKeptWhateverTheCallersFloatingPointSettings) {
     return c.x + c.y + c.z;
   };
   EXPECT_LT(luminance(12, 12), 0.8f * luminance(0, 0));
+  // And a sphere whose radius is a denormal is refused, not rendered as nothing by Embree.
+  scene.spheres.radius[1] = 1e-39f;
+  EXPECT_THROW(render(scene, settings), InvalidInput);
 }
 
 TEST(Render, RefusesInvalidSettingsBeforeWork) {

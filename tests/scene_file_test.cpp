@@ -173,6 +173,8 @@ std::vector<BadCase> bad_cases() {
        "line 9, column 53: number overflow parsing '1e999'"},
       {"zero radius", replace(v, "\"radius\": 0.5", "\"radius\": 0"),
        "/spheres/0/radius: must not be 0"},
+      {"denormal radius", replace(v, "\"radius\": 0.5", "\"radius\": -1e-39"),
+       "/spheres/0/radius: must be at least 1.2e-38 in size"},
       {"unknown material", replace(v, "\"material\": \"red\"", "\"material\": \"blue\""),
        "/spheres/0/material: no material named 'blue'"},
       {"material not a name", replace(v, "\"material\": \"red\"", "\"material\": 3"),

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 namespace rtiow::limits {
 
@@ -14,6 +15,11 @@ namespace rtiow::limits {
 // traceable; camera rays are checked themselves against kMaxRayComponent.
 inline constexpr double kMaxCoordinate = 1e15;
 inline constexpr double kMaxRayComponent = 1e18;
+
+// The smallest sphere radius: float's smallest normal. Embree's build flushes denormals to
+// zero, so a smaller sphere's box would collapse there, and Embree would miss the sphere the
+// naive loop finds.
+inline constexpr float kMinRadius = std::numeric_limits<float>::min();
 
 // Indices of refraction the extremes tests render without NaN (the book's glass is 1.5,
 // real materials lie within 1 to 4).

@@ -29,6 +29,9 @@ void validate(const Scene& scene) {
     }
     // A zero radius would give the hit no normal (0/0); it would be invisible anyway.
     if (s.radius[i] == 0.0f) throw InvalidInput(sphere_name(i) + "radius must not be 0");
+    if (std::abs(s.radius[i]) < limits::kMinRadius) {
+      throw InvalidInput(sphere_name(i) + "radius must be at least 1.2e-38 in size");
+    }
     if (s.material[i] >= scene.materials.size()) {
       throw InvalidInput(sphere_name(i) + "refers to a material that does not exist");
     }

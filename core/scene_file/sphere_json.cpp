@@ -16,6 +16,9 @@ SphereRecord read_sphere(const Reader& r, const JsonValue& s, const Place& p) {
   const Place radius_at(p, "radius");
   const auto radius = float(r.bounded(r.require(s, p, "radius"), radius_at));
   if (radius == 0.0f) r.fail(radius_at, "must not be 0 (negative makes a hollow sphere)");
+  if (std::abs(radius) < limits::kMinRadius) {
+    r.fail(radius_at, "must be at least 1.2e-38 in size (float's smallest normal)");
+  }
   const std::string_view material =
       r.string(r.require(s, p, "material"), Place(p, "material"), "a material name");
   return {center, radius, material};
@@ -37,7 +40,7 @@ std::optional<SphereRecord> sphere_from_fields(const MemberFields& fields) {
     return std::nullopt;
   }
   const auto r = float(radius->numbers[0]);
-  if (r == 0.0f) return std::nullopt;
+  if (std::abs(r) < limits::kMinRadius) return std::nullopt;
   return SphereRecord{Vec3(Vec3d{c[0], c[1], c[2]}), r, material->text};
 }
 
