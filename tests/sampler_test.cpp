@@ -176,14 +176,14 @@ bool is_zero_m_two_net(const std::vector<std::array<float, 2>>& points, int m) {
   return true;
 }
 
-// The joint Sobol point covers the camera and the first bounce; every later group (and, for
+// The joint Sobol point covers the camera and the first three bounces; every later group (and, for
 // padded-sobol, every group) is a shuffled, scrambled (0,2)-sequence of its own: the first
 // 2^m samples of a pixel form a (0,m,2)-net in each 2D group and fill the strata of each 1D
 // dimension, at every power of two.
 // Each replicate (the even samples, the odd ones) is one stratified sequence.
 TEST(SampleStream, EveryGroupOfEveryBounceIsStratifiedInEachReplicate) {
   for (const SamplerKind kind : {SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
-    for (const int bounce : {0, 1, 7, 40}) {
+    for (const int bounce : {0, 1, 2, 3, 7, 40}) {
       for (std::uint64_t replicate = 0; replicate < kReplicates; ++replicate) {
         std::vector<std::array<float, 2>> film, direction;
         std::vector<float> lobe, radius;
@@ -204,8 +204,8 @@ TEST(SampleStream, EveryGroupOfEveryBounceIsStratifiedInEachReplicate) {
           EXPECT_TRUE(fills_strata(lobe, m)) << where;
           EXPECT_TRUE(fills_strata(radius, m)) << where;
           EXPECT_TRUE(is_zero_m_two_net(film, m)) << where;
-          // Sobol's joint dimensions 4 and 5 are not a (0,2)-sequence; later groups are.
-          if (kind == SamplerKind::PaddedSobol || bounce > 0) {
+          // Sobol's joint dimensions are not (0,2)-sequences pairwise; later groups are.
+          if (kind == SamplerKind::PaddedSobol || bounce_dimension(bounce) >= kSobolDimensions) {
             EXPECT_TRUE(is_zero_m_two_net(direction, m)) << where;
           }
         }

@@ -96,8 +96,8 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                   "that many")
       ->check(kFiniteNotNegative);
   cmd->add_option("--sampler", o.sampler,
-                  "Sampler: sobol (one Owen-scrambled Sobol point for pixel, lens and first "
-                  "bounce, padded Sobol for later bounces: 2.3-5.4x lower relMSE at equal time "
+                  "Sampler: sobol (one Owen-scrambled Sobol point for pixel, lens and the first "
+                  "three bounces, padded Sobol for later bounces: 2.3-5.4x lower relMSE at equal time "
                   "on the built-in scenes), independent (the book's) or padded-sobol (every 1D "
                   "and 2D dimension its own scrambled Sobol sequence)")
       ->check(CLI::IsMember({to_string(SamplerKind::Independent), to_string(SamplerKind::Sobol),

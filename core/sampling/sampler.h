@@ -3,9 +3,9 @@
 // the fixed layout of core/sampling/sample_layout.h (camera 4, then 4 per bounce).
 //
 // - independent (the book's): every dimension from the sample's PCG32 stream (rng.h).
-// - sobol: the camera and the first bounce (kSobolDimensions = 8) are one Owen-scrambled
-//   Sobol point, so pixel, lens and first direction are stratified jointly; every later
-//   bounce is padded like padded-sobol.
+// - sobol: the camera and the first three bounces (kSobolDimensions = 16) are one
+//   Owen-scrambled Sobol point, so pixel, lens and the first directions are stratified
+//   jointly; every later bounce is padded like padded-sobol.
 // - padded-sobol: every 1D and 2D group on its own: a (0,2)-sequence (Sobol dimensions 0
 //   and 1) whose sample order is shuffled per (pixel, dimension) and whose values are
 //   Owen-scrambled, as pbrt-v4's PaddedSobolSampler and Burley (2020) do. Shuffling by a

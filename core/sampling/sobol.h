@@ -7,7 +7,7 @@
 // point in each of the 2^m elementary intervals of every shape.
 //
 // The generator matrices come from Joe and Kuo's direction numbers (new-joe-kuo-6.21201,
-// dimensions 2-8; dimension 1 is van der Corput's). The scramble is the hash-based nested
+// dimensions 2-16; dimension 1 is van der Corput's). The scramble is the hash-based nested
 // permutation of Laine and Karras with Vegdahl's constants (Burley 2020): each step only
 // lets higher-order bits of the reversed value depend on lower ones, which is what makes
 // it an Owen (nested uniform) scramble.
@@ -18,7 +18,8 @@
 
 namespace rtiow {
 
-inline constexpr int kSobolDimensions = 8;
+// The camera's four and three bounces' four each (core/sampling/sample_layout.h).
+inline constexpr int kSobolDimensions = 16;
 
 constexpr std::uint32_t reverse_bits(std::uint32_t x) {
   x = __builtin_bswap32(x);
@@ -32,10 +33,10 @@ namespace sobol_detail {
 struct PrimitivePolynomial {
   int degree;
   std::uint32_t coefficients;            // a_1 .. a_{s-1}, the highest first
-  std::array<std::uint32_t, 5> initial;  // m_1 .. m_s
+  std::array<std::uint32_t, 6> initial;  // m_1 .. m_s
 };
 
-// Dimensions 1..7 (the table's dimensions 2..8).
+// Dimensions 1..15 (the table's dimensions 2..16).
 constexpr std::array<PrimitivePolynomial, kSobolDimensions - 1> kJoeKuo{{
     {1, 0, {1}},
     {2, 1, {1, 3}},
@@ -44,6 +45,14 @@ constexpr std::array<PrimitivePolynomial, kSobolDimensions - 1> kJoeKuo{{
     {4, 1, {1, 1, 3, 3}},
     {4, 4, {1, 3, 5, 13}},
     {5, 2, {1, 1, 5, 5, 17}},
+    {5, 4, {1, 1, 5, 5, 5}},
+    {5, 7, {1, 1, 7, 11, 19}},
+    {5, 11, {1, 1, 5, 1, 1}},
+    {5, 13, {1, 1, 1, 3, 11}},
+    {5, 14, {1, 3, 5, 5, 31}},
+    {6, 1, {1, 3, 3, 9, 7, 49}},
+    {6, 13, {1, 1, 1, 15, 21, 21}},
+    {6, 16, {1, 3, 1, 13, 27, 49}},
 }};
 
 using Matrix = std::array<std::uint32_t, 32>;  // column k: the contribution of index bit k
@@ -81,16 +90,15 @@ inline constexpr std::array<Matrix, kSobolDimensions> kMatrices = make_matrices(
 // scramble, which works on the reversed bits, needs no reversal going in.
 using ByteTables = std::array<std::array<std::array<std::uint32_t, 256>, 4>, kSobolDimensions>;
 
+// Each entry is the entry without its lowest set bit plus that bit's column (reversal commutes
+// with XOR), one step per entry: the compile-time evaluation stays within clang's step limit.
 constexpr ByteTables make_byte_tables() {
   ByteTables t{};
-  for (int d = 0; d < kSobolDimensions; ++d) {
-    for (int b = 0; b < 4; ++b) {
-      for (std::uint32_t v = 0; v < 256; ++v) {
-        std::uint32_t x = 0;
-        for (int k = 0; k < 8; ++k) {
-          if ((v >> k) & 1u) x ^= kMatrices[std::size_t(d)][std::size_t(8 * b + k)];
-        }
-        t[std::size_t(d)][std::size_t(b)][v] = reverse_bits(x);
+  for (std::size_t d = 0; d < std::size_t(kSobolDimensions); ++d) {
+    for (std::size_t b = 0; b < 4; ++b) {
+      for (std::uint32_t v = 1; v < 256; ++v) {
+        const auto lowest = std::size_t(__builtin_ctz(v));
+        t[d][b][v] = t[d][b][v & (v - 1)] ^ reverse_bits(kMatrices[d][8 * b + lowest]);
       }
     }
   }

@@ -43,7 +43,7 @@ RenderSettings request(bool adaptive) {
 }
 
 CheckpointIdentity identity(bool adaptive) {
-  return {"0.2.0", "fuzz-scene",
+  return {"0.3.0", "fuzz-scene",
           "5x3",   "8",
           "1",     "sobol",
           "0",     adaptive ? "--target-error 0.05 --min-spp 4 --spp 64" : "uniform"};
