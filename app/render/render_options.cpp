@@ -97,9 +97,9 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
       ->check(kFiniteNotNegative);
   cmd->add_option("--sampler", o.sampler,
                   "Sampler: sobol (one Owen-scrambled Sobol point for pixel, lens and the first "
-                  "three bounces, padded Sobol for later bounces: 2.3-5.4x lower relMSE at equal time "
-                  "on the built-in scenes), independent (the book's) or padded-sobol (every 1D "
-                  "and 2D dimension its own scrambled Sobol sequence)")
+                  "three bounces, padded Sobol for later bounces: 2.3-5.4x lower relMSE at "
+                  "equal time on the built-in scenes), independent (the book's) or padded-sobol "
+                  "(every 1D and 2D dimension its own scrambled Sobol sequence)")
       ->check(CLI::IsMember({to_string(SamplerKind::Independent), to_string(SamplerKind::Sobol),
                              to_string(SamplerKind::PaddedSobol)}))
       ->capture_default_str();
