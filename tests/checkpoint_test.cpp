@@ -82,6 +82,9 @@ TEST(Checkpoint, UniformResumesToTheSameBits) {
   for (SamplerKind sampler : {SamplerKind::Independent, SamplerKind::Sobol}) {
     expect_resumes_exactly(small(sampler), "uniform " + to_string(sampler));
   }
+  RenderSettings book = small(SamplerKind::Independent);
+  book.russian_roulette = false;
+  expect_resumes_exactly(book, "uniform, no roulette");
 }
 
 TEST(Checkpoint, AdaptiveModesResumeToTheSameBits) {
@@ -198,6 +201,10 @@ TEST_F(CheckpointFile, RefusesAnotherRequestNamingWhatDiffers) {
   other.max_depth = 3;
   why = refusal(checkpoint_identity(scene_, other));
   EXPECT_NE(why.find("depth"), std::string::npos) << why;
+  other = settings_;
+  other.russian_roulette = false;  // other paths end: other samples
+  why = refusal(checkpoint_identity(scene_, other));
+  EXPECT_NE(why.find("(no roulette)"), std::string::npos) << why;
   other = settings_;
   other.samples = AdaptiveBudget{96, 4};  // an adaptive budget is part of the request
   why = refusal(checkpoint_identity(scene_, other));

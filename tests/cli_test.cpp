@@ -635,10 +635,10 @@ TEST(Cli, EveryAdvertisedFormatIsWritten) {
 TEST(Cli, EveryFormatThatHoldsTextCarriesTheWholeRequest) {
   const fs::path scene = output_path("edited.json");
   ASSERT_EQ(run_rtiow("scene materials -o " + scene.string()).exit_code, 0);
-  const std::vector<std::string> keys = {"rtiow:scene",   "rtiow:scene_file", "rtiow:scene_digest",
-                                         "rtiow:camera",  "rtiow:fresnel",    "rtiow:sampler",
-                                         "rtiow:seed",    "rtiow:spp",        "rtiow:depth",
-                                         "rtiow:version", "rtiow:accelerator"};
+  const std::vector<std::string> keys = {
+      "rtiow:scene",   "rtiow:scene_file", "rtiow:scene_digest", "rtiow:camera",
+      "rtiow:fresnel", "rtiow:sampler",    "rtiow:seed",         "rtiow:spp",
+      "rtiow:depth",   "rtiow:version",    "rtiow:accelerator",  "rtiow:russian_roulette"};
   for (const char* ext :
        {".png", ".exr", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr", ".ppm", ".bmp", ".tga"}) {
     SCOPED_TRACE(ext);
@@ -693,7 +693,7 @@ TEST(Cli, TheGalleryIsWhatThisBuildRenders) {
 
 // --like renders an image again from its own metadata: the same bytes, from every format that
 // holds the request, with settings away from every default (an override of the camera, a
-// sampler, a seed, exact Fresnel, an error target with its cap and minimum).
+// sampler, a seed, exact Fresnel, an error target with its cap and minimum, no roulette).
 TEST(Cli, LikeRendersTheSameFileAgainFromEveryFormatThatHoldsTheRequest) {
   const fs::path scene = output_path("like-scene.json");
   ASSERT_EQ(run_rtiow("scene materials -o " + scene.string()).exit_code, 0);
@@ -705,6 +705,7 @@ TEST(Cli, LikeRendersTheSameFileAgainFromEveryFormatThatHoldsTheRequest) {
     std::string sampling;
   };
   for (const Case& c : {Case{".png", "--spp 3"}, Case{".jpg", "--spp 2 --scene-seed 4"},
+                        Case{".png", "--spp 3 --roulette off"},
                         Case{".tif", "--image-error 0.2 --spp 40 --min-spp 3"},
                         Case{".exr", "--target-error 0.07 --spp 30 --min-spp 5 --stats-channels"},
                         Case{".exr", "--adaptive --spp 20"},
@@ -1044,10 +1045,12 @@ TEST(Cli, AccuracyMeasuresWritesFiguresAndReusesItsReference) {
   }
   const std::string csv = slurp(dir / "accuracy.csv");
   EXPECT_EQ(csv.rfind("group,choice,parameter", 0), 0u) << csv;
-  // Header, 3 samplers x spp 1..64, 3 x budgets 32 and 64, one image error, 3 depths, two
-  // intersectors, two Fresnel models, one target error.
-  EXPECT_EQ(count_lines(csv), 1 + 3 * 7 + 3 * 2 + 1 + 3 + 2 + 2 + 1) << csv;
+  // Header, 3 samplers x spp 1..64, 3 x budgets 32 and 64, the book's estimator at spp
+  // 1..64, one image error, 3 depths, two intersectors, two Fresnel models, one target error.
+  EXPECT_EQ(count_lines(csv), 1 + 3 * 7 + 3 * 2 + 7 + 1 + 3 + 2 + 2 + 1) << csv;
+  EXPECT_NE(csv.find("\nbook,independent without roulette,64.0,"), std::string::npos) << csv;
   EXPECT_NE(first.stdout_text.find("time to the book's quality"), std::string::npos);
+  EXPECT_NE(first.stdout_text.find("without Russian roulette"), std::string::npos);
   EXPECT_NE(first.stdout_text.find("fewer rays"), std::string::npos) << first.stdout_text;
   EXPECT_NE(figures.find("\"ray_factor\""), std::string::npos);
   EXPECT_TRUE(fs::exists(dir / "accuracy.png")) << first.stdout_text;

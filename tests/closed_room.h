@@ -28,16 +28,16 @@ struct RoomPath {
 };
 
 // Sample `sample` of pixel (0, 0) with `kind`, traced from the centre toward -z for at most
-// `depth` rays.
+// `depth` rays, with the Russian roulette or without.
 inline RoomPath trace_from_centre(const Scene& room, const NaiveAccel& accel, SamplerKind kind,
-                                  std::uint64_t sample, int depth) {
+                                  std::uint64_t sample, int depth, bool russian_roulette = true) {
   SampleStream rng(kind, 3, 0, 0, sample);
   const auto u = rng.next_camera();
   const Ray first{{0, 0, 0}, normalize(Vec3{u[0] - 0.5f, u[1] - 0.5f, -1.0f})};
   RoomPath path;
   path.color = continue_path(room, accel, first,
                              accel.intersect(first, std::numeric_limits<float>::infinity()), depth,
-                             rng, path.rays);
+                             russian_roulette, rng, path.rays);
   path.dimensions = rng.dimension();
   return path;
 }

@@ -89,18 +89,20 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, EveryScene,
                            return name;
                          });
 
-// The Sobol samplers and every adaptive mode keep the guarantee: the same image for any
-// thread count and either accelerator (adaptive decisions are taken between rounds, from
-// counts, sums and ray counts that do not depend on the schedule).
+// The Sobol samplers, every adaptive mode and the book's estimator (no roulette) keep the
+// guarantee: the same image for any thread count and either accelerator (adaptive decisions
+// are taken between rounds, from counts, sums and ray counts that do not depend on the
+// schedule).
 TEST(Render, SobolAndAdaptiveRendersAreDeterministic) {
   const Scene scene = make_builtin_scene("cover", 1);
-  enum Mode { kSobol, kPaddedSobol, kTargetError, kImageError, kBudget };
-  for (const Mode mode : {kSobol, kPaddedSobol, kTargetError, kImageError, kBudget}) {
+  enum Mode { kSobol, kPaddedSobol, kTargetError, kImageError, kBudget, kNoRoulette };
+  for (const Mode mode : {kSobol, kPaddedSobol, kTargetError, kImageError, kBudget, kNoRoulette}) {
     RenderSettings settings = tiny(scene);
+    settings.russian_roulette = mode != kNoRoulette;
     settings.sampler = mode == kPaddedSobol ? SamplerKind::PaddedSobol
                        : mode == kSobol     ? SamplerKind::Sobol
                                             : SamplerKind::Independent;
-    const bool adaptive = mode >= kTargetError;
+    const bool adaptive = mode >= kTargetError && mode <= kBudget;
     settings.samples = mode == kTargetError  ? SampleBudget(PixelErrorTarget{0.15, 128})
                        : mode == kImageError ? SampleBudget(ImageErrorTarget{0.08, 128})
                        : mode == kBudget     ? SampleBudget(AdaptiveBudget{48})

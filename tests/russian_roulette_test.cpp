@@ -110,5 +110,20 @@ TEST(RussianRoulette, APathThatPlaysKeepsTheSampleLayout) {
   EXPECT_GT(went_on, 0);
 }
 
+// Without the roulette (--roulette off, the book's estimator) every path in the closed room
+// runs to the depth limit, as the book's do.
+TEST(RussianRoulette, OffEveryPathRunsToTheDepthLimit) {
+  const Scene room = closed_room(Lambertian{{0.3f, 0.3f, 0.3f}});
+  const NaiveAccel accel(room.spheres);
+  constexpr int kDepth = 6;
+  for (const SamplerKind kind :
+       {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
+    for (std::uint64_t sample = 0; sample < 64; ++sample) {
+      const RoomPath path = trace_from_centre(room, accel, kind, sample, kDepth, false);
+      EXPECT_EQ(path.rays, std::uint64_t(kDepth)) << to_string(kind) << " sample " << sample;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rtiow

@@ -94,6 +94,22 @@ TEST(AdaptiveSampling, SpendsSamplesWhereTheNoiseIs) {
   EXPECT_GT(*std::max_element(r.pixel_samples.begin(), r.pixel_samples.end()), 64u);
 }
 
+// The book's estimator (--roulette off: every path to its depth) and the renderer's (the
+// reference's, with the roulette) have one expected image: the mean agrees within its error.
+// Off, the paths that carried almost nothing go on, so it traces more rays (6-7% on the cover).
+TEST(RussianRoulette, OffAgreesInTheMeanAndTracesMoreRays) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    RenderSettings s = settings(cover(), 256, seed);
+    const RenderResult on = render(cover(), s);
+    s.russian_roulette = false;
+    const RenderResult off = render(cover(), s);
+    const ImageError e = measure_error(to_estimate(off), reference());
+    EXPECT_LT(std::abs(e.mean_difference), kMaxZ * e.mean_difference_error)
+        << "seed " << seed << ": " << e.mean_difference << " +- " << e.mean_difference_error;
+    EXPECT_GT(off.rays_traced, on.rays_traced) << "seed " << seed;
+  }
+}
+
 // Measured 2.8x (sobol) and 2.1x (padded-sobol) at 160x107 and spp >= 16 (rtiow accuracy);
 // the margin is for other seeds and this smaller image.
 TEST(SobolSamplers, AgreeInTheMeanAndBeatIndependentSamplingAtEqualSpp) {

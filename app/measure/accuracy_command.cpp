@@ -142,7 +142,8 @@ std::function<int()> add_accuracy_command(CLI::App& app) {
       "accuracy",
       "Measure speed against accuracy on a scene: error against a cached high-spp reference "
       "for spp 1..N with each sampler, adaptive sampling (budget, image error, target error), "
-      "the time to the book's quality, the depth limit, the intersector and the Fresnel "
+      "the time to the book's quality (against the book's estimator: independent sampling "
+      "without Russian roulette), the depth limit, the intersector and the Fresnel "
       "model; prints tables, writes JSON, CSV and a PNG plot (about 2 minutes on a 2-core "
       "machine, the reference cached after the first run; --quick: a few seconds)");
   cmd->add_option("--scene", o.scene, "Built-in scene")->capture_default_str();

@@ -89,6 +89,18 @@ json sweep_spp(const Experiment& x, const AccuracyOptions& o, SamplerKind sample
   return rows;
 }
 
+// The book's estimator: independent numbers and every path to its depth (no Russian
+// roulette), the baseline of the time to the book's quality.
+json sweep_book(const Experiment& x, const AccuracyOptions& o) {
+  json rows = json::array();
+  for (int spp = 1; spp <= o.max_spp; spp *= 2) {
+    RenderRequest s = x.request();
+    s.spp = spp, s.sampler = SamplerKind::Independent, s.russian_roulette = false;
+    rows.push_back(x.run("book", "independent without roulette", spp, s).row);
+  }
+  return rows;
+}
+
 json sweep_image_error(const Experiment& x, const AccuracyOptions& o, SamplerKind sampler) {
   json rows = json::array();
   for (const double target : o.image_errors) {
@@ -155,6 +167,7 @@ json sweep_adaptive(const Experiment& x, const AccuracyOptions& o) {
 void run_sweeps(const AccuracyOptions& o, const Scene& scene, const RenderRequest& base,
                 const ImageEstimate& reference, json& r) {
   const Experiment x(o, scene, base, reference);
+  r["book"] = sweep_book(x, o);
   for (const SamplerKind kind : kAccuracySamplers)
     r["spp"][to_string(kind)] = sweep_spp(x, o, kind);
   for (const SamplerKind kind : kAccuracySamplers)

@@ -218,6 +218,7 @@ class RequestBuilder {
     add("--seed", "--seed", {need(key::kSeed)});
     add("--sampler", "--sampler", {need(key::kSampler)});
     add_copy(key::kAccelerator, "--accel");
+    add_copy(key::kRussianRoulette, "--roulette");  // absent in older files: on
     add_camera();
     if (const std::string* fresnel = find(key::kFresnel)) {
       // One model for all the glass: as --fresnel gave it, or as the scene said (the same).

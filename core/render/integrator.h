@@ -18,12 +18,14 @@
 namespace rtiow {
 
 // Follows a path on from its first ray, already traced (and counted): `hit` is what it hit.
+// Without `russian_roulette` it runs to `max_depth` (or its end) as the book's paths do.
 // Inlined into the sample loop, so that it is compiled for each of the loop's instruction sets
 // (core/parallel/instruction_sets.h) rather than once for the baseline.
 template <Accelerator Accel>
 [[gnu::always_inline]] inline Color continue_path(const Scene& scene, const Accel& accel, Ray ray,
                                                   std::optional<Hit> hit, int max_depth,
-                                                  SampleStream& rng, std::uint64_t& rays_traced) {
+                                                  bool russian_roulette, SampleStream& rng,
+                                                  std::uint64_t& rays_traced) {
   Color throughput{1.0f, 1.0f, 1.0f};
   for (int depth = 1;; ++depth) {
     if (!hit) return throughput * scene.background(ray.direction);
@@ -32,7 +34,7 @@ template <Accelerator Accel>
     // square root and division it does not wait for.
     const Material& material = scene.materials[scene.spheres.material[hit->sphere]];
     const unsigned uses = bounce_uses(material);
-    const bool plays = plays_roulette(depth, throughput);
+    const bool plays = russian_roulette && plays_roulette(depth, throughput);
     const BounceSample u = rng.next_bounce(plays ? uses | roulette_use(uses) : uses);
     if (plays) {
       const std::optional<Color> goes_on = roulette(throughput, roulette_number(u, uses));

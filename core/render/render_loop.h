@@ -130,10 +130,11 @@ template <typename Accel>
       const int j = slot[std::size_t(k)];
       const auto o = std::size_t(owner[std::size_t(k)]);
       std::uint64_t path_rays = j < 0 ? 0 : 1;
-      const Color value = j < 0 ? Color{}
-                                : continue_path(ctx.scene, ctx.accel, rays_out[std::size_t(j)],
-                                                hits[std::size_t(j)], settings.max_depth,
-                                                *streams[std::size_t(k)], path_rays);
+      const Color value =
+          j < 0 ? Color{}
+                : continue_path(ctx.scene, ctx.accel, rays_out[std::size_t(j)],
+                                hits[std::size_t(j)], settings.max_depth, settings.russian_roulette,
+                                *streams[std::size_t(k)], path_rays);
       add_sample(out.sums[o], out.spreads[o], value, index[std::size_t(k)]);
       out.rays[o] += path_rays;
       total_rays += path_rays;

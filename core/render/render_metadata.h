@@ -17,6 +17,7 @@ inline constexpr const char* kSampler = "sampler";
 // How many independent replicates the samples alternate between: 2 where the render kept what
 // an error estimate needs (absent in files of an older rtiow, which always kept two), 1 else.
 inline constexpr const char* kReplicates = "replicates";
+inline constexpr const char* kRussianRoulette = "russian_roulette";  // "on" or "off"
 inline constexpr const char* kAccelerator = "accelerator";
 inline constexpr const char* kRaysTraced = "rays_traced";
 inline constexpr const char* kSpp = "spp";                     // uniform sampling

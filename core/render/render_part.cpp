@@ -94,6 +94,7 @@ std::string render_digest(const Scene& scene, const RenderSettings& settings) {
   }
   text.append("|").append(to_string(settings.sampler));
   if (replicates(settings) == 1) text.append("|one sequence");  // other samples than replicates'
+  if (!settings.russian_roulette) text.append("|no roulette");
   std::uint64_t h = 0x6a09e667f3bcc908ull;
   for (unsigned char c : text) h = hash_combine(h, c);
   return hex(h);

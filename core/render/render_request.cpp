@@ -103,6 +103,7 @@ ResolvedRender resolve(Scene scene, const RenderRequest& r) {
   s.accel = r.accel;
   s.sampler = r.sampler;
   s.estimate_error = r.estimate_error;
+  s.russian_roulette = r.russian_roulette;
   validate(s);
   return {std::move(scene), s};
 }

@@ -45,6 +45,7 @@ struct RenderRequest {
   bool adaptive = false;      // --adaptive: spend the budget where the variance is
   // --stats-channels: keep what an estimate of each pixel's error needs (RenderSettings).
   bool estimate_error = false;
+  bool russian_roulette = RenderSettings{}.russian_roulette;  // --roulette
   int min_samples = kDefaultLeastSamples;
 };
 

@@ -42,6 +42,10 @@ struct RenderSettings {
   // sampler's sequence (core/sampling/sampler.h). The variance channels ask for it; the error
   // targets always have it. Without it a render draws one sequence, and its image is less noisy.
   bool estimate_error = false;
+  // Russian roulette by throughput (core/render/russian_roulette.h): 7% less time on the cover
+  // for 1% more squared error. Off, every path runs to max_depth as in the book's program: the
+  // book's own estimator, for comparisons with it ray for ray. The expected image is the same.
+  bool russian_roulette = true;
 };
 
 // Whether pixels get different sample counts (any adaptive mode).
