@@ -1376,6 +1376,12 @@ TEST(Cli, PartsMergeIntoTheIdenticalFileAndBadSetsAreRefused) {
   ASSERT_EQ(run_rtiow("render" + common + "--seed 2 --part 0/3 -o " + other.string()).exit_code, 0);
   refused(other.string() + " " + parts[1].string() + " " + parts[2].string(),
           "share of a different render");
+  // Without the roulette other paths end: the book's estimator's part is another render's.
+  const fs::path book = output_path("book-part.exr");
+  ASSERT_EQ(
+      run_rtiow("render" + common + "--roulette off --part 0/3 -o " + book.string()).exit_code, 0);
+  refused(book.string() + " " + parts[1].string() + " " + parts[2].string(),
+          "share of a different render");
   expect_refused("--part 0/3", "must be .exr");  // expect_refused writes a .png
   const fs::path part_out = output_path("refused.exr");
   for (const auto& [args, needle] :

@@ -318,7 +318,8 @@ void check_same_render(const std::vector<const RenderPart*>& parts) {
     if (p->digest != reference.digest || p->width != reference.width ||
         p->height != reference.height || p->job_samples != reference.job_samples) {
       throw InvalidInput("merge: " + p->path + " is a share of a different render than " +
-                         reference.path + " (scene, size, depth, seed or spp differ)");
+                         reference.path +
+                         " (scene, size, depth, seed, sampler, roulette or spp differ)");
     }
   }
 }
