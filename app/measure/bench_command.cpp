@@ -45,6 +45,7 @@ struct PointOptions {
   std::string accel = "embree";
   int width = 400, height = 225, spp = 2, depth = 8, repeat = 3, threads = 0;
   double budget = 60.0;
+  std::string roulette = "on";  // off: the paths of the book's estimator (and the lean tracer's)
 };
 
 double median(std::vector<double> v) {
@@ -100,13 +101,15 @@ json measure_render(const Scene& scene, RenderSettings settings, int repeat, dou
           {"mrays_per_second", double(rays) / s * 1e-6}};
 }
 
-// The book's job as measured: its independent sampler, seed 0.
+// The book's job as measured: its independent sampler, seed 0, with rtiow's Russian roulette
+// unless told otherwise.
 ResolvedRender book_job(Scene scene, int width, int height, int spp, int depth, int threads,
-                        AccelKind accel) {
+                        AccelKind accel, bool russian_roulette = true) {
   RenderRequest r;
   r.width = width, r.height = height, r.spp = spp, r.max_depth = depth;
   r.threads = threads, r.accel = accel;
   r.seed = 0, r.sampler = SamplerKind::Independent;
+  r.russian_roulette = russian_roulette;
   return resolve(std::move(scene), r);
 }
 
@@ -115,8 +118,8 @@ int run_point(const PointOptions& o) {
   const auto scene_start = Clock::now();
   Scene made = make_builtin_scene(o.scene, kDefaultSceneSeed);
   const double scene_seconds = std::chrono::duration<double>(Clock::now() - scene_start).count();
-  const auto [scene, settings] =
-      book_job(std::move(made), o.width, o.height, o.spp, o.depth, o.threads, parse_accel(o.accel));
+  const auto [scene, settings] = book_job(std::move(made), o.width, o.height, o.spp, o.depth,
+                                          o.threads, parse_accel(o.accel), o.roulette == "on");
   json result = measure_render(scene, settings, o.repeat, o.budget);
   result["scene"] = o.scene;
   result["spheres"] = scene.spheres.size();
@@ -306,6 +309,12 @@ std::function<int()> add_bench_command(CLI::App& app) {
   point_cmd->add_option("--threads", point->threads, "Worker threads (0: all cores)")
       ->capture_default_str();
   point_cmd->add_option("--budget", point->budget, "Seconds after which no further repeat starts")
+      ->capture_default_str();
+  point_cmd
+      ->add_option("--roulette", point->roulette,
+                   "Russian roulette: on (rtiow's default) or off (every path to --depth, the "
+                   "paths of the book's program and of the lean tracer, for a per-ray comparison)")
+      ->check(CLI::IsMember({std::string("on"), std::string("off")}))
       ->capture_default_str();
 
   return [options, point, cmd, point_cmd] {
