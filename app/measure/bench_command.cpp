@@ -45,7 +45,7 @@ struct PointOptions {
   std::string accel = "embree";
   int width = 400, height = 225, spp = 2, depth = 8, repeat = 3, threads = 0;
   double budget = 60.0;
-  std::string roulette = "on";  // off: the paths of the book's estimator (and the lean tracer's)
+  std::string roulette = roulette_name(true);  // off: the book's (and the lean tracer's) paths
 };
 
 double median(std::vector<double> v) {
@@ -118,8 +118,9 @@ int run_point(const PointOptions& o) {
   const auto scene_start = Clock::now();
   Scene made = make_builtin_scene(o.scene, kDefaultSceneSeed);
   const double scene_seconds = std::chrono::duration<double>(Clock::now() - scene_start).count();
-  const auto [scene, settings] = book_job(std::move(made), o.width, o.height, o.spp, o.depth,
-                                          o.threads, parse_accel(o.accel), o.roulette == "on");
+  const auto [scene, settings] =
+      book_job(std::move(made), o.width, o.height, o.spp, o.depth, o.threads, parse_accel(o.accel),
+               o.roulette == roulette_name(true));
   json result = measure_render(scene, settings, o.repeat, o.budget);
   result["scene"] = o.scene;
   result["spheres"] = scene.spheres.size();
@@ -314,7 +315,7 @@ std::function<int()> add_bench_command(CLI::App& app) {
       ->add_option("--roulette", point->roulette,
                    "Russian roulette: on (rtiow's default) or off (every path to --depth, the "
                    "paths of the book's program and of the lean tracer, for a per-ray comparison)")
-      ->check(CLI::IsMember({std::string("on"), std::string("off")}))
+      ->check(CLI::IsMember({roulette_name(true), roulette_name(false)}))
       ->capture_default_str();
 
   return [options, point, cmd, point_cmd] {

@@ -36,7 +36,7 @@ RenderRequest request_of(const RenderOptions& o) {
   r.adaptive = o.adaptive;
   r.min_samples = o.min_spp;
   r.estimate_error = o.stats_channels;
-  r.russian_roulette = o.roulette == "on";  // CLI11 checked it is on or off
+  r.russian_roulette = o.roulette == roulette_name(true);  // CLI11 checked it is on or off
   return r;
 }
 
@@ -109,7 +109,7 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                   "every channel goes on with that share of chance, weighted up; 7% less time on "
                   "the cover, same expected image) or off (every path to --depth, the book's "
                   "estimator: for comparisons with the book's program ray for ray)")
-      ->check(CLI::IsMember({std::string("on"), std::string("off")}))
+      ->check(CLI::IsMember({roulette_name(true), roulette_name(false)}))
       ->capture_default_str();
   cmd->add_option("--target-error", o.target_error,
                   "Adaptive sampling: each pixel stops once its relative standard error is below "

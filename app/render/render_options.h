@@ -28,7 +28,7 @@ struct RenderOptions {
   std::string fresnel;  // empty: as the scene says
   double time_limit = 0.0;
   std::string sampler = to_string(RenderRequest{}.sampler);
-  std::string roulette = RenderRequest{}.russian_roulette ? "on" : "off";
+  std::string roulette = roulette_name(RenderRequest{}.russian_roulette);
   double target_error = 0.0;
   double image_error = 0.0;
   bool adaptive = false;

@@ -54,16 +54,15 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
   if (const std::string fresnel = glass_reflectance(scene); !fresnel.empty())
     metadata.emplace_back(key::kFresnel, fresnel);
   if (scene.layout_seed) metadata.emplace_back(key::kSceneSeed, std::int64_t(*scene.layout_seed));
-  metadata.insert(metadata.end(),
-                  {
-                      {key::kDepth, std::int64_t(s.max_depth)},
-                      {key::kSeed, std::int64_t(s.seed)},
-                      {key::kSampler, to_string(s.sampler)},
-                      {key::kReplicates, std::int64_t(replicates(s))},
-                      {key::kRussianRoulette, std::string(s.russian_roulette ? "on" : "off")},
-                      {key::kAccelerator, to_string(s.accel)},
-                      {key::kRaysTraced, std::int64_t(r.rays_traced)},
-                  });
+  metadata.insert(metadata.end(), {
+                                      {key::kDepth, std::int64_t(s.max_depth)},
+                                      {key::kSeed, std::int64_t(s.seed)},
+                                      {key::kSampler, to_string(s.sampler)},
+                                      {key::kReplicates, std::int64_t(replicates(s))},
+                                      {key::kRussianRoulette, roulette_name(s.russian_roulette)},
+                                      {key::kAccelerator, to_string(s.accel)},
+                                      {key::kRaysTraced, std::int64_t(r.rays_traced)},
+                                  });
   const RenderOutcome outcome = describe_outcome(s, r);
   if (is_adaptive(s)) {
     // Each pixel has its own count: the range and the mean, not one "spp".

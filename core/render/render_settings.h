@@ -48,6 +48,11 @@ struct RenderSettings {
   bool russian_roulette = true;
 };
 
+// RenderSettings::russian_roulette as --roulette and the provenance spell it.
+inline std::string roulette_name(bool russian_roulette) {
+  return russian_roulette ? "on" : "off";
+}
+
 // Whether pixels get different sample counts (any adaptive mode).
 inline bool is_adaptive(const RenderSettings& s) {
   return is_adaptive(s.samples);
