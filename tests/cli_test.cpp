@@ -593,6 +593,33 @@ TEST(Cli, TheLibraryAndTheCommandLineGiveOneRequestTheSameImage) {
   }
 }
 
+// bench-point times the render command's own loop: with the command's sampler and roulette it
+// traces exactly the rays `render --seed 0` traces, and each option reaches the loop.
+TEST(Cli, BenchPointTracesTheRenderCommandsRays) {
+  const std::string job = " --scene cover --width 40 --height 23 --spp 4 --depth 50";
+  std::set<std::int64_t> counts;
+  for (const char* sampler : {"independent", "sobol"}) {
+    for (const char* roulette : {"on", "off"}) {
+      const std::string options = job + " --sampler " + sampler + " --roulette " + roulette;
+      const CommandResult point = run_rtiow("bench-point --repeat 1" + options);
+      ASSERT_EQ(point.exit_code, 0) << point.stderr_text;
+      const auto figures = nlohmann::json::parse(point.stdout_text);
+      EXPECT_EQ(figures["sampler"], sampler);
+
+      const fs::path out = output_path("cli_bench_point.exr");
+      const CommandResult r =
+          run_rtiow("render --seed 0 -q --checkpoint 0" + options + " -o " + out.string());
+      ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+      auto in = OIIO::ImageInput::open(out.string());
+      ASSERT_TRUE(in);
+      const std::int64_t rays = in->spec().get_int_attribute("rtiow:rays_traced");
+      EXPECT_EQ(figures["rays"].get<std::int64_t>(), rays) << options;
+      counts.insert(rays);
+    }
+  }
+  EXPECT_EQ(counts.size(), 4u) << "each sampler and roulette traces its own paths";
+}
+
 TEST(Cli, WritesTheImageWithMetadataAndSaysWhere) {
   const fs::path out = output_path("cli_materials.exr");
   const CommandResult r = run_rtiow(

@@ -46,6 +46,7 @@ struct PointOptions {
   int width = 400, height = 225, spp = 2, depth = 8, repeat = 3, threads = 0;
   double budget = 60.0;
   std::string roulette = roulette_name(true);  // off: the book's (and the lean tracer's) paths
+  std::string sampler = to_string(SamplerKind::Independent);  // the book's; sobol: render's
 };
 
 double median(std::vector<double> v) {
@@ -101,14 +102,15 @@ json measure_render(const Scene& scene, RenderSettings settings, int repeat, dou
           {"mrays_per_second", double(rays) / s * 1e-6}};
 }
 
-// The book's job as measured: its independent sampler, seed 0, with rtiow's Russian roulette
+// The book's job as measured: seed 0, its independent sampler and rtiow's Russian roulette
 // unless told otherwise.
 ResolvedRender book_job(Scene scene, int width, int height, int spp, int depth, int threads,
-                        AccelKind accel, bool russian_roulette = true) {
+                        AccelKind accel, bool russian_roulette = true,
+                        SamplerKind sampler = SamplerKind::Independent) {
   RenderRequest r;
   r.width = width, r.height = height, r.spp = spp, r.max_depth = depth;
   r.threads = threads, r.accel = accel;
-  r.seed = 0, r.sampler = SamplerKind::Independent;
+  r.seed = 0, r.sampler = sampler;
   r.russian_roulette = russian_roulette;
   return resolve(std::move(scene), r);
 }
@@ -120,9 +122,10 @@ int run_point(const PointOptions& o) {
   const double scene_seconds = std::chrono::duration<double>(Clock::now() - scene_start).count();
   const auto [scene, settings] =
       book_job(std::move(made), o.width, o.height, o.spp, o.depth, o.threads, parse_accel(o.accel),
-               o.roulette == roulette_name(true));
+               o.roulette == roulette_name(true), parse_sampler(o.sampler));
   json result = measure_render(scene, settings, o.repeat, o.budget);
   result["scene"] = o.scene;
+  result["sampler"] = o.sampler;
   result["spheres"] = scene.spheres.size();
   result["scene_seconds"] = scene_seconds;
   result["peak_rss_mb"] = peak_rss_mb();
@@ -316,6 +319,14 @@ std::function<int()> add_bench_command(CLI::App& app) {
                    "Russian roulette: on (rtiow's default) or off (every path to --depth, the "
                    "paths of the book's program and of the lean tracer, for a per-ray comparison)")
       ->check(CLI::IsMember({roulette_name(true), roulette_name(false)}))
+      ->capture_default_str();
+  point_cmd
+      ->add_option("--sampler", point->sampler,
+                   "Sampler: independent (the book's, as the lean tracer draws), sobol "
+                   "(rtiow render's default: the loop of the command with its defaults) or "
+                   "padded-sobol")
+      ->check(CLI::IsMember({to_string(SamplerKind::Independent), to_string(SamplerKind::Sobol),
+                             to_string(SamplerKind::PaddedSobol)}))
       ->capture_default_str();
 
   return [options, point, cmd, point_cmd] {
