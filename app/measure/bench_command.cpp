@@ -325,8 +325,7 @@ std::function<int()> add_bench_command(CLI::App& app) {
                    "Sampler: independent (the book's, as the lean tracer draws), sobol "
                    "(rtiow render's default: the loop of the command with its defaults) or "
                    "padded-sobol")
-      ->check(CLI::IsMember({to_string(SamplerKind::Independent), to_string(SamplerKind::Sobol),
-                             to_string(SamplerKind::PaddedSobol)}))
+      ->check(CLI::IsMember(sampler_name_list()))
       ->capture_default_str();
 
   return [options, point, cmd, point_cmd] {

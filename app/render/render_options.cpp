@@ -101,8 +101,7 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                   "three bounces, padded Sobol for later bounces: 2.3-5.4x lower relMSE at "
                   "equal time on the built-in scenes), independent (the book's) or padded-sobol "
                   "(every 1D and 2D dimension its own scrambled Sobol sequence)")
-      ->check(CLI::IsMember({to_string(SamplerKind::Independent), to_string(SamplerKind::Sobol),
-                             to_string(SamplerKind::PaddedSobol)}))
+      ->check(CLI::IsMember(sampler_name_list()))
       ->capture_default_str();
   cmd->add_option("--roulette", o.roulette,
                   "Russian roulette: on (from the third ray, a path carrying less than 0.2 in "

@@ -19,9 +19,19 @@ const char* sampler_names() {
   return "independent, sobol, padded-sobol";
 }
 
+namespace {
+constexpr SamplerKind kSamplerKinds[] = {SamplerKind::Independent, SamplerKind::Sobol,
+                                         SamplerKind::PaddedSobol};
+}  // namespace
+
+std::vector<std::string> sampler_name_list() {
+  std::vector<std::string> names;
+  for (const SamplerKind kind : kSamplerKinds) names.push_back(to_string(kind));
+  return names;
+}
+
 SamplerKind parse_sampler(const std::string& name) {
-  for (const SamplerKind kind :
-       {SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::PaddedSobol}) {
+  for (const SamplerKind kind : kSamplerKinds) {
     if (name == to_string(kind)) return kind;
   }
   throw InvalidInput("unknown sampler " + quote_value(name, 40) + " (known: " + sampler_names() +

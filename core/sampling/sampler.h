@@ -27,6 +27,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/sampling/rng.h"
 #include "core/sampling/sample_layout.h"
@@ -40,6 +41,8 @@ std::string to_string(SamplerKind kind);
 SamplerKind parse_sampler(const std::string& name);  // throws InvalidInput
 // The names parse_sampler knows, comma separated, for help texts and errors.
 const char* sampler_names();
+// The same names one by one, for an option's list of choices.
+std::vector<std::string> sampler_name_list();
 
 // A pixel's hash of (seed, pixel).
 constexpr std::uint64_t pixel_hash(std::uint64_t seed, std::uint32_t px, std::uint32_t py) {
