@@ -94,13 +94,11 @@ bool refused_unknown_command(const CLI::App& app, int argc, char** argv) {
       if (!sub->get_group().empty()) names.push_back(sub->get_name());  // not the hidden ones
     }
   }
-  const std::string suggestion = rtiow::nearest_name(first, names);
   std::string known;
   for (const std::string& name : names) known += (known.empty() ? "" : ", ") + name;
   const std::string what = first[0] == '-' ? "unknown option " : "unknown command ";
-  report((what + rtiow::quote_value(first) +
-          (suggestion.empty() ? "" : "; did you mean " + suggestion + "?") + " (known: " + known +
-          "; see rtiow --help)")
+  report((what + rtiow::quote_value(first) + rtiow::did_you_mean(first, names) +
+          " (known: " + known + "; see rtiow --help)")
              .c_str());
   return true;
 }

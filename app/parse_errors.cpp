@@ -34,8 +34,7 @@ std::string explain_extras(const CLI::App& command) {
   std::string message;
   if (first.size() > 1 && first[0] == '-') {
     message = "unknown option " + quote_value(option_part(first)) + " for " + name;
-    const std::string suggestion = nearest_name(option_part(first), option_spellings(command));
-    if (!suggestion.empty()) message += "; did you mean " + suggestion + "?";
+    message += did_you_mean(option_part(first), option_spellings(command));
   } else {
     message = "unexpected argument " + quote_value(first) + " for " + name;
   }
@@ -64,6 +63,25 @@ std::string explain_conversion(const CLI::App& command, const std::string& what)
          full_name(command) + " --help)";
 }
 
+// "--sampler: sobel not in {independent,sobol,padded-sobol}" (a value outside an option's
+// choices): the choices in words and the one a slip meant.
+std::string explain_choice(const CLI::App& command, const std::string& what) {
+  static const std::regex pattern("(-[^:]*): (.*) not in \\{(.*)\\}");
+  std::smatch match;
+  if (!std::regex_match(what, match, pattern)) return "";
+  const std::string option_name = match[1], value = match[2], listed = match[3];
+  std::vector<std::string> choices;
+  std::string known;
+  for (std::size_t start = 0; start <= listed.size();) {
+    const std::size_t comma = std::min(listed.find(',', start), listed.size());
+    choices.push_back(listed.substr(start, comma - start));
+    known += (known.empty() ? "" : ", ") + choices.back();
+    start = comma + 1;
+  }
+  return option_name + ": " + quote_value(value) + " is not one of " + known +
+         did_you_mean(value, choices) + " (see " + full_name(command) + " --help)";
+}
+
 }  // namespace
 
 std::vector<std::string> option_spellings(const CLI::App& command) {
@@ -81,6 +99,8 @@ std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& erro
   if (dynamic_cast<const CLI::ExtrasError*>(&error) != nullptr) message = explain_extras(command);
   if (dynamic_cast<const CLI::ConversionError*>(&error) != nullptr)
     message = explain_conversion(command, error.what());
+  if (dynamic_cast<const CLI::ValidationError*>(&error) != nullptr)
+    message = explain_choice(command, error.what());
   if (!message.empty()) return message;
   return std::string(error.what()) + " (see " + full_name(command) + " --help)";
 }

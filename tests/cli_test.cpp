@@ -488,6 +488,13 @@ TEST(Cli, OptionErrorsSuggestWhatWasMeant) {
   expect_refused("--width=100x", "--width expects a whole number, not '100x'");
   expect_refused("--spp ten", "--spp expects a whole number, not 'ten' (see rtiow render --help)");
   expect_refused("--target-error often", "--target-error: must be a finite number");
+  // A value outside an option's choices: the choices in words and the one meant.
+  expect_refused("--sampler sobel",
+                 "--sampler: 'sobel' is not one of independent, sobol, padded-sobol; did you mean "
+                 "sobol? (see rtiow render --help)");
+  expect_refused("--roulette of", "did you mean off?");
+  expect_refused("--fresnel schlik", "did you mean schlick?");
+  expect_refused("--accel embre", "unknown accelerator 'embre'; did you mean embree?");
   // Nothing near enough: no suggestion.
   const CommandResult far = run_rtiow("render --zzzzzz 1");
   EXPECT_EQ(far.exit_code, 2);
@@ -497,6 +504,10 @@ TEST(Cli, OptionErrorsSuggestWhatWasMeant) {
   EXPECT_NE(diff.stderr_text.find("did you mean --alpha? (see rtiow diff --help)"),
             std::string::npos)
       << diff.stderr_text;
+  const CommandResult mode = run_rtiow("diff --mode nois a.png b.png");
+  EXPECT_EQ(mode.exit_code, 2);
+  EXPECT_NE(mode.stderr_text.find("did you mean noise? (see rtiow diff --help)"), std::string::npos)
+      << mode.stderr_text;
   const CommandResult version = run_rtiow("--verison");
   EXPECT_EQ(version.exit_code, 2);
   EXPECT_NE(version.stderr_text.find("did you mean --version?"), std::string::npos)

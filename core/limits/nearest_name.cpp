@@ -29,12 +29,23 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 std::string nearest_name(std::string_view word, const std::vector<std::string>& candidates) {
   std::string best;
   std::size_t best_distance = SIZE_MAX;
+  bool best_continues = false;
   for (const std::string& candidate : candidates) {
     const std::size_t distance = edit_distance(word, candidate);
-    if (distance < best_distance) best = candidate, best_distance = distance;
+    // At equal distance, a name the word begins ("of" of "off" rather than "on"): a word cut
+    // short is the likelier slip.
+    const bool continues = candidate.starts_with(word);
+    if (distance < best_distance || (distance == best_distance && continues && !best_continues)) {
+      best = candidate, best_distance = distance, best_continues = continues;
+    }
   }
   const std::size_t allowed = std::clamp<std::size_t>(word.size() / 3, 1, 3);
   return best_distance <= allowed ? best : "";
+}
+
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates) {
+  const std::string meant = nearest_name(word, candidates);
+  return meant.empty() ? "" : "; did you mean " + meant + "?";
 }
 
 }  // namespace rtiow

@@ -13,4 +13,7 @@ namespace rtiow {
 // edits); empty otherwise.
 std::string nearest_name(std::string_view word, const std::vector<std::string>& candidates);
 
+// "; did you mean <nearest>?" for a refusal's message, or empty when nothing is near enough.
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates);
+
 }  // namespace rtiow

@@ -15,6 +15,7 @@
 #include "core/limits/error.h"
 #include "core/limits/image_size.h"
 #include "core/limits/input_limits.h"
+#include "core/limits/nearest_name.h"
 #include "core/parallel/ieee_floating_point.h"
 #include "core/parallel/thread_count.h"
 #include "core/render/adaptive_sampling.h"
@@ -154,7 +155,9 @@ std::string to_string(AccelKind kind) {
 AccelKind parse_accel(const std::string& name) {
   if (name == EmbreeAccel::name()) return AccelKind::Embree;
   if (name == NaiveAccel::name()) return AccelKind::Naive;
-  throw InvalidInput("unknown accelerator '" + name + "' (known: embree, naive)");
+  throw InvalidInput("unknown accelerator " + quote_value(name) +
+                     did_you_mean(name, {EmbreeAccel::name(), NaiveAccel::name()}) +
+                     " (known: embree, naive)");
 }
 
 void validate(const RenderSettings& s) {

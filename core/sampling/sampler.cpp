@@ -1,6 +1,7 @@
 #include "core/sampling/sampler.h"
 
 #include "core/limits/error.h"
+#include "core/limits/nearest_name.h"
 
 namespace rtiow {
 
@@ -34,8 +35,8 @@ SamplerKind parse_sampler(const std::string& name) {
   for (const SamplerKind kind : kSamplerKinds) {
     if (name == to_string(kind)) return kind;
   }
-  throw InvalidInput("unknown sampler " + quote_value(name, 40) + " (known: " + sampler_names() +
-                     ")");
+  throw InvalidInput("unknown sampler " + quote_value(name, 40) +
+                     did_you_mean(name, sampler_name_list()) + " (known: " + sampler_names() + ")");
 }
 
 }  // namespace rtiow

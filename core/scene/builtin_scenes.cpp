@@ -270,11 +270,9 @@ Scene make_builtin_scene(const std::string& name, std::uint64_t scene_seed) {
   // `--scene base.json`: a scene file is given by its path alone.
   const bool looks_like_a_file =
       name.find('/') != std::string::npos || name.ends_with(".json") || name == "-";
-  const std::string meant = nearest_name(name, names);
   throw InvalidInput(
-      "unknown scene " + quote_value(name) +
-      (meant.empty() ? "" : "; did you mean " + meant + "?") + " (known: " + known + kFieldPrefix +
-      "N with N from 1 to " + std::to_string(kMaxFieldSpheres) + ")" +
+      "unknown scene " + quote_value(name) + did_you_mean(name, names) + " (known: " + known +
+      kFieldPrefix + "N with N from 1 to " + std::to_string(kMaxFieldSpheres) + ")" +
       (looks_like_a_file ? "; a scene file is given by its path, without --scene" : ""));
 }
 
