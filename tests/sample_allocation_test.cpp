@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/render/sample_allocation.h"
@@ -16,6 +18,79 @@ namespace {
 
 double total_cost(const PixelEstimates& e, const std::vector<std::uint32_t>& n) {
   return estimated_cost(e.cost, n);
+}
+
+// The allocation as a serial loop computes it: the bisection on log k, each scale judged by the
+// sum of its counts' costs (or errors) in pixel order. The renderer judges the sums in parallel
+// and must decide every scale as this does, or the images would change.
+struct SerialAllocation {
+  const PixelEstimates& e;
+  const std::vector<std::uint32_t>& current;
+  std::uint32_t most;
+
+  std::vector<std::uint32_t> counts(double k) const {
+    std::vector<std::uint32_t> n(current.size());
+    for (std::size_t p = 0; p < n.size(); ++p) {
+      const double ideal = std::round(k * std::sqrt(e.variance[p] / e.cost[p]));
+      n[p] = std::max(current[p], ideal >= double(most) ? most : std::uint32_t(ideal));
+    }
+    return n;
+  }
+  template <typename Past>
+  std::pair<double, double> bracket(const Past& past) const {
+    double largest = 0, smallest = INFINITY;
+    for (std::size_t p = 0; p < current.size(); ++p) {
+      const double r = std::sqrt(e.variance[p] / e.cost[p]);
+      if (r > 0 && std::isfinite(r))
+        largest = std::max(largest, r), smallest = std::min(smallest, r);
+    }
+    double lo = std::log(0.4 / largest), hi = std::log(2.0 * double(most) / smallest);
+    if (!past(counts(std::exp(hi)))) return {std::exp(hi), std::exp(hi)};
+    while (hi - lo > 1e-7) {
+      const double mid = 0.5 * (lo + hi);
+      (past(counts(std::exp(mid))) ? hi : lo) = mid;
+    }
+    return {std::exp(lo), std::exp(hi)};
+  }
+  std::vector<std::uint32_t> for_budget(double budget) const {
+    return counts(bracket([&](const auto& n) { return estimated_cost(e.cost, n) > budget; }).first);
+  }
+  std::vector<std::uint32_t> for_error(double goal) const {
+    return counts(
+        bracket([&](const auto& n) { return estimated_rel_mse(e.variance, n) <= goal; }).second);
+  }
+};
+
+TEST(SampleAllocation, DecidesEveryScaleAsTheSerialSumDoes) {
+  // A large image of skewed estimates (many chunks of the parallel sums), and budgets and goals
+  // that are exactly what some counts cost or reach, so that the parallel sums' bound cannot
+  // decide and the serial sum must.
+  Pcg32 rng;
+  rng.set_sequence(7, 11);
+  const std::size_t n = 100003;
+  PixelEstimates e{std::vector<double>(n), std::vector<double>(n)};
+  std::vector<std::uint32_t> current(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const double u = rng.next_float();
+    e.variance[p] = p % 97 == 0 ? 0.0 : 1e-3 / (1e-3 + u * u * u);
+    e.cost[p] = 1.0 + 9.0 * rng.next_float();
+    current[p] = 16 + (p % 5 == 0 ? 16 : 0);
+  }
+  const std::uint32_t most = 4096;
+  const SerialAllocation serial{e, current, most};
+  std::vector<double> budgets{estimated_cost(e.cost, current) * 1.5,
+                              estimated_cost(e.cost, current) * 4.0};
+  std::vector<double> goals{estimated_rel_mse(e.variance, current) / 3.0};
+  for (const double k : {5.0, 40.0, 300.0}) {
+    budgets.push_back(estimated_cost(e.cost, serial.counts(k)));  // exactly a scale's cost
+    goals.push_back(estimated_rel_mse(e.variance, serial.counts(k)));
+  }
+  for (const double budget : budgets) {
+    EXPECT_EQ(allocate_budget(e, current, budget, most), serial.for_budget(budget)) << budget;
+  }
+  for (const double goal : goals) {
+    EXPECT_EQ(allocate_for_error(e, current, goal, most), serial.for_error(goal)) << goal;
+  }
 }
 
 TEST(SampleAllocation, CountsFollowTheSquareRootOfVarianceOverCost) {

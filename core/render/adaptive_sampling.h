@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/limits/input_limits.h"
+#include "core/parallel/thread_count.h"
 #include "core/render/render_loop.h"
 #include "core/render/render_state.h"
 #include "core/render/sample_allocation.h"
@@ -141,8 +142,9 @@ void render_adaptive(const RenderContext<Accel>& ctx, const PixelErrorTarget& ta
   for (bool first = start_rounds(state, least);; first = false) {
     render_round(ctx, first, deadline, journal, progress, result);
     if (deadline.ended()) break;
-    const std::vector<double> judged =
-        neighbourhood_relative_variance(settings, pixels, Pooling::Median);
+    const std::vector<double> judged = with_threads(settings.threads, [&] {
+      return neighbourhood_relative_variance(settings, pixels, Pooling::Median);
+    });
     result.pixels_above_target = 0;
     for (std::size_t p = 0; p < targets.size(); ++p) {
       const std::uint32_t n = pixels.samples[p];
@@ -187,14 +189,16 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
   for (bool first = start_rounds(state, least);; first = false) {
     render_round(ctx, first, deadline, journal, progress, result);
     if (deadline.ended()) break;
-    const PixelEstimates e = pooled_estimates(settings, pixels);
+    const PixelEstimates e =
+        with_threads(settings.threads, [&] { return pooled_estimates(settings, pixels); });
     if (by_error) {
       const double aim = kImageErrorAim * by_error->error;
       const double goal = aim * aim;
       const double estimate = estimated_rel_mse(e.variance, pixels.samples);
       result.estimated_image_error = std::sqrt(estimate);
       if (estimate <= goal) break;
-      state.targets = allocate_for_error(e, pixels.samples, goal, most);
+      state.targets = with_threads(
+          settings.threads, [&] { return allocate_for_error(e, pixels.samples, goal, most); });
       for (std::size_t p = 0; p < state.targets.size(); ++p) {
         state.targets[p] = std::min(state.targets[p], 2 * pixels.samples[p]);
       }
@@ -213,7 +217,9 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
     }
     if (!(budget > spent) || state.last_round) break;
     state.last_round = 2.0 * spent >= budget;
-    state.targets = allocate_budget(e, pixels.samples, std::min(budget, 2.0 * spent), most);
+    state.targets = with_threads(settings.threads, [&] {
+      return allocate_budget(e, pixels.samples, std::min(budget, 2.0 * spent), most);
+    });
     if (!any_target_above(state)) break;
   }
   deadline.report(result, pixels);
