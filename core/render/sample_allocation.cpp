@@ -15,7 +15,16 @@ inline constexpr std::size_t kPixelsPerChunk = 4096;
 
 namespace {
 
-// Rows of the image in parallel (each pixel's value its own: the same for any split).
+// body(p) for every pixel index p < n, in parallel (each pixel's value its own: the same for
+// any split).
+template <typename PixelBody>
+void for_each_pixel(std::size_t n, const PixelBody& body) {
+  parallel_for_range(n, kPixelsPerChunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p) body(p);
+  });
+}
+
+// Rows of the image in parallel, likewise.
 template <typename RowBody>
 void for_each_row(int height, const RowBody& row) {
   parallel_for_range(std::size_t(height), 8, [&](std::size_t begin, std::size_t end) {
@@ -76,11 +85,9 @@ std::vector<double> neighbourhood_relative_variance(const RenderSettings& settin
                              pixels.samples, settings.first_sample, settings.sampler)
           : std::vector<Vec3d>(pixels.samples.size(), Vec3d(1, 1, 1));
   std::vector<double> own(pixels.samples.size());
-  parallel_for_range(own.size(), kPixelsPerChunk, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) {
-      own[p] =
-          relative_sample_variance(pixels.sums[p], pixels.spreads[p], pixels.samples[p], ratio[p]);
-    }
+  for_each_pixel(own.size(), [&](std::size_t p) {
+    own[p] =
+        relative_sample_variance(pixels.sums[p], pixels.spreads[p], pixels.samples[p], ratio[p]);
   });
   return pooling == Pooling::Median ? neighbourhood_median(settings.width, settings.height, own)
                                     : neighbourhood_mean(settings.width, settings.height, own);
@@ -88,11 +95,9 @@ std::vector<double> neighbourhood_relative_variance(const RenderSettings& settin
 
 PixelEstimates pooled_estimates(const RenderSettings& settings, const PixelAccumulators& pixels) {
   std::vector<double> cost(pixels.samples.size());
-  parallel_for_range(cost.size(), kPixelsPerChunk, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) {
-      const std::uint32_t n = pixels.samples[p];
-      cost[p] = n > 0 ? double(pixels.rays[p]) / double(n) : 1.0;
-    }
+  for_each_pixel(cost.size(), [&](std::size_t p) {
+    const std::uint32_t n = pixels.samples[p];
+    cost[p] = n > 0 ? double(pixels.rays[p]) / double(n) : 1.0;
   });
   PixelEstimates e{neighbourhood_relative_variance(settings, pixels),
                    neighbourhood_mean(settings.width, settings.height, cost)};
@@ -119,9 +124,7 @@ namespace {
 // Each pixel's sqrt(v / c): its count per unit of scale.
 std::vector<double> ratios(const PixelEstimates& e) {
   std::vector<double> r(e.variance.size());
-  parallel_for_range(r.size(), kPixelsPerChunk, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) r[p] = std::sqrt(e.variance[p] / e.cost[p]);
-  });
+  for_each_pixel(r.size(), [&](std::size_t p) { r[p] = std::sqrt(e.variance[p] / e.cost[p]); });
   return r;
 }
 
@@ -134,9 +137,8 @@ std::uint32_t count_at(double ratio, std::uint32_t current, double k, std::uint3
 
 void counts_at(const std::vector<double>& ratio, const std::vector<std::uint32_t>& current,
                double k, std::uint32_t most, std::vector<std::uint32_t>& out) {
-  parallel_for_range(current.size(), kPixelsPerChunk, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) out[p] = count_at(ratio[p], current[p], k, most);
-  });
+  for_each_pixel(current.size(),
+                 [&](std::size_t p) { out[p] = count_at(ratio[p], current[p], k, most); });
 }
 
 // decide(sum(term(p) for p in [0, n)) / divisor), with the sum as the serial loop in index
