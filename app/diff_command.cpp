@@ -13,6 +13,7 @@
 #include "core/compare/image_diff.h"
 #include "core/io/image_output.h"
 #include "core/io/input_file.h"
+#include "core/io/output_claim.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/limits/image_size.h"
@@ -72,6 +73,11 @@ int run_diff(const DiffOptions& o) {
   inputs.insert(inputs.end(), o.tests.begin(), o.tests.end());
   if (!o.out_diff.empty()) check_image_output(o.out_diff, inputs);
   if (!o.out_z.empty()) check_image_output(o.out_z, inputs);
+  // The pictures' outputs, claimed before the images are read.
+  std::vector<std::unique_ptr<OutputClaim>> claims;
+  for (const std::string* out : {&o.out_diff, &o.out_z}) {
+    if (!out->empty()) claims.push_back(std::make_unique<OutputClaim>(*out));
+  }
   const DiffInput reference = read_diff_input(o.reference);
   check_memory_for(inputs.size(), reference);
   std::vector<DiffInput> tests;

@@ -1,26 +1,30 @@
 #pragma once
-// A signal that would end the process (Ctrl-C, SIGTERM, a hang-up from a closed terminal or
-// SSH session, SIGQUIT, a batch system's CPU-time limit SIGXCPU). Outside a render, rtiow ends
-// at once in its own words, removing the temporary it was writing (core/io/removed_on_abort.h).
-// During a render command (from the scene's load to the image's write), the first asks the
-// render to stop at the end of the current step (so the samples completed are written, not
-// lost); the second ends it at once, as outside. A signal ignored when rtiow started (a
-// background job of a script, nohup) stays ignored.
+// Every signal whose default action ends the process ends rtiow in its own words, in every
+// command and every phase, with what it was writing removed (core/io/removed_on_abort.h) and
+// what it had kept (an image, a checkpoint) left as it was:
+//  - A request to end (SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGVTALRM,
+//    SIGPROF, SIGXCPU, SIGIO, SIGPWR, SIGSTKFLT, the real-time signals): outside a render, rtiow
+//    ends at once. During a render command (from the scene's load to the image's write), the
+//    first asks the render to stop at the end of the current step (so the samples completed
+//    are written, not lost); the second ends it at once, as outside.
+//  - A fault of rtiow itself (SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT, SIGTRAP, SIGSYS): it
+//    ends at once, said as an internal error.
+// SIGPIPE and SIGXFSZ are ignored instead (main): the write fails and is reported. A signal
+// ignored when rtiow started (a background job of a script, nohup) stays ignored. The line
+// goes to the standard error rtiow started with, even while a library has it silenced.
 
 #include <atomic>
 #include <csignal>
-#include <iterator>
 
 namespace rtiow {
 
 // Installs the end-at-once handlers for the whole process (main calls it first).
 void end_at_once_on_signals();
 
-inline constexpr int kHandledSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGXCPU};
-
 class InterruptGuard {
  public:
-  // Installs the handlers; `stop` is set on the first signal. Only one guard may live.
+  // Installs the stop-first handlers; `stop` is set on the first signal. Only one guard may
+  // live.
   explicit InterruptGuard(std::atomic<bool>& stop);
   ~InterruptGuard();  // restores the previous handlers (the end-at-once ones)
   InterruptGuard(const InterruptGuard&) = delete;
@@ -30,7 +34,11 @@ class InterruptGuard {
   static int signal_received();
 
  private:
-  struct sigaction previous_[std::size(kHandledSignals)]{};
+  struct sigaction previous_[NSIG] {};
 };
+
+// Whether `signal` is one rtiow ends on in its own words (for the tests: every signal whose
+// default action is to end the process, but SIGKILL, SIGSTOP, SIGPIPE and SIGXFSZ).
+bool ends_in_rtiow_words(int signal);
 
 }  // namespace rtiow

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/io/image_output.h"
+#include "core/io/output_claim.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/render/render_metadata.h"
@@ -63,6 +64,7 @@ int run_merge(const MergeOptions& o) {
     throw InvalidInput("--stats-channels: output " + quote_value(o.output) +
                        " must be .exr to hold the spp and variance channels");
   }
+  const OutputClaim claim(o.output);  // before the parts are read: a second writer is refused now
   std::vector<RenderPart> parts;
   for (const std::string& path : o.parts) parts.push_back(read_part(path));
   const MergedRender merged = merge_parts(parts);

@@ -7,10 +7,12 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "core/io/atomic_file.h"
+#include "core/io/output_claim.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/scene/builtin_scenes.h"
@@ -36,6 +38,8 @@ int run_scene(const SceneOptions& o, bool output_given) {
                        "render --scene " +
                        o.name + " -o " + o.output + ")");
   }
+  std::optional<OutputClaim> claim;  // held from before the scene is made
+  if (!to_stdout) claim.emplace(o.output);
   const std::string text = scene_to_json(make_builtin_scene(o.name, o.scene_seed));
   if (to_stdout) {
     std::fwrite(text.data(), 1, text.size(), stdout);

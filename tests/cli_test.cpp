@@ -1282,6 +1282,9 @@ TEST(Cli, SecondInterruptAbortsAndLeavesTheOldFileAlone) {
   BackgroundRender r(
       {"render", "--scene", "cover", "--width", "3000", "--spp", "1000", "-o", out.string()});
   ASSERT_TRUE(r.wait_until_rendering());
+  // Past the scene's set-up (the lock is taken before it ends): a first signal there stops
+  // the command before the render, with nothing for the second to cut short.
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
   r.signal(SIGINT);
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   r.signal(SIGINT);

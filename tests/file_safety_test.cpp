@@ -115,7 +115,6 @@ TEST(FileSafety, AtomicWriteThatFailsLeavesNoTemporaryAndTheTargetAsItWas) {
 // cleaner takes only that pattern, only plain files, only this user's.
 TEST(FileSafety, StaleTemporariesAreRemovedOnlyWhenTheyAreRtiowsOwn) {
   const fs::path dir = fresh_dir();
-  const std::string target = (dir / "o.png").string();
   write_file(dir / ".o.png.rtiow-tmp-Ab3dE6gH", "left by a kill -9");
   write_file(dir / ".o.png.rtiow-checkpoint.rtiow-tmp-12345678", "another");
   write_file(dir / "precious.txt", kPrecious);
@@ -125,8 +124,11 @@ TEST(FileSafety, StaleTemporariesAreRemovedOnlyWhenTheyAreRtiowsOwn) {
   write_file(dir / ".other.png.rtiow-tmp-Ab3dE6gH", "another output's");
   write_file(dir / ".o.png.rtiow-tmp-Other000", "another user's");
   ASSERT_EQ(::chown((dir / ".o.png.rtiow-tmp-Other000").c_str(), 65534, 65534), 0);
-  EXPECT_EQ(rtiow::remove_stale_temporaries(target), 1);
-  EXPECT_EQ(rtiow::remove_stale_temporaries(target + ".rtiow-checkpoint"), 1);
+  const int dir_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+  ASSERT_GE(dir_fd, 0);
+  EXPECT_EQ(rtiow::remove_stale_temporaries(dir_fd, "o.png"), 1);
+  EXPECT_EQ(rtiow::remove_stale_temporaries(dir_fd, "o.png.rtiow-checkpoint"), 1);
+  ::close(dir_fd);
   EXPECT_EQ(names_in(dir),
             (std::vector<std::string>{".o.png.rtiow-tmp-Ab3dE6gHx", ".o.png.rtiow-tmp-LinkLink",
                                       ".o.png.rtiow-tmp-Other000", ".o.png.rtiow-tmp-short",

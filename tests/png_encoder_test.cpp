@@ -36,7 +36,7 @@ Film gradient(int width, int height) {
 
 std::vector<std::uint8_t> read_bytes(const std::string& path, ImageHeader& header) {
   std::string reason;
-  auto in = image_backend().open(path, reason);
+  auto in = image_backend().open(path, "png", reason);
   EXPECT_TRUE(in) << reason;
   if (!in) return {};
   header = in->header();

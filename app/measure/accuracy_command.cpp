@@ -17,6 +17,7 @@
 #include "app/measure/accuracy_reference.h"
 #include "app/measure/accuracy_report.h"
 #include "app/measure/accuracy_runs.h"
+#include "app/measure/figure_outputs.h"
 #include "app/measure/quick_run.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
@@ -101,7 +102,8 @@ int run_accuracy(const AccuracyOptions& o) {
   check_options(o);
   const Scene scene = make_builtin_scene(o.scene, o.scene_seed);
   const RenderSettings base = resolve(scene, base_request(o)).settings;
-  fs::create_directories(o.out_dir);
+  const FigureOutputs outputs(o.out_dir, {"accuracy.json", "accuracy.csv", "accuracy.png"},
+                              "--out");
   const std::string cache_dir = o.cache_dir.empty() ? default_cache_dir() : o.cache_dir;
 
   RenderSettings reference_settings = base;

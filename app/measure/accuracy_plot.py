@@ -1,6 +1,7 @@
 """Draws `rtiow accuracy`'s figures: error against time (log-log, one line per choice),
 RMSE against spp with the fitted slopes, and the depth limit's bias against its time."""
 import json
+import os
 import sys
 
 import matplotlib
@@ -13,9 +14,8 @@ def xy(rows, x, y):
     return [r[x] for r in rows], [r[y] for r in rows]
 
 
-def main(json_path, png_path):
-    with open(json_path) as f:
-        r = json.load(f)
+def main(figures, png):
+    r = json.load(figures)
     fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(16, 5))
 
     for sampler, marker in zip(r["spp"], "os^"):
@@ -87,8 +87,13 @@ def main(json_path, png_path):
     fig.suptitle("rtiow accuracy: %s %dx%d, reference %d spp" %
                  (r["scene"], r["width"], r["height"], r["reference_spp"]))
     fig.tight_layout()
-    fig.savefig(png_path, dpi=80)
+    fig.savefig(png, format="png", dpi=80)
 
 
 if __name__ == "__main__":
-    main(sys.argv[1], sys.argv[2])
+    # rtiow hands the figures on stdin and takes the PNG on stdout (no path crosses over);
+    # anything a library prints goes to stderr, not into the image.
+    png = os.fdopen(os.dup(1), "wb")
+    os.dup2(2, 1)
+    main(sys.stdin, png)
+    png.close()

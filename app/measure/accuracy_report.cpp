@@ -217,7 +217,7 @@ void write_figures(const AccuracyOptions& o, const json& r) {
   write_csv(r, csv_path);
   std::printf("\nfigures: %s\n         %s\n", one_line(json_path).c_str(),
               one_line(csv_path).c_str());
-  run_plot_script("accuracy_plot.py", json_path, png_path);
+  run_plot_script("accuracy_plot.py", r.dump(), png_path);
 }
 
 }  // namespace rtiow

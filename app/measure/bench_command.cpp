@@ -14,7 +14,9 @@
 #include <thread>
 #include <vector>
 
+#include "app/child_process.h"
 #include "app/measure/bench_report.h"
+#include "app/measure/figure_outputs.h"
 #include "app/measure/quick_run.h"
 #include "app/measure/trace_rate.h"
 #include "core/io/output_path.h"
@@ -138,23 +140,25 @@ int run_point(const PointOptions& o) {
 json run_point_in_child(const BenchOptions& o, std::uint64_t spheres, const std::string& accel,
                         double budget) {
   const std::string exe = std::filesystem::read_symlink("/proc/self/exe").string();
-  const std::string command =
-      exe + " bench-point --scene spheres:" + std::to_string(spheres) + " --accel " + accel +
-      " --width " + std::to_string(o.scaling_width) + " --height " +
-      std::to_string(o.scaling_height) + " --spp " + std::to_string(o.scaling_spp) + " --depth " +
-      std::to_string(o.scaling_depth) + " --repeat " + std::to_string(o.repeat) + " --threads " +
-      std::to_string(o.threads) + " --budget " + std::to_string(budget);
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  if (!pipe) throw std::runtime_error("bench: cannot start " + command);
-  std::string output;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe.get())) output += buffer;
-  const int status = pclose(pipe.release());
-  if (status != 0) {
+  const std::vector<std::string> argv{exe,         "bench-point",
+                                      "--scene",   "spheres:" + std::to_string(spheres),
+                                      "--accel",   accel,
+                                      "--width",   std::to_string(o.scaling_width),
+                                      "--height",  std::to_string(o.scaling_height),
+                                      "--spp",     std::to_string(o.scaling_spp),
+                                      "--depth",   std::to_string(o.scaling_depth),
+                                      "--repeat",  std::to_string(o.repeat),
+                                      "--threads", std::to_string(o.threads),
+                                      "--budget",  std::to_string(budget)};
+  const ChildRun run = run_child(argv);
+  if (!run.ok()) {
+    const std::string why = !run.started ? run.failure
+                            : run.signal ? "ended by signal " + std::to_string(run.signal)
+                                         : "exit status " + std::to_string(run.exit_code);
     throw std::runtime_error("bench: the point spheres:" + std::to_string(spheres) + " with " +
-                             accel + " failed (exit status " + std::to_string(status) + ")");
+                             accel + " failed (" + why + ")");
   }
-  return json::parse(output);
+  return json::parse(run.output);
 }
 
 json bench_cover(const BenchOptions& o) {
@@ -228,13 +232,6 @@ int run_bench(const BenchOptions& o) {
   if (o.repeat < 1) throw InvalidInput("--repeat must be >= 1");
   if (o.naive_budget <= 0) throw InvalidInput("--naive-budget must be > 0");
   if (o.max_spheres < 10) throw InvalidInput("--max-spheres must be >= 10");
-  check_output_directory(o.out_dir, "--out");
-  const std::string json_path = (std::filesystem::path(o.out_dir) / "bench.json").string();
-  const std::string plot_path = (std::filesystem::path(o.out_dir) / "bench.png").string();
-  if (std::filesystem::is_directory(o.out_dir)) {  // else it is made, empty, at the end
-    check_output_path(json_path, {}, "--out");
-    check_output_path(plot_path, {}, "--out");
-  }
   // The cover's settings checked before any work.
   book_job(make_builtin_scene("cover", kDefaultSceneSeed), o.width, o.height, o.spp, o.depth,
            o.threads, AccelKind::Embree);
@@ -247,14 +244,15 @@ int run_bench(const BenchOptions& o) {
                     {"spp", o.scaling_spp},
                     {"depth", o.scaling_depth},
                     {"naive_budget_seconds", o.naive_budget}}}};
+  const FigureOutputs outputs(o.out_dir, {"bench.json", "bench.png"}, "--out");
+  const std::string json_path = outputs.path("bench.json");
   results["cover"] = bench_cover(o);
   results["scaling"] = bench_scaling(o);
 
   print_bench_table(results);
-  std::filesystem::create_directories(o.out_dir);
   write_bench_json(results, json_path);
   std::printf("\nfigures: %s\n", one_line(json_path).c_str());
-  plot_bench(json_path, plot_path);
+  plot_bench(results, outputs.path("bench.png"));
   return 0;
 }
 

@@ -1,5 +1,6 @@
 """Draws the `rtiow bench` scaling series: Mrays/s against the sphere count, log-log."""
 import json
+import os
 import sys
 
 import matplotlib
@@ -8,9 +9,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def main(json_path, png_path):
-    with open(json_path) as f:
-        results = json.load(f)
+def main(figures, png):
+    results = json.load(figures)
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for accel, style in (("embree", "o-"), ("naive", "s--")):
         points = [p[accel] for p in results["scaling"] if accel in p]
@@ -32,8 +32,13 @@ def main(json_path, png_path):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    fig.savefig(png_path, dpi=90)
+    fig.savefig(png, format="png", dpi=90)
 
 
 if __name__ == "__main__":
-    main(sys.argv[1], sys.argv[2])
+    # rtiow hands the figures on stdin and takes the PNG on stdout (no path crosses over);
+    # anything a library prints goes to stderr, not into the image.
+    png = os.fdopen(os.dup(1), "wb")
+    os.dup2(2, 1)
+    main(sys.stdin, png)
+    png.close()

@@ -88,8 +88,8 @@ void write_bench_json(const json& results, const std::string& path) {
   write_text_atomically(path, results.dump(2) + "\n");
 }
 
-void plot_bench(const std::string& json_path, const std::string& plot_path) {
-  run_plot_script("bench_plot.py", json_path, plot_path);
+void plot_bench(const json& results, const std::string& plot_path) {
+  run_plot_script("bench_plot.py", results.dump(), plot_path);
 }
 
 }  // namespace rtiow

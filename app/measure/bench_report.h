@@ -13,6 +13,6 @@ void write_bench_json(const nlohmann::json& results, const std::string& path);
 
 // Draws Mrays/s against N (log-log, one line per accelerator) with Debian's python3 and
 // matplotlib. Without them it says so and draws nothing; the figures are in the JSON.
-void plot_bench(const std::string& json_path, const std::string& plot_path);
+void plot_bench(const nlohmann::json& results, const std::string& plot_path);
 
 }  // namespace rtiow

@@ -1,26 +1,52 @@
 #include "app/measure/plot_script.h"
 
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
+#include "app/child_process.h"
 
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+#include "core/io/atomic_file.h"
 #include "core/limits/error.h"
 
 namespace rtiow {
+namespace {
 
-bool run_plot_script(const std::string& script, const std::string& json_path,
+constexpr const char* kPython = "/usr/bin/python3";
+
+}  // namespace
+
+bool run_plot_script(const std::string& script, const std::string& json_text,
                      const std::string& png_path) {
   namespace fs = std::filesystem;
-  const fs::path path = fs::read_symlink("/proc/self/exe").parent_path() / script;
-  const char* python = "/usr/bin/python3";
-  if (!fs::exists(python) || !fs::exists(path)) {
-    std::printf("plot: skipped (%s or %s missing)\n", python, path.c_str());
+  std::error_code error;
+  const fs::path path = fs::read_symlink("/proc/self/exe", error).parent_path() / script;
+  if (!fs::exists(kPython, error) || !fs::exists(path, error)) {
+    std::printf("plot: skipped (%s or %s missing)\n", kPython, one_line(path.string()).c_str());
     return false;
   }
-  const std::string command =
-      std::string(python) + " '" + path.string() + "' '" + json_path + "' '" + png_path + "'";
-  if (std::system(command.c_str()) != 0) {
-    std::printf("plot: skipped (%s failed; is python3-matplotlib installed?)\n", path.c_str());
+  try {
+    write_atomically(png_path, [&](int fd, std::string& reason) {
+      const ChildRun run = run_child({kPython, path.string()}, json_text, fd);
+      if (!run.ok()) {
+        reason = run.started ? "the helper failed" : run.failure;
+        return false;
+      }
+      // What it wrote must be a PNG (its signature), not a traceback or nothing.
+      unsigned char signature[8] = {};
+      if (::pread(fd, signature, sizeof signature, 0) != ssize_t(sizeof signature) ||
+          std::memcmp(signature, "\x89PNG\r\n\x1a\n", sizeof signature) != 0) {
+        reason = "the helper wrote no PNG";
+        return false;
+      }
+      return true;
+    });
+  } catch (const std::runtime_error& e) {
+    std::printf("plot: skipped (%s: %s; is python3-matplotlib installed?)\n",
+                one_line(path.string()).c_str(), one_line(e.what()).c_str());
     return false;
   }
   std::printf("plot:    %s\n", one_line(png_path).c_str());

@@ -12,12 +12,12 @@
 #include "app/progress_display.h"
 #include "app/render/checkpoint_session.h"
 #include "app/render/image_request.h"
-#include "app/render/output_lock.h"
 #include "app/render/render_options.h"
-#include "core/io/atomic_file.h"
 #include "core/io/image_backend.h"
+#include "core/io/output_claim.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
+#include "core/parallel/cancellation.h"
 #include "core/parallel/thread_count.h"
 #include "core/render/render_job.h"
 #include "core/render/render_metadata.h"
@@ -157,15 +157,19 @@ int interrupted_outside_render(const char* when) {
   return 128 + signal;
 }
 
-// A killed render's temporaries beside the output (the lock is held: no live rtiow writes them).
-void remove_leftovers(const std::string& output, bool quiet) {
-  const int removed =
-      remove_stale_temporaries(output) + remove_stale_temporaries(checkpoint_path(output));
-  if (removed > 0 && !quiet) {
-    std::fprintf(stderr, "rtiow: removed %d temporar%s an interrupted rtiow left beside %s\n",
-                 removed, removed == 1 ? "y" : "ies", quote_value(output).c_str());
+// The output and its checkpoint, claimed for the whole command (core/io/output_claim.h); what
+// an interrupted rtiow left beside them is removed, and said.
+struct ClaimedOutputs {
+  ClaimedOutputs(const std::string& output, bool quiet)
+      : image(output), checkpoint(checkpoint_path(output)) {
+    const int removed = image.removed_temporaries() + checkpoint.removed_temporaries();
+    if (removed > 0 && !quiet) {
+      std::fprintf(stderr, "rtiow: removed %d temporar%s an interrupted rtiow left beside %s\n",
+                   removed, removed == 1 ? "y" : "ies", quote_value(output).c_str());
+    }
   }
-}
+  OutputClaim image, checkpoint;
+};
 
 // "rtiow: interrupted: wrote 37 spp (of 100 asked) to cover.png; the render is kept in ..."
 int report_interrupted(const RenderJob& job, const RenderResult& result,
@@ -186,15 +190,19 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   // From the scene's load to the last write, a signal asks the command to stop gracefully.
   RenderProgress progress;
   const InterruptGuard interrupt(progress.stop_requested);
-  RenderJob job = prepare_job(request);
-  if (const int code = interrupted_outside_render("before the render began; nothing was written")) {
-    return code;
+  constexpr const char* kBeforeRender = "before the render began; nothing was written";
+  std::optional<RenderJob> prepared;
+  try {
+    prepared = prepare_job(request);
+  } catch (const Cancelled&) {  // a signal while a large scene was built
+    return interrupted_outside_render(kBeforeRender);
   }
+  RenderJob& job = *prepared;
+  if (const int code = interrupted_outside_render(kBeforeRender)) return code;
   if (mpi.rank() == 0) note_long_request(job);
   // Rank 0 writes the output (and, alone, keeps a checkpoint).
-  const std::optional<OutputLock> lock =
-      mpi.rank() == 0 ? std::make_optional<OutputLock>(job.output) : std::nullopt;
-  if (lock) remove_leftovers(job.output, o.quiet);
+  const std::unique_ptr<ClaimedOutputs> claimed =
+      mpi.rank() == 0 ? std::make_unique<ClaimedOutputs>(job.output, o.quiet) : nullptr;
   const std::unique_ptr<CheckpointSession> checkpoint = open_checkpoint(o, job, mpi);
   // The image library loads on a second thread while the render runs (rank 0 writes), unless
   // rtiow encodes the format itself (PNG): then it is never loaded.
@@ -203,8 +211,13 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
     const ImageFormat* format = image_format(job.output);
     if (!format || !format->own_encoder) preload_image_backend();
   }
-  RenderResult result = render_with_progress(o, job, mpi, progress,
-                                             checkpoint ? checkpoint->checkpointing() : nullptr);
+  RenderResult result;
+  try {
+    result = render_with_progress(o, job, mpi, progress,
+                                  checkpoint ? checkpoint->checkpointing() : nullptr);
+  } catch (const Cancelled&) {  // a signal while the BVH was built: any checkpoint is as it was
+    return interrupted_outside_render(kBeforeRender);
+  }
   if (mpi.distributed() && !gather_ranks(mpi, job, result, o.stats_channels)) return 0;
   write_or_keep(o, request, job, result, checkpoint.get());
   if (checkpoint) checkpoint->warn_where_kept();  // even when quiet

@@ -8,6 +8,7 @@
 #include "core/geometry/ray_offset.h"
 #include "core/geometry/sphere_bounds.h"
 #include "core/geometry/sphere_intersect.h"
+#include "core/parallel/cancellation.h"
 #include "core/parallel/instruction_sets.h"
 #include "core/parallel/thread_sanitizer.h"
 
@@ -44,8 +45,16 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
   const auto& s = *static_cast<const SphereSet*>(args->geometryUserPtr);
   tsan_acquire(&s);  // Embree's build threads start after the spheres were written
   const unsigned i = args->primID;
-  const Box box = padded_sphere_bounds(s.center(i), s.radius[i]);
   RTCBounds* b = args->bounds_o;
+  if (cancellation_requested()) {
+    // An empty box (lower above upper): Embree drops the sphere, so a build being cancelled
+    // skips the rest of its work; the scene is thrown away after the commit.
+    b->lower_x = b->lower_y = b->lower_z = 1.0f;
+    b->upper_x = b->upper_y = b->upper_z = -1.0f;
+    tsan_release(&s);
+    return;
+  }
+  const Box box = padded_sphere_bounds(s.center(i), s.radius[i]);
   b->lower_x = box.lower.x, b->lower_y = box.lower.y, b->lower_z = box.lower.z;
   b->upper_x = box.upper.x, b->upper_y = box.upper.y, b->upper_z = box.upper.z;
   tsan_release(&s);  // ...and finish before the commit returns
@@ -180,8 +189,12 @@ EmbreeAccel::EmbreeAccel(const SphereSet& spheres, EmbreeCallback callback) {
     tsan_release(&spheres);
     rtcAttachGeometry(scene_, geometry);
     rtcReleaseGeometry(geometry);
+    // A build of millions of spheres takes a while: it stops when a stop is asked for.
+    rtcSetSceneProgressMonitorFunction(
+        scene_, [](void*, double) { return !cancellation_requested(); }, nullptr);
     rtcCommitScene(scene_);
     tsan_acquire(&spheres);
+    throw_if_cancelled();
     throw_on_device_error(device_, "building the sphere BVH");
   } catch (...) {
     if (scene_) rtcReleaseScene(scene_);

@@ -8,16 +8,15 @@
 
 #include <cerrno>
 #include <cstring>
-#include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "core/io/file_bytes.h"
+#include "core/io/output_claim.h"
 #include "core/io/removed_on_abort.h"
 
 namespace rtiow {
 namespace {
-
-namespace fs = std::filesystem;
 
 constexpr const char* kTemporaryMark = ".rtiow-tmp-";
 constexpr std::size_t kRandomLetters = 8;
@@ -52,10 +51,6 @@ class Descriptor {
   int fd_;
 };
 
-std::string directory_of(const fs::path& target) {
-  return target.parent_path().empty() ? std::string(".") : target.parent_path().string();
-}
-
 }  // namespace
 
 std::string unpredictable_letters(std::size_t count) {
@@ -73,13 +68,16 @@ std::string unpredictable_letters(std::size_t count) {
 
 void write_atomically(const std::string& path,
                       const std::function<bool(int fd, std::string& reason)>& write) {
-  const fs::path target(path);
-  const std::string target_name = target.filename().string();
+  // Through the claim of the target: the command's own, held since before its work, or one
+  // taken for this write alone.
+  std::optional<OutputClaim> for_this_write;
+  const OutputClaim* claim = OutputClaim::find(path);
+  if (!claim) claim = &for_this_write.emplace(path);
+  const int dir = claim->directory();
+  const std::string& target_name = claim->name();
   const auto fail = [&](const std::string& why) {
     throw std::runtime_error("cannot write '" + path + "': " + why);
   };
-  const Descriptor dir(::open(directory_of(target).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-  if (dir.get() < 0) fail(std::strerror(errno));
 
   // Exclusive creation under a fresh random name; a name taken (by chance, or by someone who
   // guessed it) is simply not used.
@@ -87,13 +85,12 @@ void write_atomically(const std::string& path,
   int fd = -1;
   for (int attempt = 0; fd < 0 && attempt < 100; ++attempt) {
     name = "." + target_name + kTemporaryMark + unpredictable_letters(kRandomLetters);
-    fd = ::openat(dir.get(), name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
-                  0600);
+    fd = ::openat(dir, name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
     if (fd < 0 && errno != EEXIST) fail(std::strerror(errno));
   }
   if (fd < 0) fail("no free temporary name in its directory");
   Descriptor file(fd);
-  const RemovedOnAbort registered(dir.get(), name);
+  const RemovedOnAbort registered(dir, name);
 
   std::string reason;
   bool written = false;
@@ -103,7 +100,7 @@ void write_atomically(const std::string& path,
     reason = e.what();
   }
   const auto discard = [&](const std::string& why) {
-    ::unlinkat(dir.get(), name.c_str(), 0);
+    ::unlinkat(dir, name.c_str(), 0);
     fail(why);
   };
   if (!written) discard(reason.empty() ? "the write failed" : reason);
@@ -111,10 +108,10 @@ void write_atomically(const std::string& path,
   if (::fchmod(file.get(), kFileMode) != 0 || ::fsync(file.get()) != 0 || !file.close()) {
     discard(std::strerror(errno));
   }
-  if (::renameat(dir.get(), name.c_str(), dir.get(), target_name.c_str()) != 0) {
+  if (::renameat(dir, name.c_str(), dir, target_name.c_str()) != 0) {
     discard(std::strerror(errno));
   }
-  ::fsync(dir.get());  // the rename itself, on the disk
+  ::fsync(dir);  // the rename itself, on the disk
 }
 
 void write_bytes_atomically(const std::string& path, const std::vector<unsigned char>& bytes) {
@@ -141,14 +138,13 @@ bool is_temporary_of(const std::string& target_name, const std::string& name) {
   return true;
 }
 
-int remove_stale_temporaries(const std::string& target) {
-  const fs::path target_path(target);
-  const std::string target_name = target_path.filename().string();
-  const int dir_fd = ::open(directory_of(target_path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir_fd < 0) return 0;
-  DIR* dir = ::fdopendir(dir_fd);
+int remove_stale_temporaries(int dir_fd, const std::string& target_name) {
+  // A descriptor of its own: closedir closes what fdopendir was given.
+  const int own = ::openat(dir_fd, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (own < 0) return 0;
+  DIR* dir = ::fdopendir(own);
   if (!dir) {
-    ::close(dir_fd);
+    ::close(own);
     return 0;
   }
   int removed = 0;
@@ -160,7 +156,7 @@ int remove_stale_temporaries(const std::string& target) {
     if (!S_ISREG(info.st_mode) || info.st_uid != ::geteuid()) continue;
     if (::unlinkat(dir_fd, name.c_str(), 0) == 0) ++removed;
   }
-  ::closedir(dir);  // closes dir_fd too
+  ::closedir(dir);
   return removed;
 }
 

@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <future>
@@ -11,8 +12,10 @@
 #include <system_error>
 
 #include "core/io/image_file.h"
+#include "core/io/image_signature.h"
 #include "core/io/input_file.h"
 #include "core/limits/error.h"
+#include "core/limits/input_limits.h"
 
 #ifndef RTIOW_LIBDIR_FROM_BINDIR
 #define RTIOW_LIBDIR_FROM_BINDIR "../lib"
@@ -162,16 +165,75 @@ class CheckedImageReader final : public ImageReader {
 
 }  // namespace
 
+namespace {
+
+std::uint64_t bytes_of(PixelType type) {
+  switch (type) {
+    case PixelType::UInt8:
+      return 1;
+    case PixelType::UInt16:
+    case PixelType::Half:
+      return 2;
+    case PixelType::UInt32:
+    case PixelType::Float:
+      break;
+  }
+  return 4;
+}
+
+// Why the header's declared size is not an image rtiow reads from a file of `file_bytes`, or "".
+std::string why_not_readable(const ImageHeader& header, std::uint64_t file_bytes) {
+  const auto size = std::to_string(header.width) + "x" + std::to_string(header.height);
+  if (header.width < 1 || header.height < 1 || header.width > limits::kMaxImageSide ||
+      header.height > limits::kMaxImageSide) {
+    return "its header says " + size + ", outside 1 to " + std::to_string(limits::kMaxImageSide) +
+           " pixels a side";
+  }
+  const std::uint64_t pixels = std::uint64_t(header.width) * std::uint64_t(header.height);
+  if (pixels > limits::kMaxPixels) {
+    return "its header says " + size + ", more than " + std::to_string(limits::kMaxPixels) +
+           " pixels";
+  }
+  const std::size_t channels = header.channel_names.size();
+  if (channels < 1 || channels > limits::kMaxImageChannels ||
+      header.channel_types.size() != channels) {
+    return "its header says " + std::to_string(channels) + " channels, outside 1 to " +
+           std::to_string(limits::kMaxImageChannels);
+  }
+  std::uint64_t pixel_bytes = 0;
+  for (const PixelType type : header.channel_types) pixel_bytes += bytes_of(type);
+  const std::uint64_t declared = pixels * pixel_bytes;
+  const std::uint64_t holdable =
+      std::max(limits::kImageBytesAlwaysRead, file_bytes * limits::kMaxImageExpansion);
+  if (declared > holdable) {
+    return "its header says " + size + " with " + std::to_string(channels) + " channels (" +
+           std::to_string(declared >> 20) + " MiB of pixels), more than a file of " +
+           std::to_string(file_bytes) + " bytes can hold (at most " +
+           std::to_string(limits::kMaxImageExpansion) + " times its size)";
+  }
+  return {};
+}
+
+}  // namespace
+
 std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std::string& name,
-                                              std::uint64_t max_bytes, const char* what) {
-  InputFile file(path, max_bytes, what);
+                                              std::uint64_t max_bytes, const char* what,
+                                              InputKind kind) {
+  InputFile file(path, max_bytes, what, kind);
+  const std::string format = image_format_of(file.first_bytes(kImageSignatureBytes), path);
+  if (format.empty()) {
+    throw InvalidInput(name + ": is not an image rtiow reads: its first bytes are no " +
+                       readable_image_formats() + " signature");
+  }
   const std::string library_name = file.name_for_library();
   std::string reason;
-  auto in = image_backend().open(library_name, reason);
+  auto in = image_backend().open(library_name, format, reason);
   if (!in) {
     throw InvalidInput(name +
                        ": cannot read: " + one_line(in_words_of(reason, library_name, path), 200));
   }
+  const std::string why = why_not_readable(in->header(), file.size());
+  if (!why.empty()) throw InvalidInput(name + ": " + why);
   return std::make_unique<CheckedImageReader>(std::move(file), path, std::move(in));
 }
 

@@ -13,13 +13,15 @@
 #include <memory>
 #include <string>
 
+#include "core/io/input_file.h"
+
 namespace rtiow {
 
 class ImageBackend;
 class ImageReader;
 
 // Changes whenever image_file.h changes shape: a backend from another build is refused.
-inline constexpr int kImageBackendAbi = 3;
+inline constexpr int kImageBackendAbi = 4;
 
 // The name the backend's file has.
 inline constexpr const char* kImageBackendFile = "librtiow_image_io.so";
@@ -29,11 +31,15 @@ inline constexpr const char* kImageBackendFile = "librtiow_image_io.so";
 // it is missing, so a command can refuse before its work rather than lose it.
 void preload_image_backend();
 
-// An image file rtiow reads (a part file, an image to compare), opened: checked first like
-// any input (core/io/input_file.h, at most `max_bytes`), then its header read. Throws
-// InvalidInput "<name>: cannot read: <reason>" in one line.
+// An image file rtiow reads (a part file, an image to compare, a cached reference), opened:
+// checked first like any input (core/io/input_file.h, at most `max_bytes`, of `kind`), its
+// format recognised from its first bytes (core/io/image_signature.h) before any image reader
+// sees it, then its header read and its declared size checked against rtiow's image limits
+// and against what the file's size can hold (limits::kMaxImageExpansion), before any pixel
+// is allocated. Throws InvalidInput "<name>: <reason>" in one line.
 std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std::string& name,
-                                              std::uint64_t max_bytes, const char* what);
+                                              std::uint64_t max_bytes, const char* what,
+                                              InputKind kind = InputKind::Data);
 
 // The backend, loaded now unless a preload did it (waits for one under way). Throws
 // std::runtime_error naming the places it looked when there is none.

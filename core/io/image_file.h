@@ -65,9 +65,11 @@ class ImageBackend {
   // (core/io/atomic_file.h). False (and `reason`) on failure.
   virtual bool encode(const std::string& path, const ImageHeader& header, const void* pixels,
                       std::vector<unsigned char>& bytes, std::string& reason) const = 0;
-  // Nothing (and `reason`) when the file does not open as an image. The format is found from
-  // the file's content, so `path` may name an open descriptor (/proc/self/fd/N).
-  virtual std::unique_ptr<ImageReader> open(const std::string& path, std::string& reason) const = 0;
+  // Nothing (and `reason`) when the file does not open as an image of `format` (OpenImageIO's
+  // name for it, from core/io/image_signature.h: the file's first bytes chose it). `path` may
+  // name an open descriptor (/proc/self/fd/N).
+  virtual std::unique_ptr<ImageReader> open(const std::string& path, const std::string& format,
+                                            std::string& reason) const = 0;
 };
 
 }  // namespace rtiow

@@ -6,27 +6,29 @@
 
 #include <cerrno>
 #include <cstring>
+#include <stdexcept>
 
 #include "core/limits/error.h"
 
 namespace rtiow {
 
 InputFile::InputFile(const std::string& path, std::uint64_t max_bytes, const char* what,
-                     bool follow_links) {
-  open(path, max_bytes, what, follow_links, false);
+                     InputKind kind) {
+  open(path, max_bytes, what, kind, false);
 }
 
 std::optional<InputFile> InputFile::open_if_present(const std::string& path,
                                                     std::uint64_t max_bytes, const char* what,
-                                                    bool follow_links) {
+                                                    InputKind kind) {
   InputFile file;
-  file.open(path, max_bytes, what, follow_links, true);
+  file.open(path, max_bytes, what, kind, true);
   if (file.fd_ < 0) return std::nullopt;
   return std::optional<InputFile>(std::move(file));
 }
 
 void InputFile::open(const std::string& path, std::uint64_t max_bytes, const char* what,
-                     bool follow_links, bool missing_ok) {
+                     InputKind kind, bool missing_ok) {
+  const bool follow_links = kind == InputKind::Data;
   const std::string name = std::string(what) + " " + quote_value(path);
   if (path.empty()) throw InvalidInput(std::string(what) + ": the path is empty");
   path_ = path;
@@ -40,6 +42,10 @@ void InputFile::open(const std::string& path, std::uint64_t max_bytes, const cha
     if (error == ELOOP && !follow_links) {
       throw InvalidInput(name + ": is a symbolic link, not a file rtiow wrote; remove it");
     }
+    if (error == EMFILE || error == ENFILE || error == ENOMEM) {
+      throw std::runtime_error("cannot open " + name + ": " + std::strerror(error) +
+                               " (a limit of this process or system, not the file's fault)");
+    }
     throw InvalidInput(name + ": " + std::strerror(error));
   }
   fd_ = fd;  // closed by the destructor if a check below throws
@@ -48,6 +54,13 @@ void InputFile::open(const std::string& path, std::uint64_t max_bytes, const cha
   if (S_ISDIR(info.st_mode)) throw InvalidInput(name + ": is a directory, not a file");
   if (!S_ISREG(info.st_mode)) {
     throw InvalidInput(name + ": is not a regular file (a device, FIFO or socket)");
+  }
+  if (kind == InputKind::OwnState && info.st_uid != ::geteuid()) {
+    throw InvalidInput(name + ": belongs to another user (uid " + std::to_string(info.st_uid) +
+                       "); rtiow continues only its own files");
+  }
+  if (kind == InputKind::OwnState && info.st_nlink != 1) {
+    throw InvalidInput(name + ": has other names (hard links), which rtiow never makes; remove it");
   }
   if (std::uint64_t(info.st_size) > max_bytes) {
     throw InvalidInput(name + ": is " + std::to_string(std::uint64_t(info.st_size) >> 20) +
@@ -69,6 +82,19 @@ InputFile::InputFile(InputFile&& other) noexcept
 std::string InputFile::name_for_library() const {
   const std::string by_descriptor = "/proc/self/fd/" + std::to_string(fd_);
   return ::access(by_descriptor.c_str(), R_OK) == 0 ? by_descriptor : path_;
+}
+
+std::string InputFile::first_bytes(std::size_t size) const {
+  std::string bytes(size, '\0');
+  std::size_t got = 0;
+  while (got < size) {
+    const ssize_t n = ::pread(fd_, bytes.data() + got, size - got, off_t(got));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    got += std::size_t(n);
+  }
+  bytes.resize(got);
+  return bytes;
 }
 
 int InputFile::release() {

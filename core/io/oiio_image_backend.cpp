@@ -216,11 +216,19 @@ class OiioImageBackend final : public ImageBackend {
     return decodes(path, bytes, reason);
   }
 
-  std::unique_ptr<ImageReader> open(const std::string& path, std::string& reason) const override {
+  std::unique_ptr<ImageReader> open(const std::string& path, const std::string& format,
+                                    std::string& reason) const override {
     const QuietStderr quiet;
-    auto in = OIIO::ImageInput::open(path);
+    // The reader of the format the file's first bytes named (core/io/image_signature.h): no
+    // other reader is tried, so a file that is no image costs one header's read.
+    auto in = OIIO::ImageInput::create(format);
     if (!in) {
       reason = take_error();
+      return nullptr;
+    }
+    OIIO::ImageSpec spec;
+    if (!in->open(path, spec)) {
+      reason = take_error(in->geterror());
       return nullptr;
     }
     return std::make_unique<OiioImageReader>(std::move(in));

@@ -1,6 +1,7 @@
 #include "core/io/removed_on_abort.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <array>
@@ -18,6 +19,7 @@ struct Slot {
   char name[256] = {};
 };
 std::array<Slot, 8> g_slots;
+std::array<std::atomic<int>, 4> g_children{0, 0, 0, 0};  // pids, 0 when free
 static_assert(std::atomic<int>::is_always_lock_free, "read from a signal handler");
 
 }  // namespace
@@ -39,7 +41,24 @@ RemovedOnAbort::~RemovedOnAbort() {
   if (slot_ >= 0) g_slots[std::size_t(slot_)].dir_fd.store(kFree);
 }
 
+EndedOnAbort::EndedOnAbort(int pid) {
+  for (int i = 0; i < int(g_children.size()) && pid > 0; ++i) {
+    int expected = 0;
+    if (g_children[std::size_t(i)].compare_exchange_strong(expected, pid)) {
+      slot_ = i;
+      return;
+    }
+  }
+}
+
+EndedOnAbort::~EndedOnAbort() {
+  if (slot_ >= 0) g_children[std::size_t(slot_)].store(0);
+}
+
 void remove_files_now() noexcept {
+  for (std::atomic<int>& child : g_children) {
+    if (const int pid = child.load(); pid > 0) ::kill(pid, SIGTERM);
+  }
   for (Slot& slot : g_slots) {
     const int dir_fd = slot.dir_fd.load();
     if (dir_fd >= 0) ::unlinkat(dir_fd, slot.name, 0);

@@ -1,7 +1,7 @@
 #pragma once
-// Files this process must not leave behind even when it ends at once (a second Ctrl-C, a
-// fatal signal handled by rtiow): a temporary being written, a lock file. Each is registered
-// by its directory's descriptor and its name while it exists; remove_files_now() unlinks
+// Files (and helper processes) this process must not leave behind even when it ends at once (a
+// second Ctrl-C, a fatal signal handled by rtiow): a temporary being written, a lock file. Each is
+// registered by its directory's descriptor and its name while it exists; remove_files_now() unlinks
 // them all and is async-signal-safe, so a signal handler may call it just before _exit.
 
 #include <string>
@@ -21,7 +21,21 @@ class RemovedOnAbort {
   int slot_ = -1;
 };
 
-// Unlinks every registered file. Async-signal-safe: only atomics and unlinkat.
+// A helper process rtiow started and waits for (app/child_process.h): ended with SIGTERM if
+// rtiow must end at once, so no helper outlives it writing into a temporary.
+class EndedOnAbort {
+ public:
+  explicit EndedOnAbort(int pid);
+  ~EndedOnAbort();
+  EndedOnAbort(const EndedOnAbort&) = delete;
+  EndedOnAbort& operator=(const EndedOnAbort&) = delete;
+
+ private:
+  int slot_ = -1;
+};
+
+// Ends every registered helper and unlinks every registered file. Async-signal-safe: only
+// atomics, kill and unlinkat.
 void remove_files_now() noexcept;
 
 }  // namespace rtiow

@@ -393,11 +393,12 @@ void write_checkpoint(const std::string& path, const CheckpointIdentity& identit
 
 namespace {
 
-// The file at `path`, opened as a checkpoint must be: never through a link (rtiow writes
-// none), never blocking (a FIFO is refused), a regular file. Nothing when there is none.
+// The file at `path`, opened as a checkpoint must be: rtiow's own state (never through a
+// link, never a hard link, never another user's file), never blocking (a FIFO is refused), a
+// regular file. Nothing when there is none.
 std::optional<InputFile> open_checkpoint(const std::string& path) {
   return InputFile::open_if_present(path, std::numeric_limits<std::uint64_t>::max(), "checkpoint",
-                                    /*follow_links=*/false);
+                                    InputKind::OwnState);
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
+#include "core/limits/error.h"
+#include "core/limits/input_limits.h"
 
 namespace rtiow {
 
@@ -42,10 +44,17 @@ std::optional<ImageEstimate> read_statistics_image(
     const std::vector<std::pair<std::string, std::string>>& required) {
   constexpr int kChannels = 7;  // R, G, B, spp, variance.R, variance.G, variance.B
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path, error))) return std::nullopt;
+  // A cache is state rtiow continues: its own file, checked like every image it reads. One
+  // that is not (another user's, a link, a crafted header) is not used, and is replaced.
+  std::unique_ptr<ImageReader> in;
+  try {
+    in = open_input_image(path, "cached image " + quote_value(path), limits::kMaxPartFileBytes,
+                          "cached image", InputKind::OwnState);
+  } catch (const InvalidInput&) {
+    return std::nullopt;
+  }
   std::string reason;
-  auto in = image_backend().open(path, reason);
-  if (!in) return std::nullopt;
   const ImageHeader& header = in->header();
   if (header.width != width || header.height != height ||
       header.channel_names.size() != kChannels) {

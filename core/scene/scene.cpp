@@ -7,6 +7,7 @@
 
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/parallel/cancellation.h"
 
 namespace rtiow {
 namespace {
@@ -20,7 +21,10 @@ std::string sphere_name(std::size_t i) {
 void validate(const Scene& scene) {
   const SphereSet& s = scene.spheres;
   if (s.size() == 0) throw InvalidInput("scene: it has no spheres");
+  // Millions of spheres take seconds: a stop asked for meanwhile is honoured.
+  constexpr std::size_t kBetweenChecks = 1 << 16;
   for (std::size_t i = 0; i < s.size(); ++i) {
+    if (i % kBetweenChecks == 0) throw_if_cancelled();
     const Vec3 c = s.center(i);
     const double extent = std::max({std::abs(double(c.x)), std::abs(double(c.y)),
                                     std::abs(double(c.z)), std::abs(double(s.radius[i]))});
@@ -37,6 +41,7 @@ void validate(const Scene& scene) {
     }
   }
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    if (i % kBetweenChecks == 0) throw_if_cancelled();
     if (const auto p = check_parameters(scene.materials[i])) {
       const std::string field =
           p->component < 0 ? p->field : p->field + "[" + std::to_string(p->component) + "]";

@@ -1,0 +1,201 @@
+#include "core/io/output_claim.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <mutex>
+#include <vector>
+
+#include "core/io/atomic_file.h"
+#include "core/limits/error.h"
+
+namespace rtiow {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::mutex g_claims_mutex;
+std::vector<const OutputClaim*> g_claims;
+
+std::string directory_of(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  return parent.empty() ? std::string(".") : parent.string();
+}
+
+std::string read_pid(int fd) {
+  char text[32] = {};
+  const ssize_t n = ::pread(fd, text, sizeof text - 1, 0);
+  std::string pid(text, n > 0 ? std::size_t(n) : 0);
+  while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
+  for (const char c : pid) {
+    if (c < '0' || c > '9') return "unknown";
+  }
+  return pid.empty() ? "unknown" : pid;
+}
+
+// Whether `fd` is what the name `name` in `dir_fd` still is: a lock whose holder removed it
+// between our open and our lock is not the lock any more.
+bool still_named(int dir_fd, const std::string& name, int fd) {
+  struct stat held {
+  }, named{};
+  return ::fstat(fd, &held) == 0 &&
+         ::fstatat(dir_fd, name.c_str(), &named, AT_SYMLINK_NOFOLLOW) == 0 &&
+         held.st_ino == named.st_ino && held.st_dev == named.st_dev;
+}
+
+// Why an existing file at the lock's name is not a lock rtiow may take, or "".
+std::string why_not_a_lock(int fd) {
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) return std::strerror(errno);
+  if (!S_ISREG(info.st_mode))
+    return "it is not a regular file (a FIFO, socket or device); remove it";
+  if (info.st_uid != ::geteuid()) return "it belongs to another user; remove it";
+  if (info.st_nlink != 1) return "it has other names (hard links); remove it";
+  return {};
+}
+
+bool same_directory(int a, int b) {
+  struct stat sa {
+  }, sb{};
+  return ::fstat(a, &sa) == 0 && ::fstat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
+}
+
+std::string lock_name_of(const std::string& name) {
+  std::string lock(1, '.');  // not `"." + ...`: GCC 12 warns falsely (-Wrestrict)
+  lock.append(name).append(".rtiow-lock");
+  return lock;
+}
+
+}  // namespace
+
+OutputClaim::OutputClaim(const std::string& path)
+    : path_(path), name_(fs::path(path).filename().string()), lock_name_(lock_name_of(name_)) {
+  const std::string shown = quote_value((fs::path(path).parent_path() / lock_name_).string());
+  const auto refuse = [&](const std::string& why) {
+    if (lock_fd_ >= 0) ::close(lock_fd_);
+    if (dir_fd_ >= 0) ::close(dir_fd_);
+    throw InvalidInput("output " + quote_value(path) + ": cannot take its lock " + shown + ": " +
+                       why);
+  };
+  dir_fd_ = ::open(directory_of(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir_fd_ < 0) {
+    const int error = errno;
+    if (error == EMFILE || error == ENFILE || error == ENOMEM) {
+      throw std::runtime_error("cannot open the directory of " + quote_value(path) + ": " +
+                               std::strerror(error));
+    }
+    refuse(std::strerror(error));
+  }
+  {  // One command writing one file twice (diff --out-diff x.png --out-z x.png) loses one.
+    const std::lock_guard<std::mutex> guard(g_claims_mutex);
+    for (const OutputClaim* claim : g_claims) {
+      if (claim->name_ == name_ && same_directory(claim->dir_fd_, dir_fd_)) {
+        ::close(dir_fd_);
+        throw InvalidInput("output " + quote_value(path) + ": is also " +
+                           quote_value(claim->path_) + ", another output of this command");
+      }
+    }
+  }
+
+  // A few tries: a stale lock may be removed, or a fresh one made, between our steps.
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    bool created = true;
+    int fd = ::openat(dir_fd_, lock_name_.c_str(),
+                      O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0 && errno == EEXIST) {
+      // Someone's lock, live or stale; opened without following a link or blocking on a FIFO,
+      // and used only if it is a plain file of this user's.
+      created = false;
+      fd = ::openat(dir_fd_, lock_name_.c_str(),
+                    O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+      if (fd < 0 && errno == ENOENT) continue;  // removed meanwhile: create it
+      if (fd < 0 && errno == ELOOP)
+        refuse("it is a symbolic link, which rtiow never makes; remove it");
+      if (fd < 0 && errno == EISDIR)
+        refuse("it is a directory, which rtiow never makes; remove it");
+      if (fd < 0 && errno == ENXIO)
+        refuse("it is a FIFO or socket, which rtiow never makes; remove it");
+      if (fd >= 0) {
+        const std::string why = why_not_a_lock(fd);
+        if (!why.empty()) {
+          ::close(fd);
+          refuse(why);
+        }
+      }
+    }
+    if (fd < 0) {
+      const int error = errno;
+      if (error == EMFILE || error == ENFILE || error == ENOMEM || error == ENOSPC) {
+        ::close(dir_fd_);
+        throw std::runtime_error("cannot take the lock of output " + quote_value(path) + ": " +
+                                 std::strerror(error));
+      }
+      refuse(std::strerror(error));
+    }
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      const std::string pid = read_pid(fd);
+      ::close(fd);
+      if (error != EWOULDBLOCK) refuse(std::strerror(error));
+      ::close(dir_fd_);
+      throw InvalidInput("output " + quote_value(path) + ": another rtiow (pid " + pid +
+                         ") is writing it; wait for it to end, or choose another name");
+    }
+    if (!still_named(dir_fd_, lock_name_, fd)) {
+      ::close(fd);  // locked a file its holder had just removed: take the new one
+      continue;
+    }
+    lock_fd_ = fd;
+    removed_on_abort_ = std::make_unique<RemovedOnAbort>(dir_fd_, lock_name_);
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    if (created || ::ftruncate(lock_fd_, 0) == 0) {
+      [[maybe_unused]] const ssize_t ignored = ::pwrite(lock_fd_, pid.data(), pid.size(), 0);
+    }
+    // The lock is held: no live rtiow writes this output's temporaries.
+    removed_ = remove_stale_temporaries(dir_fd_, name_);
+    const std::lock_guard<std::mutex> guard(g_claims_mutex);
+    g_claims.push_back(this);
+    return;
+  }
+  refuse("it kept changing while rtiow tried to take it");
+}
+
+OutputClaim::~OutputClaim() {
+  {
+    const std::lock_guard<std::mutex> guard(g_claims_mutex);
+    g_claims.erase(std::remove(g_claims.begin(), g_claims.end(), this), g_claims.end());
+  }
+  // Removed before the release, so a waiting command makes a fresh one; only if the name is
+  // still ours.
+  if (still_named(dir_fd_, lock_name_, lock_fd_)) ::unlinkat(dir_fd_, lock_name_.c_str(), 0);
+  removed_on_abort_.reset();
+  ::close(lock_fd_);
+  ::close(dir_fd_);
+}
+
+const OutputClaim* OutputClaim::find(const std::string& path) {
+  const std::lock_guard<std::mutex> guard(g_claims_mutex);
+  if (g_claims.empty()) return nullptr;
+  // The command's own spelling first: its directory may have moved since it was claimed.
+  for (const OutputClaim* claim : g_claims) {
+    if (claim->path_ == path) return claim;
+  }
+  const std::string name = fs::path(path).filename().string();
+  const int dir = ::open(directory_of(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir < 0) return nullptr;
+  const OutputClaim* found = nullptr;
+  for (const OutputClaim* claim : g_claims) {
+    if (claim->name_ == name && same_directory(claim->dir_fd_, dir)) found = claim;
+  }
+  ::close(dir);
+  return found;
+}
+
+}  // namespace rtiow
