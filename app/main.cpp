@@ -30,6 +30,7 @@
 #include "app/parse_errors.h"
 #include "app/render/render_command.h"
 #include "app/scene_command.h"
+#include "core/io/removed_on_abort.h"
 #include "core/limits/error.h"
 #include "core/limits/nearest_name.h"
 #include "core/version.h"
@@ -47,6 +48,7 @@ void report(const char* what) {
 // rather than print terminate's text and abort. No image is half-written (images are written
 // whole and renamed); a checkpoint already saved stays.
 [[noreturn]] void on_terminate() {
+  rtiow::remove_files_now();  // the lock and any temporary: nothing left behind
   try {
     std::string what = "an unknown exception";
     if (const std::exception_ptr escaped = std::current_exception()) {

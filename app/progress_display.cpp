@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <system_error>
 
 namespace rtiow {
 namespace {
@@ -22,8 +23,14 @@ ProgressDisplay::ProgressDisplay(const RenderProgress& progress, std::uint64_t t
     : progress_(progress),
       total_samples_(total_samples),
       terminal_(::isatty(STDERR_FILENO) == 1),
-      start_(std::chrono::steady_clock::now()),
-      thread_([this] { run(); }) {}
+      start_(std::chrono::steady_clock::now()) {
+  try {
+    thread_ = std::thread([this] { run(); });
+  } catch (const std::system_error&) {
+    // No thread to be had (a limit of processes): the render goes on without the live display,
+    // and its final report is still printed.
+  }
+}
 
 ProgressDisplay::~ProgressDisplay() {
   {
@@ -31,7 +38,7 @@ ProgressDisplay::~ProgressDisplay() {
     stop_ = true;
   }
   wake_.notify_all();
-  thread_.join();
+  if (thread_.joinable()) thread_.join();
   report(true);
   if (terminal_) std::fputc('\n', stderr);
 }

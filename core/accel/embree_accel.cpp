@@ -1,5 +1,6 @@
 #include "core/accel/embree_accel.h"
 
+#include <cerrno>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -8,8 +9,10 @@
 #include "core/geometry/ray_offset.h"
 #include "core/geometry/sphere_bounds.h"
 #include "core/geometry/sphere_intersect.h"
+#include "core/limits/error.h"
 #include "core/parallel/cancellation.h"
 #include "core/parallel/instruction_sets.h"
+#include "core/parallel/thread_limit.h"
 #include "core/parallel/thread_sanitizer.h"
 
 namespace rtiow {
@@ -195,10 +198,19 @@ EmbreeAccel::EmbreeAccel(const SphereSet& spheres, EmbreeCallback callback) {
     rtcCommitScene(scene_);
     tsan_acquire(&spheres);
     throw_if_cancelled();
+    if (rtcGetDeviceError(device_) == RTC_ERROR_UNKNOWN && !a_thread_can_start()) {
+      // TBB could not start a worker for the build (Embree reports that as "unknown"); the
+      // device is left unreleased, since releasing it would try to start one again.
+      device_ = nullptr;
+      throw std::runtime_error("embree: cannot start the threads the BVH's build needs: " +
+                               system_error_text(EAGAIN) + "; --threads 1 needs none");
+    }
     throw_on_device_error(device_, "building the sphere BVH");
   } catch (...) {
-    if (scene_) rtcReleaseScene(scene_);
-    rtcReleaseDevice(device_);
+    if (device_) {
+      if (scene_) rtcReleaseScene(scene_);
+      rtcReleaseDevice(device_);
+    }
     throw;
   }
 }

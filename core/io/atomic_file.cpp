@@ -14,6 +14,7 @@
 #include "core/io/file_bytes.h"
 #include "core/io/output_claim.h"
 #include "core/io/removed_on_abort.h"
+#include "core/limits/error.h"
 
 namespace rtiow {
 namespace {
@@ -86,7 +87,7 @@ void write_atomically(const std::string& path,
   for (int attempt = 0; fd < 0 && attempt < 100; ++attempt) {
     name = "." + target_name + kTemporaryMark + unpredictable_letters(kRandomLetters);
     fd = ::openat(dir, name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-    if (fd < 0 && errno != EEXIST) fail(std::strerror(errno));
+    if (fd < 0 && errno != EEXIST) fail(system_error_text(errno));
   }
   if (fd < 0) fail("no free temporary name in its directory");
   Descriptor file(fd);
@@ -106,10 +107,10 @@ void write_atomically(const std::string& path,
   if (!written) discard(reason.empty() ? "the write failed" : reason);
   // Durable before it replaces anything: a power cut leaves the old file or the new one.
   if (::fchmod(file.get(), kFileMode) != 0 || ::fsync(file.get()) != 0 || !file.close()) {
-    discard(std::strerror(errno));
+    discard(system_error_text(errno));
   }
   if (::renameat(dir, name.c_str(), dir, target_name.c_str()) != 0) {
-    discard(std::strerror(errno));
+    discard(system_error_text(errno));
   }
   ::fsync(dir);  // the rename itself, on the disk
 }

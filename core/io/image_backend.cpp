@@ -1,6 +1,10 @@
 #include "core/io/image_backend.h"
 
 #include <dlfcn.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <chrono>
@@ -16,6 +20,7 @@
 #include "core/io/input_file.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/parallel/thread_limit.h"
 
 #ifndef RTIOW_LIBDIR_FROM_BINDIR
 #define RTIOW_LIBDIR_FROM_BINDIR "../lib"
@@ -85,6 +90,13 @@ Loaded linked() {
 
 Loaded load() {
   if (Loaded found = linked(); found.backend) return found;
+  // The image library starts a thread as it loads and, when it cannot, throws through the
+  // loader, where nothing can catch it: tried first, and said.
+  if (!a_thread_can_start()) {
+    return {nullptr, std::string("cannot read or write images: the image library starts threads "
+                                 "as it loads, and none can start now: ") +
+                         system_error_text(EAGAIN)};
+  }
   const std::string local = beside_program();
   std::string looked;
   if (!local.empty()) {
@@ -214,6 +226,25 @@ std::string why_not_readable(const ImageHeader& header, std::uint64_t file_bytes
   return {};
 }
 
+// The backend opens the file again by name and silences stderr meanwhile (three descriptors
+// at once): a process without them would see the file refused as "not an image", which is no
+// fault of the file's. Said as what it is instead.
+void require_spare_descriptors(const std::string& name) {
+  constexpr int kNeeded = 3;
+  int spare[kNeeded];
+  int held = 0;
+  int error = 0;
+  for (; held < kNeeded; ++held) {
+    spare[held] = ::fcntl(STDIN_FILENO, F_DUPFD_CLOEXEC, 0);
+    if (spare[held] < 0) {
+      error = errno;
+      break;
+    }
+  }
+  for (int i = 0; i < held; ++i) ::close(spare[i]);
+  if (error != 0) throw std::runtime_error("cannot read " + name + ": " + system_error_text(error));
+}
+
 }  // namespace
 
 std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std::string& name,
@@ -227,6 +258,7 @@ std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std
   }
   const std::string library_name = file.name_for_library();
   std::string reason;
+  require_spare_descriptors(name);
   auto in = image_backend().open(library_name, format, reason);
   if (!in) {
     throw InvalidInput(name +

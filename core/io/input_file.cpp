@@ -42,9 +42,8 @@ void InputFile::open(const std::string& path, std::uint64_t max_bytes, const cha
     if (error == ELOOP && !follow_links) {
       throw InvalidInput(name + ": is a symbolic link, not a file rtiow wrote; remove it");
     }
-    if (error == EMFILE || error == ENFILE || error == ENOMEM) {
-      throw std::runtime_error("cannot open " + name + ": " + std::strerror(error) +
-                               " (a limit of this process or system, not the file's fault)");
+    if (is_exhausted_resource(error)) {
+      throw std::runtime_error("cannot open " + name + ": " + system_error_text(error));
     }
     throw InvalidInput(name + ": " + std::strerror(error));
   }

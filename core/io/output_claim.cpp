@@ -87,9 +87,9 @@ OutputClaim::OutputClaim(const std::string& path)
   dir_fd_ = ::open(directory_of(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dir_fd_ < 0) {
     const int error = errno;
-    if (error == EMFILE || error == ENFILE || error == ENOMEM) {
-      throw std::runtime_error("cannot open the directory of " + quote_value(path) + ": " +
-                               std::strerror(error));
+    if (is_exhausted_resource(error)) {
+      throw std::runtime_error("cannot open the directory of output " + quote_value(path) + ": " +
+                               system_error_text(error));
     }
     refuse(std::strerror(error));
   }
@@ -132,10 +132,10 @@ OutputClaim::OutputClaim(const std::string& path)
     }
     if (fd < 0) {
       const int error = errno;
-      if (error == EMFILE || error == ENFILE || error == ENOMEM || error == ENOSPC) {
+      if (is_exhausted_resource(error)) {
         ::close(dir_fd_);
         throw std::runtime_error("cannot take the lock of output " + quote_value(path) + ": " +
-                                 std::strerror(error));
+                                 system_error_text(error));
       }
       refuse(std::strerror(error));
     }

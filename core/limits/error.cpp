@@ -1,7 +1,11 @@
 #include "core/limits/error.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 
 namespace rtiow {
 namespace {
@@ -55,6 +59,26 @@ std::string one_line(std::string_view text, std::size_t max_chars) {
   std::string out;
   if (!append_printable(out, text, max_chars)) out += "...";
   return out;
+}
+
+bool is_exhausted_resource(int error) {
+  return error == EMFILE || error == ENFILE || error == ENOMEM || error == ENOSPC ||
+         error == EDQUOT || error == EAGAIN || error == EFBIG;
+}
+
+std::string system_error_text(int error) {
+  std::string text = std::strerror(error);
+  if (error == EMFILE) {
+    struct rlimit limit {};
+    if (::getrlimit(RLIMIT_NOFILE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+      text += " (this process may hold " + std::to_string(limit.rlim_cur) + ": ulimit -n)";
+    }
+  } else if (error == EFBIG) {
+    text += " (a limit on the size of files this process writes: ulimit -f)";
+  } else if (error == ENOMEM || error == EAGAIN) {
+    text += " (a limit of this process or machine: memory, ulimit -v, or processes)";
+  }
+  return text;
 }
 
 }  // namespace rtiow

@@ -26,6 +26,14 @@ std::string quote_value(std::string_view value, std::size_t max_chars = 80);
 // long enough for a message that names a whole path the user must act on.
 std::string one_line(std::string_view text, std::size_t max_chars = 8192);
 
+// An error of the system (an errno value) in words; where it is a limit of this process or
+// machine rather than a fault of the file (descriptors, memory, disk, processes), it says
+// which: "Too many open files (this process may hold 8: ulimit -n)".
+std::string system_error_text(int error);
+
+// Whether `error` is a resource of the process or machine running out, not bad input.
+bool is_exhausted_resource(int error);
+
 // For quote_value() of a path the user must copy to act on (where a render is kept): whole,
 // up to the system's path limit.
 inline constexpr std::size_t kWholePath = 4096;

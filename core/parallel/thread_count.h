@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "core/parallel/ieee_floating_point.h"
+#include "core/parallel/thread_limit.h"
 
 namespace rtiow {
 
@@ -35,6 +36,7 @@ inline std::optional<tbb::global_control> allow_threads(int threads) {
 template <typename F>
 auto with_threads(int asked, F&& f) {
   const int threads = thread_count(asked);
+  require_threads(threads);
   const std::optional<tbb::global_control> allowed = allow_threads(threads);
   const IeeeFloatingPoint ieee;  // the arena's settings, whatever the caller's
   tbb::task_arena arena(threads);
