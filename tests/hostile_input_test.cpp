@@ -110,8 +110,47 @@ std::string scene_with(const std::string& from, const std::string& to) {
 
 // Part files of kScene (and of another render) made once and shared by the cases; made in a
 // private directory and renamed into place, as CTest runs cases in parallel processes.
+// `exr` with its box2i attribute `name` made 0..8191 on both axes.
+std::string with_box(std::string exr, const std::string& name) {
+  const std::string key = name + std::string("\0box2i\0", 7);
+  const std::size_t at = exr.find(key);
+  EXPECT_NE(at, std::string::npos) << name;
+  if (at == std::string::npos) return exr;
+  const std::int32_t box[4] = {0, 0, 8191, 8191};
+  exr.replace(at + key.size() + 4, sizeof box, reinterpret_cast<const char*>(box), sizeof box);
+  return exr;
+}
+
+std::uint32_t crc32(const std::string& bytes) {
+  std::uint32_t crc = 0xffffffffu;
+  for (const unsigned char byte : bytes) {
+    crc ^= byte;
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+std::string big_endian(std::uint32_t v) {
+  return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+}
+
+std::string png_chunk(const std::string& type, const std::string& data) {
+  return big_endian(std::uint32_t(data.size())) + type + data + big_endian(crc32(type + data));
+}
+
+// A valid PNG header (8-bit RGB, checksums right) that says width x height, with one tiny
+// stored deflate block of pixel data.
+std::string png_claiming(std::uint32_t width, std::uint32_t height) {
+  const std::string header =
+      big_endian(width) + big_endian(height) + std::string("\x08\x02\0\0\0", 5);
+  const std::string deflate("\x78\x01\x01\x01\x00\xfe\xff\x00\x00\x01\x00\x01", 12);
+  return std::string("\x89PNG\r\n\x1a\n", 8) + png_chunk("IHDR", header) +
+         png_chunk("IDAT", deflate) + png_chunk("IEND", "");
+}
+
 fs::path fixtures() {
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures";
+  // Named by version: a build tree keeps the fixtures of an older suite under another name.
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-2";
   if (fs::exists(dir / "complete")) return dir;
   const fs::path work =
       fs::path(RTIOW_TEST_OUTPUT_DIR) / ("hostile-fixtures." + std::to_string(getpid()));
@@ -151,6 +190,10 @@ fs::path fixtures() {
   crafted("older-version.exr", [](auto& s) { s.attribute("rtiow:version", "0.0.1"); });
   const std::string part = slurp(work / "part0.exr");
   write_file(work / "truncated.exr", part.substr(0, part.size() / 2));
+  // Headers that claim far more pixels than their files hold: a part of 8192x8192 (10 GB of
+  // sums) and a 30000x30000 PNG, each a few KB.
+  write_file(work / "huge-header.exr", with_box(with_box(part, "dataWindow"), "displayWindow"));
+  write_file(work / "huge-header.png", png_claiming(30000, 30000));
   write_file(work / "complete", "");
   std::error_code ignored;
   fs::rename(work, dir, ignored);  // another process may have won: its files are the same
@@ -643,6 +686,22 @@ std::vector<Case> part_cases() {
       {"MergeDevice", 2, "is not a regular file", merge({"/dev/zero"})},
       {"MergeMissingFile", 2, "No such file", merge({"part0.exr", "nothere.exr"})},
       {"MergeNothing", 2, "parts is required", {"merge", "-o", "merged.png"}},
+      // A header's size is checked against the file's before any pixel is allocated (the
+      // battery runs under a 4 GiB address-space limit: an allocation would end in exit 1).
+      {"MergePartHeaderClaimsHugeSize", 2, "part file 'huge-header.exr'",
+       merge({"huge-header.exr"})},
+      {"DiffHeaderClaimsHugeSize",
+       2,
+       "more than a file of",
+       {"diff", "huge-header.png", "part0.exr"}},
+      {"LikeHeaderClaimsHugeSize", 2, "more than a file of",
+       render({"--like", "huge-header.png", "-o", "again.png"})},
+      // A file that is no image is refused from its first bytes, whatever its size (1 GiB of
+      // zeros took minutes, as every image reader tried it).
+      {"DiffZeros", 2, "is not an image rtiow reads", {"diff", "zeros.png", "part0.exr"}},
+      {"MergeZeros", 2, "is not an image rtiow reads", merge({"zeros.exr"})},
+      {"LikeZeros", 2, "is not an image rtiow reads",
+       render({"--like", "zeros.png", "-o", "again.png"})},
   };
 }
 
@@ -739,7 +798,7 @@ fs::path make_users_directory(const Case& c) {
   fs::create_directories(dir / "bench-dir-clash" / "bench.json");  // where bench writes a file
   const fs::path fixture = fixtures();
   for (const auto& entry : fs::directory_iterator(fixture)) {
-    if (entry.path().extension() == ".exr")
+    if (entry.path().extension() == ".exr" || entry.path().filename() == "huge-header.png")
       fs::copy_file(entry.path(), dir / entry.path().filename());
   }
   write_file(dir / "scene.json", kScene);
@@ -749,6 +808,12 @@ fs::path make_users_directory(const Case& c) {
   EXPECT_EQ(mkfifo((dir / "fifo.png").c_str(), 0644), 0);
   fs::create_symlink("part0.exr", dir / "part-alias.exr");
   if (fs::exists(dir / "scene.png")) fs::create_symlink("scene.png", dir / "alias.png");
+  if (c.name.find("Zeros") != std::string::npos) {
+    for (const char* name : {"zeros.png", "zeros.exr"}) {
+      std::ofstream(dir / name).close();
+      fs::resize_file(dir / name, std::uintmax_t(1) << 30);  // sparse: no disk used
+    }
+  }
   if (c.name == "SceneIsHuge") {
     std::ofstream(dir / "huge.json").close();
     fs::resize_file(dir / "huge.json", std::uintmax_t(3) << 30);  // sparse: no disk used

@@ -12,11 +12,13 @@
 //   attributes and its size, then the bytes of its 32-bit pixel words, cycled; the channels are
 //   a part's, unless a "channels=" line names others.
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <optional>
@@ -59,6 +61,24 @@ void check_state(const rtiow::RenderState& state, const RenderSettings& s) {
   if (!(state.render_seconds >= 0.0)) __builtin_trap();
 }
 
+// The checkpoint the fuzz input becomes, in a directory of this process's own (mkdtemp: mode
+// 0700, a name no one can predict or make first), removed with the file when the run ends.
+std::string g_private_dir;
+
+const std::string& private_checkpoint_path() {
+  static const std::string path = [] {
+    std::string dir = (std::filesystem::temp_directory_path() / "rtiow-fuzz-XXXXXX").string();
+    if (!::mkdtemp(dir.data())) std::abort();
+    g_private_dir = dir;
+    std::atexit([] {
+      ::unlink((g_private_dir + "/state.ckpt").c_str());
+      ::rmdir(g_private_dir.c_str());
+    });
+    return dir + "/state.ckpt";
+  }();
+  return path;
+}
+
 void fuzz_checkpoint(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return;
   const bool adaptive = data[0] & 1, raw = data[0] & 2;
@@ -70,13 +90,12 @@ void fuzz_checkpoint(const std::uint8_t* data, std::size_t size) {
     const std::uint64_t sum = checksum.value();
     bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
   }
-  static const std::string path =
-      (std::filesystem::temp_directory_path() / ("fuzz-" + std::to_string(::getpid()) + ".ckpt"))
-          .string();
-  FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file) return;
-  std::fwrite(bytes.data(), 1, bytes.size(), file);
-  std::fclose(file);
+  const std::string& path = private_checkpoint_path();
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) return;
+  const bool written = ::write(fd, bytes.data(), bytes.size()) == ssize_t(bytes.size());
+  ::close(fd);
+  if (!written) return;
   const RenderSettings settings = request(adaptive);
   try {
     const std::optional<rtiow::RenderState> state =

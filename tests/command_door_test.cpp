@@ -1,0 +1,416 @@
+// Every command goes through the same door as render (issue 59): the files it writes are
+// claimed (a lock, a held directory, exclusive temporaries renamed into place), no shell ever
+// runs, state that is not the user's own is never continued, and every signal that would end
+// the process ends it in rtiow's words with nothing left behind. Each test runs the commands
+// as a user would and as someone who can write the output's directory would.
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/background_render.h"
+#include "tests/test_files.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using rtiow::test::BackgroundRender;
+using rtiow::test::current_test_name;
+using rtiow::test::slurp;
+using rtiow::test::write_file;
+
+constexpr const char* kPrecious = "PRECIOUS: a file of the user's\n";
+
+struct CommandRun {
+  int exit_code;
+  std::string stderr_text;
+};
+
+// rtiow with an argument vector (no shell here either: the names hold quotes), in `cwd`.
+CommandRun run_in(const fs::path& cwd, const std::vector<std::string>& args, double seconds = 120) {
+  const fs::path err = fs::path(RTIOW_TEST_OUTPUT_DIR) / (current_test_name() + ".door.stderr");
+  std::vector<std::string> full = {"/usr/bin/timeout", "-s", "KILL", std::to_string(int(seconds)),
+                                   RTIOW_BINARY};
+  full.insert(full.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : full) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (::chdir(cwd.c_str()) != 0) _exit(126);
+    const int in = ::open("/dev/null", O_RDONLY);
+    const int out = ::open("/dev/null", O_WRONLY);
+    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (in < 0 || out < 0 || e < 0) _exit(126);
+    ::dup2(in, 0), ::dup2(out, 1), ::dup2(e, 2);
+    ::execv(argv[0], argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(err)};
+}
+
+fs::path fresh_dir() {
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "door" / current_test_name();
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::vector<std::string> names_in(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+bool one_line(const std::string& text) {
+  return !text.empty() && text.back() == '\n' && std::count(text.begin(), text.end(), '\n') == 1;
+}
+
+// Whether anything of rtiow's own (a lock, a temporary) is left in `dir`.
+std::string leftovers(const fs::path& dir) {
+  std::string found;
+  for (const std::string& name : names_in(dir)) {
+    if (name.find(".rtiow-lock") != std::string::npos ||
+        name.find(".rtiow-tmp-") != std::string::npos) {
+      found += name + " ";
+    }
+  }
+  return found;
+}
+
+// Waits (up to 20 s) until `pid` has used `seconds` of CPU: a render past its set-up, even on
+// a loaded machine.
+void wait_for_cpu_seconds(pid_t pid, double seconds) {
+  const long ticks = ::sysconf(_SC_CLK_TCK);
+  for (int i = 0; i < 2000; ++i) {
+    const std::string stat = slurp("/proc/" + std::to_string(pid) + "/stat");
+    const std::size_t close = stat.rfind(')');
+    if (close == std::string::npos) return;
+    std::istringstream fields(stat.substr(close + 2));
+    std::string field;
+    long long user = 0, system = 0;
+    for (int k = 3; k <= 15 && fields >> field; ++k) {
+      if (k == 14) user = std::stoll(field);
+      if (k == 15) system = std::stoll(field);
+    }
+    if (double(user + system) / double(ticks) >= seconds) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+void make_part(const fs::path& dir, const std::string& name) {
+  ASSERT_EQ(run_in(dir, {"render", "-q", "--width", "24", "--height", "16", "--spp", "2", "--part",
+                         "0/1", "-o", name})
+                .exit_code,
+            0);
+}
+
+// What each command writes, and the arguments that make it write `name` (in the cwd).
+struct Writer {
+  std::string label;
+  std::string name;  // the file it writes
+  std::vector<std::string> args;
+};
+
+std::vector<Writer> writers() {
+  return {
+      {"render",
+       "r.png",
+       {"render", "-q", "--width", "24", "--height", "16", "--spp", "2", "-o", "r.png"}},
+      {"part",
+       "p.exr",
+       {"render", "-q", "--width", "24", "--height", "16", "--spp", "2", "--part", "0/1", "-o",
+        "p.exr"}},
+      {"merge", "m.png", {"merge", "part.exr", "-o", "m.png"}},
+      {"diff", "d.png", {"diff", "part.exr", "part.exr", "--out-diff", "d.png"}},
+      {"scene", "s.json", {"scene", "cover", "-o", "s.json"}},
+  };
+}
+
+// ---- No shell: any name works as --out, and a helper's output is a private temporary.
+
+TEST(CommandDoor, NoShellRunsWhateverTheOutputIsCalled) {
+  const fs::path dir = fresh_dir();
+  for (const std::string out :
+       {"b'; touch PWNED; echo '", "John's \"bench\" $(touch PWNED2)", "-dash and\nnewline"}) {
+    SCOPED_TRACE(out);
+    const CommandRun r = run_in(dir, {"bench", "--quick", "--out=" + out});
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    EXPECT_TRUE(fs::is_regular_file(dir / out / "bench.json")) << r.stderr_text;
+    EXPECT_TRUE(fs::is_regular_file(dir / out / "bench.png"))
+        << "the plot, drawn through the helper's stdout: " << r.stderr_text;
+    EXPECT_EQ(slurp(dir / out / "bench.png").substr(0, 8), "\x89PNG\r\n\x1a\n");
+    EXPECT_EQ(leftovers(dir / out), "");
+  }
+  EXPECT_FALSE(fs::exists(dir / "PWNED"));
+  EXPECT_FALSE(fs::exists(dir / "PWNED2"));
+  EXPECT_FALSE(fs::exists("PWNED"));
+}
+
+TEST(CommandDoor, PlotsAndFiguresReplaceALinkAtTheirNameAndLeaveItsFileAlone) {
+  const fs::path dir = fresh_dir();
+  write_file(dir / "precious.txt", kPrecious);
+  fs::create_directories(dir / "b");
+  fs::create_symlink("../precious.txt", dir / "b" / "bench.png");
+  fs::create_symlink("../precious.txt", dir / "b" / "bench.json");
+  const CommandRun r = run_in(dir, {"bench", "--quick", "--out", "b"});
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_EQ(slurp(dir / "precious.txt"), kPrecious);
+  for (const char* name : {"bench.png", "bench.json"}) {
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / "b" / name))) << name;
+  }
+  EXPECT_EQ(names_in(dir / "b"), (std::vector<std::string>{"bench.json", "bench.png"}));
+}
+
+// A measurement refused at its outputs writes nothing.
+TEST(CommandDoor, AMeasurementWhoseOutputsCannotBeClaimedWritesNothing) {
+  const fs::path dir = fresh_dir();
+  fs::create_directories(dir / "taken");
+  ASSERT_EQ(::mkfifo((dir / "taken" / ".bench.png.rtiow-lock").c_str(), 0600), 0);
+  const CommandRun r = run_in(dir, {"bench", "--quick", "--out", "taken"});
+  EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+  EXPECT_TRUE(one_line(r.stderr_text)) << r.stderr_text;
+  EXPECT_EQ(names_in(dir / "taken"), (std::vector<std::string>{".bench.png.rtiow-lock"}));
+  EXPECT_FALSE(fs::exists(dir / "taken" / "bench.json")) << "refused before its work";
+}
+
+// ---- One output, one writer: two commands of any kinds aimed at one file, one refuses.
+
+TEST(CommandDoor, TwoCommandsAimedAtOneOutputOneRefusesInOneLine) {
+  const fs::path dir = fresh_dir();
+  make_part(dir, "part.exr");
+  for (const std::string target : {"o.png", "o.exr"}) {
+    SCOPED_TRACE(target);
+    BackgroundRender holder({"render", "-q", "--width", "400", "--spp", "100000", "--checkpoint",
+                             "0", "-o", (dir / target).string()});
+    ASSERT_TRUE(holder.wait_until_rendering());
+    wait_for_cpu_seconds(holder.pid(), 0.5);  // rendering, past the scene's set-up
+    const std::vector<std::vector<std::string>> others = {
+        {"render", "-q", "--width", "24", "--spp", "2", "-o", target},
+        {"merge", "part.exr", "-o", target},
+        {"diff", "part.exr", "part.exr", "--out-diff", target},
+    };
+    for (const auto& args : others) {
+      SCOPED_TRACE(args[0]);
+      const CommandRun r = run_in(dir, args);
+      EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+      EXPECT_NE(r.stderr_text.find("another rtiow (pid " + std::to_string(holder.pid())),
+                std::string::npos)
+          << r.stderr_text;
+      EXPECT_TRUE(one_line(r.stderr_text)) << r.stderr_text;
+    }
+    holder.signal(SIGTERM);
+    EXPECT_EQ(holder.wait(30.0), 128 + SIGTERM) << holder.stderr_text();
+    EXPECT_TRUE(fs::is_regular_file(dir / target)) << "the holder's work: " << holder.stderr_text();
+    EXPECT_EQ(leftovers(dir), "");
+  }
+  // A measurement's files too, claimed before its work: a scene aimed at bench.json waits for
+  // no one and is refused.
+  BackgroundRender bench({"bench", "--quick", "--out", (dir / "b").string()});
+  const fs::path lock = dir / "b" / ".bench.json.rtiow-lock";
+  for (int i = 0; i < 2000 && !(fs::exists(lock) && fs::file_size(lock) > 0); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const CommandRun scene = run_in(dir, {"scene", "cover", "-o", "b/bench.json"});
+  EXPECT_EQ(scene.exit_code, 2) << scene.stderr_text;
+  EXPECT_NE(scene.stderr_text.find("another rtiow"), std::string::npos) << scene.stderr_text;
+  EXPECT_EQ(bench.wait(120.0), 0) << bench.stderr_text();
+  // One command naming one file twice: refused, not a lost write.
+  const CommandRun twice =
+      run_in(dir, {"diff", "part.exr", "part.exr", "--out-diff", "x.exr", "--out-z", "./x.exr"});
+  EXPECT_EQ(twice.exit_code, 2) << twice.stderr_text;
+  EXPECT_NE(twice.stderr_text.find("another output of this command"), std::string::npos)
+      << twice.stderr_text;
+}
+
+// ---- Every name a command uses, per command: what rtiow never makes is refused and left.
+
+TEST(CommandDoor, EveryCommandsLockNameRefusesWhatRtiowNeverMakes) {
+  const fs::path dir = fresh_dir();
+  make_part(dir, "part.exr");
+  write_file(dir / "precious.txt", kPrecious);
+  const std::vector<std::pair<std::string, std::function<void(const fs::path&)>>> planted = {
+      {"symbolic link", [](const fs::path& at) { fs::create_symlink("precious.txt", at); }},
+      {"symbolic link", [](const fs::path& at) { fs::create_symlink("nowhere", at); }},
+      {"directory", [](const fs::path& at) { fs::create_directory(at); }},
+      {"not a regular file", [](const fs::path& at) { ASSERT_EQ(::mkfifo(at.c_str(), 0600), 0); }},
+      {"hard links",
+       [&dir](const fs::path& at) { fs::create_hard_link(dir / "precious.txt", at); }},
+      {"another user",
+       [](const fs::path& at) {
+         write_file(at, "4242\n");
+         ASSERT_EQ(::chown(at.c_str(), 65534, 65534), 0);
+       }},
+  };
+  for (const Writer& w : writers()) {
+    for (const auto& [why, plant] : planted) {
+      SCOPED_TRACE(w.label + ": " + why);
+      std::string lock_name(1, '.');  // not "." + ...: GCC 12 warns falsely (-Wrestrict)
+      lock_name.append(w.name).append(".rtiow-lock");
+      const fs::path lock = dir / lock_name;
+      plant(lock);
+      const CommandRun r = run_in(dir, w.args, 30);
+      EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+      EXPECT_NE(r.stderr_text.find("cannot take its lock"), std::string::npos) << r.stderr_text;
+      EXPECT_NE(r.stderr_text.find(why), std::string::npos) << r.stderr_text;
+      EXPECT_TRUE(one_line(r.stderr_text)) << r.stderr_text;
+      EXPECT_FALSE(fs::exists(dir / w.name)) << "written without its lock";
+      EXPECT_TRUE(fs::exists(fs::symlink_status(lock))) << "removed what it did not make";
+      EXPECT_EQ(slurp(dir / "precious.txt"), kPrecious);
+      fs::remove(lock);
+    }
+  }
+}
+
+TEST(CommandDoor, EveryCommandsOutputNameIsReplacedNeverFollowedOrOpened) {
+  const fs::path dir = fresh_dir();
+  make_part(dir, "part.exr");
+  write_file(dir / "precious.txt", kPrecious);
+  for (const Writer& w : writers()) {
+    SCOPED_TRACE(w.label);
+    // A dangling link and a hard link to the user's file: replaced, the file untouched.
+    fs::create_symlink("nowhere/at/all", dir / w.name);
+    CommandRun r = run_in(dir, w.args);
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / w.name)));
+    fs::remove(dir / w.name);
+    fs::create_hard_link(dir / "precious.txt", dir / w.name);
+    r = run_in(dir, w.args);
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    EXPECT_EQ(slurp(dir / "precious.txt"), kPrecious) << "written through a hard link";
+    // A FIFO or a directory at the name: refused before any work, never opened.
+    fs::remove(dir / w.name);
+    ASSERT_EQ(::mkfifo((dir / w.name).c_str(), 0600), 0);
+    r = run_in(dir, w.args, 20);
+    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_TRUE(one_line(r.stderr_text)) << r.stderr_text;
+    fs::remove(dir / w.name);
+    fs::create_directory(dir / w.name);
+    r = run_in(dir, w.args, 20);
+    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find("directory"), std::string::npos) << r.stderr_text;
+    fs::remove(dir / w.name);
+    EXPECT_EQ(leftovers(dir), "");
+  }
+}
+
+// ---- State that is not the user's own is never continued.
+
+TEST(CommandDoor, ACheckpointThatIsNotTheUsersOwnIsNeverResumed) {
+  const fs::path dir = fresh_dir();
+  const std::vector<std::string> first = {"render", "-q", "--width",      "24", "--height", "16",
+                                          "--spp",  "4",  "--keep-state", "-o", "k.png"};
+  ASSERT_EQ(run_in(dir, first).exit_code, 0);
+  const fs::path checkpoint = dir / "k.png.rtiow-checkpoint";
+  ASSERT_TRUE(fs::exists(checkpoint));
+  const std::string state = slurp(checkpoint), image = slurp(dir / "k.png");
+  const std::vector<std::string> more = {"render", "-q", "--width",  "24", "--height", "16",
+                                         "--spp",  "8",  "--resume", "-o", "k.png"};
+  ASSERT_EQ(::chown(checkpoint.c_str(), 65534, 65534), 0);
+  CommandRun r = run_in(dir, more);
+  EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("belongs to another user"), std::string::npos) << r.stderr_text;
+  EXPECT_TRUE(one_line(r.stderr_text)) << r.stderr_text;
+  ASSERT_EQ(::chown(checkpoint.c_str(), ::geteuid(), ::getegid()), 0);
+  fs::create_hard_link(checkpoint, dir / "elsewhere");
+  r = run_in(dir, more);
+  EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("hard links"), std::string::npos) << r.stderr_text;
+  EXPECT_EQ(slurp(checkpoint), state);
+  EXPECT_EQ(slurp(dir / "k.png"), image);
+  // Its own again: continued.
+  fs::remove(dir / "elsewhere");
+  r = run_in(dir, more);
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+}
+
+// ---- Every signal that would end rtiow ends it in its words, with the work kept.
+
+const std::vector<int>& terminating_signals() {
+  static const std::vector<int> signals = [] {
+    std::vector<int> s = {SIGHUP,    SIGINT,  SIGQUIT, SIGTERM, SIGUSR1, SIGUSR2,  SIGALRM,
+                          SIGVTALRM, SIGPROF, SIGXCPU, SIGIO,   SIGPWR,  SIGSTKFLT};
+    s.push_back(SIGRTMIN);
+    s.push_back(SIGRTMAX);
+    return s;
+  }();
+  return signals;
+}
+
+TEST(CommandDoor, EveryTerminatingSignalStopsARenderInItsWordsAndKeepsTheWork) {
+  const fs::path dir = fresh_dir();
+  for (const int sig : terminating_signals()) {
+    SCOPED_TRACE(std::to_string(sig));
+    const fs::path out = dir / (std::to_string(sig) + ".png");
+    BackgroundRender r({"render", "-q", "--width", "300", "--spp", "100000", "-o", out.string()});
+    ASSERT_TRUE(r.wait_until_rendering());
+    wait_for_cpu_seconds(r.pid(), 0.3);
+    r.signal(sig);
+    EXPECT_EQ(r.wait(30.0), 128 + sig) << r.stderr_text();
+    const std::string err = r.stderr_text();
+    EXPECT_NE(err.find("rtiow: interrupted"), std::string::npos) << err;
+    EXPECT_TRUE(fs::is_regular_file(out)) << "the samples done were written";
+    EXPECT_TRUE(fs::is_regular_file(dir / (out.filename().string() + ".rtiow-checkpoint")))
+        << "and the render kept to continue";
+    EXPECT_EQ(leftovers(dir), "");
+  }
+}
+
+// Outside a render (reading parts, building a scene, writing), a signal ends the command at
+// once: in its words, on the stderr it started with, with nothing left behind.
+TEST(CommandDoor, EveryTerminatingSignalEndsOtherCommandsInTheirWordsWithNothingLeft) {
+  const fs::path dir = fresh_dir();
+  // Parts large enough that merging them takes a while.
+  for (const char* part : {"0/2", "1/2"}) {
+    ASSERT_EQ(
+        run_in(dir, {"render", "-q", "--width", "640", "--height", "480", "--spp", "2", "--depth",
+                     "1", "--part", part, "-o", std::string("big") + part[0] + ".exr"})
+            .exit_code,
+        0);
+  }
+  for (const int sig : terminating_signals()) {
+    SCOPED_TRACE(std::to_string(sig));
+    BackgroundRender merge({"merge", (dir / "big0.exr").string(), (dir / "big1.exr").string(), "-o",
+                            (dir / "m.exr").string()});
+    std::this_thread::sleep_for(std::chrono::milliseconds(150));
+    merge.signal(sig);
+    const int code = merge.wait(30.0);
+    const std::string err = merge.stderr_text();
+    if (code == 0) continue;  // it finished first: nothing to see
+    EXPECT_EQ(code, 128 + sig) << err;
+    EXPECT_NE(err.find("rtiow: ended by signal " + std::to_string(sig)), std::string::npos) << err;
+    EXPECT_EQ(leftovers(dir), "");
+    fs::remove(dir / "m.exr");
+  }
+  // A scene being built (spheres:N): the stop is honoured within the build.
+  const auto start = std::chrono::steady_clock::now();
+  BackgroundRender build({"render", "-q", "--scene", "spheres:20000000", "--width", "16", "--spp",
+                          "1", "-o", (dir / "field.png").string()});
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  build.signal(SIGUSR1);
+  EXPECT_EQ(build.wait(60.0), 128 + SIGUSR1) << build.stderr_text();
+  EXPECT_NE(build.stderr_text().find("before the render began"), std::string::npos)
+      << build.stderr_text();
+  EXPECT_FALSE(fs::exists(dir / "field.png"));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0)
+      << "the build went on after the signal";
+  EXPECT_EQ(leftovers(dir), "");
+}
+
+}  // namespace
