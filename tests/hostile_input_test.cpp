@@ -221,7 +221,11 @@ std::vector<Case> structure_cases() {
   return {
       {"EmptyFile", 2, "line 1, column 1", render({"s.json"}), {{"s.json", ""}}},
       {"OnlySpaces", 2, "unexpected end of input", render({"s.json"}), {{"s.json", "   \n\n "}}},
-      {"Garbage", 2, "syntax error", render({"s.json"}), {{"s.json", "\x01\x02\x7f\xff{"}}},
+      {"Garbage",
+       2,
+       "is not a scene file: a scene file is a JSON object",
+       render({"s.json"}),
+       {{"s.json", "\x01\x02\x7f\xff{"}}},
       {"NulByte", 2, "syntax error", render({"s.json"}), {{"s.json", std::string("{\0}", 3)}}},
       {"Truncated",
        2,
@@ -254,7 +258,7 @@ std::vector<Case> structure_cases() {
        2,
        "nested deeper",
        render({"s.json"}),
-       {{"s.json", std::string(5000000, '[')}}},
+       {{"s.json", "{\"a\": " + std::string(5000000, '[')}}},
       {"DeepInsideCamera",
        2,
        "nested deeper",
@@ -336,7 +340,12 @@ std::vector<Case> structure_cases() {
                                              return a;
                                            }() +
                                            "]")}}},
-      {"NotAnObject", 2, "must be an object", render({"s.json"}), {{"s.json", "[1, 2, 3]"}}},
+      {"NotAnObject",
+       2,
+       "a scene file is a JSON object, beginning with '{', and this one begins "
+       "with '['",
+       render({"s.json"}),
+       {{"s.json", "[1, 2, 3]"}}},
       {"NumberOverflow",
        2,
        "number overflow",
@@ -713,8 +722,8 @@ std::vector<Case> file_cases() {
       {"SceneIsDevNull", 2, "is not a regular file", render({"/dev/null"})},
       {"SceneIsMissing", 2, "No such file", render({"nothere.json"})},
       {"SceneIsHuge", 2, "more than the limit of 2048 MiB", render({"huge.json"})},
-      {"SceneIsAnImage", 2, "syntax error", render({"keep.png"})},
-      {"SceneIsProcFile", 2, "syntax error", render({"/proc/self/status"})},
+      {"SceneIsAnImage", 2, "is not a scene file", render({"keep.png"})},
+      {"SceneIsProcFile", 2, "is not a scene file", render({"/proc/self/status"})},
   };
 }
 

@@ -30,6 +30,7 @@
 
 #include "core/io/input_file.h"
 #include "core/limits/input_limits.h"
+#include "core/parallel/cancellation.h"
 #include "core/parallel/ieee_floating_point.h"
 #include "core/parallel/thread_sanitizer.h"
 #include "core/scene_file/json_float.h"
@@ -498,6 +499,29 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   return read_scene_from(JsonInput::from_text(text), limits::kMaxSceneFileBytes, source);
 }
 
+namespace {
+
+// A scene file is a JSON object: its first character (after white space) is '{'. A file
+// that begins otherwise (an image, a file of zeros, a log) is refused from those bytes, in
+// words that say what it is, rather than by a parse error at line 1.
+void check_begins_as_a_scene(const std::string& first, const std::string& path) {
+  std::size_t at = first.rfind("\xef\xbb\xbf", 0) == 0 ? 3 : 0;  // a UTF-8 byte-order mark
+  while (at < first.size() &&
+         (first[at] == ' ' || first[at] == '\t' || first[at] == '\n' || first[at] == '\r')) {
+    ++at;
+  }
+  if (at == first.size() || first[at] == '{') return;  // empty, or a parse error says where
+  char shown[8];
+  std::snprintf(shown, sizeof shown, "0x%02x", static_cast<unsigned char>(first[at]));
+  const bool printable = first[at] >= 0x21 && first[at] <= 0x7e;
+  throw InvalidInput("scene file " + quote_value(path) +
+                     ": is not a scene file: a scene file is a JSON object, beginning with '{', "
+                     "and this one begins with " +
+                     (printable ? quote_value(std::string(1, first[at])) : std::string(shown)));
+}
+
+}  // namespace
+
 Scene load_scene_file(const std::string& path) {
   if (path == "-") {  // `rtiow scene cover | rtiow render -`
     return read_scene_from(
@@ -511,12 +535,14 @@ Scene load_scene_file(const std::string& path) {
         limits::kMaxSceneFileBytes, "standard input");
   }
   InputFile input(path, limits::kMaxSceneFileBytes, "scene file");
+  check_begins_as_a_scene(input.first_bytes(4096), path);
   const std::uint64_t bytes = input.size();
   std::FILE* file = ::fdopen(input.fd(), "rb");
   if (!file) throw InvalidInput("scene file " + quote_value(path) + ": cannot open it");
   input.release();  // the FILE closes it
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(file, &std::fclose);
   const auto read = [&](char* buffer, std::size_t size) {
+    throw_if_cancelled();  // a file of gigabytes: a stop asked for is honoured between buffers
     const std::size_t n = std::fread(buffer, 1, size, file);
     if (n == 0 && std::ferror(file)) {
       throw InvalidInput("scene file " + quote_value(path) + ": cannot read it");
