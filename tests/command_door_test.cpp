@@ -310,6 +310,24 @@ TEST(CommandDoor, EveryCommandsOutputNameIsReplacedNeverFollowedOrOpened) {
   }
 }
 
+// What a kill -9 of any command left (a temporary of rtiow's pattern) is removed by the next
+// command that writes that output, which holds its lock.
+TEST(CommandDoor, EveryCommandSweepsTheTemporariesAKilledOneLeft) {
+  const fs::path dir = fresh_dir();
+  make_part(dir, "part.exr");
+  for (const Writer& w : writers()) {
+    SCOPED_TRACE(w.label);
+    std::string left(1, '.');  // not "." + ...: GCC 12 warns falsely (-Wrestrict)
+    left.append(w.name).append(".rtiow-tmp-Ab3dE6gH");
+    write_file(dir / left, "half of a file a kill -9 left");
+    const CommandRun r = run_in(dir, w.args);
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    EXPECT_FALSE(fs::exists(dir / left)) << "left behind";
+    EXPECT_TRUE(fs::is_regular_file(dir / w.name));
+  }
+  EXPECT_EQ(leftovers(dir), "");
+}
+
 // ---- State that is not the user's own is never continued.
 
 TEST(CommandDoor, ACheckpointThatIsNotTheUsersOwnIsNeverResumed) {
