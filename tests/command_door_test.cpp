@@ -29,6 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 using rtiow::test::BackgroundRender;
 using rtiow::test::current_test_name;
+using rtiow::test::names_in;
 using rtiow::test::slurp;
 using rtiow::test::write_file;
 
@@ -69,13 +70,6 @@ fs::path fresh_dir() {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-std::vector<std::string> names_in(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
 }
 
 bool one_line(const std::string& text) {

@@ -34,6 +34,7 @@ namespace {
 namespace fs = std::filesystem;
 using rtiow::test::BackgroundRender;
 using rtiow::test::current_test_name;
+using rtiow::test::names_in;
 using rtiow::test::slurp;
 using rtiow::test::write_file;
 
@@ -68,13 +69,6 @@ fs::path fresh_dir() {
 
 std::vector<std::string> small_render(const fs::path& out) {
   return {"render", "-q", "--width", "32", "--height", "18", "--spp", "4", "-o", out.string()};
-}
-
-std::vector<std::string> names_in(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
 }
 
 bool is_one_line(const std::string& text) {
