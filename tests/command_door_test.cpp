@@ -182,6 +182,17 @@ TEST(CommandDoor, AMeasurementWhoseOutputsCannotBeClaimedWritesNothing) {
   EXPECT_TRUE(one_line(r.stderr_text)) << r.stderr_text;
   EXPECT_EQ(names_in(dir / "taken"), (std::vector<std::string>{".bench.png.rtiow-lock"}));
   EXPECT_FALSE(fs::exists(dir / "taken" / "bench.json")) << "refused before its work";
+  // Ended by a signal before its files are written: the directories it made go again.
+  BackgroundRender bench({"bench", "--out", (dir / "new" / "deeper").string()});
+  const fs::path lock = dir / "new" / "deeper" / ".bench.png.rtiow-lock";
+  for (int i = 0; i < 2000 && !(fs::exists(lock) && fs::file_size(lock) > 0); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  bench.signal(SIGTERM);
+  EXPECT_EQ(bench.wait(30.0), 128 + SIGTERM) << bench.stderr_text();
+  EXPECT_NE(bench.stderr_text().find("rtiow: ended by signal 15 (SIGTERM)"), std::string::npos)
+      << bench.stderr_text();
+  EXPECT_FALSE(fs::exists(dir / "new")) << "left the directories it made";
 }
 
 // ---- One output, one writer: two commands of any kinds aimed at one file, one refuses.

@@ -9,10 +9,12 @@
 namespace rtiow {
 
 // Registers (dir_fd, name) for as long as it lives. Names longer than a file name may be
-// are not registered (the file is then removed only by its owner's normal path).
+// are not registered (the file is then removed only by its owner's normal path). A directory
+// (one a command made for its outputs) is removed after the files, and only if it is empty.
 class RemovedOnAbort {
  public:
-  RemovedOnAbort(int dir_fd, const std::string& name);
+  enum Kind { File, EmptyDirectory };
+  RemovedOnAbort(int dir_fd, const std::string& name, Kind kind = File);
   ~RemovedOnAbort();
   RemovedOnAbort(const RemovedOnAbort&) = delete;
   RemovedOnAbort& operator=(const RemovedOnAbort&) = delete;
