@@ -395,6 +395,28 @@ TEST(CommandDoor, EveryTerminatingSignalStopsARenderInItsWordsAndKeepsTheWork) {
   }
 }
 
+// A fault of rtiow's own (here sent from outside, as a crash would raise it) ends it at once,
+// said as an internal error, with its lock and temporaries removed and its last checkpoint kept.
+TEST(CommandDoor, AFaultSignalEndsARenderAsAnInternalErrorWithNothingLeft) {
+  const fs::path dir = fresh_dir();
+  for (const int sig : {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT, SIGTRAP, SIGSYS}) {
+    SCOPED_TRACE(std::to_string(sig));
+    const fs::path out = dir / (std::to_string(sig) + ".png");
+    BackgroundRender r({"render", "-q", "--width", "300", "--spp", "100000", "--checkpoint", "0.05",
+                        "-o", out.string()});
+    ASSERT_TRUE(r.wait_until_rendering());
+    wait_for_cpu_seconds(r.pid(), 0.3);
+    r.signal(sig);
+    EXPECT_EQ(r.wait(30.0), 128 + sig) << r.stderr_text();
+    EXPECT_NE(r.stderr_text().find("rtiow: internal error: ended by signal " + std::to_string(sig)),
+              std::string::npos)
+        << r.stderr_text();
+    EXPECT_TRUE(fs::is_regular_file(dir / (out.filename().string() + ".rtiow-checkpoint")))
+        << "the last checkpoint is kept";
+    EXPECT_EQ(leftovers(dir), "");
+  }
+}
+
 // Outside a render (reading parts, building a scene, writing), a signal ends the command at
 // once: in its words, on the stderr it started with, with nothing left behind.
 TEST(CommandDoor, EveryTerminatingSignalEndsOtherCommandsInTheirWordsWithNothingLeft) {
