@@ -654,6 +654,67 @@ TEST(Cli, WritesTheImageWithMetadataAndSaysWhere) {
   EXPECT_GT(spec.get_float_attribute("rtiow:render_seconds"), 0.0f);
 }
 
+// --summary-json: the summary a script reads says what the image's own metadata says.
+TEST(Cli, TheSummaryForScriptsAgreesWithTheImage) {
+  const fs::path out = output_path("summary.exr"), summary = output_path("summary.json");
+  CommandResult r = run_rtiow("render -q --scene materials --width 32 --height 18 --spp 3 -o " +
+                              out.string() + " --summary-json " + summary.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  auto j = nlohmann::json::parse(slurp(summary));
+  auto in = OIIO::ImageInput::open(out.string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec& spec = in->spec();
+  EXPECT_EQ(j["schema"], 1);
+  EXPECT_EQ(j["command"], "render");
+  EXPECT_EQ(j["version"], std::string(spec.get_string_attribute("rtiow:version")));
+  EXPECT_EQ(j["output"], out.string());
+  EXPECT_EQ(j["scene"], "materials");
+  EXPECT_EQ(j["width"], 32);
+  EXPECT_EQ(j["height"], 18);
+  EXPECT_EQ(j["accelerator"], std::string(spec.get_string_attribute("rtiow:accelerator")));
+  EXPECT_EQ(j["sampler"], std::string(spec.get_string_attribute("rtiow:sampler")));
+  EXPECT_EQ(j["rays"], spec.get_int_attribute("rtiow:rays_traced"));
+  EXPECT_EQ(j["spp"]["least"], 3);
+  EXPECT_EQ(j["spp"]["most"], 3);
+  EXPECT_TRUE(j["stopped"].is_null());
+  EXPECT_TRUE(j["error"].is_null());
+  EXPECT_EQ(j["exit_code"], 0);
+  EXPECT_GT(j["threads"].get<int>(), 0);
+  EXPECT_GT(j["mrays_per_second"].get<double>(), 0.0);
+  // An error target: the goal asked and the estimate reached, as the image records it.
+  r = run_rtiow("render -q --width 48 --height 32 --image-error 0.05 -o " + out.string() +
+                " --summary-json " + summary.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  j = nlohmann::json::parse(slurp(summary));
+  in = OIIO::ImageInput::open(out.string());
+  ASSERT_TRUE(in);
+  EXPECT_EQ(j["error"]["kind"], "image");
+  EXPECT_EQ(j["error"]["asked"], 0.05);
+  EXPECT_NEAR(j["error"]["estimated"].get<double>(),
+              in->spec().get_float_attribute("rtiow:estimated_image_error"), 1e-6);
+  EXPECT_LE(j["spp"]["least"].get<int>(), j["spp"]["most"].get<int>());
+  // Stopped by a signal: said, with the command's exit code and the samples the image holds.
+  const fs::path stopped = output_path("stopped.exr");
+  BackgroundRender render({"render", "-q", "--width", "300", "--spp", "100000", "--checkpoint", "0",
+                           "-o", stopped.string(), "--summary-json", summary.string()});
+  ASSERT_TRUE(render.wait_until_rendering());
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  render.signal(SIGTERM);
+  ASSERT_EQ(render.wait(30.0), 128 + SIGTERM) << render.stderr_text();
+  j = nlohmann::json::parse(slurp(summary));
+  in = OIIO::ImageInput::open(stopped.string());
+  ASSERT_TRUE(in);
+  EXPECT_EQ(j["stopped"], "interrupted by a signal");
+  EXPECT_EQ(j["exit_code"], 128 + SIGTERM);
+  EXPECT_EQ(j["spp"]["least"], in->spec().get_int_attribute("rtiow:spp"));
+  // The summary is an output like the image: never the image itself.
+  r = run_rtiow("render -q --width 16 --spp 1 -o " + out.string() + " --summary-json " +
+                out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("another output of this command"), std::string::npos)
+      << r.stderr_text;
+}
+
 TEST(Cli, EveryAdvertisedFormatIsWritten) {
   for (const char* ext : {".png", ".exr", ".ppm", ".jpg", ".tif"}) {
     const fs::path out = output_path(std::string("format") + ext);

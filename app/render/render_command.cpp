@@ -13,6 +13,8 @@
 #include "app/render/checkpoint_session.h"
 #include "app/render/image_request.h"
 #include "app/render/render_options.h"
+#include "app/render/render_summary.h"
+#include "core/io/atomic_file.h"
 #include "core/io/image_backend.h"
 #include "core/io/output_claim.h"
 #include "core/io/output_path.h"
@@ -160,8 +162,9 @@ int interrupted_outside_render(const char* when) {
 // The output and its checkpoint, claimed for the whole command (core/io/output_claim.h); what
 // an interrupted rtiow left beside them is removed, and said.
 struct ClaimedOutputs {
-  ClaimedOutputs(const std::string& output, bool quiet)
+  ClaimedOutputs(const std::string& output, const std::string& summary, bool quiet)
       : image(output), checkpoint(checkpoint_path(output)) {
+    if (!summary.empty()) summary_json.emplace(summary);
     const int removed = image.removed_temporaries() + checkpoint.removed_temporaries();
     if (removed > 0 && !quiet) {
       std::fprintf(stderr, "rtiow: removed %d temporar%s an interrupted rtiow left beside %s\n",
@@ -169,6 +172,7 @@ struct ClaimedOutputs {
     }
   }
   OutputClaim image, checkpoint;
+  std::optional<OutputClaim> summary_json;  // --summary-json
 };
 
 // "rtiow: interrupted: wrote 37 spp (of 100 asked) to cover.png; the render is kept in ..."
@@ -187,6 +191,13 @@ int report_interrupted(const RenderJob& job, const RenderResult& result,
 
 int run_render(const RenderOptions& o, const JobRequest& request, const MpiSession& mpi) {
   if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
+  if (!o.summary_json.empty()) {
+    std::vector<std::string> inputs;
+    for (const std::string* input : {&o.scene_file, &o.like}) {
+      if (!input->empty()) inputs.push_back(*input);
+    }
+    check_output_path(o.summary_json, inputs, "--summary-json");
+  }
   // From the scene's load to the last write, a signal asks the command to stop gracefully.
   RenderProgress progress;
   const InterruptGuard interrupt(progress.stop_requested);
@@ -202,7 +213,8 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   if (mpi.rank() == 0) note_long_request(job);
   // Rank 0 writes the output (and, alone, keeps a checkpoint).
   const std::unique_ptr<ClaimedOutputs> claimed =
-      mpi.rank() == 0 ? std::make_unique<ClaimedOutputs>(job.output, o.quiet) : nullptr;
+      mpi.rank() == 0 ? std::make_unique<ClaimedOutputs>(job.output, o.summary_json, o.quiet)
+                      : nullptr;
   const std::unique_ptr<CheckpointSession> checkpoint = open_checkpoint(o, job, mpi);
   // The image library loads on a second thread while the render runs (rank 0 writes), unless
   // rtiow encodes the format itself (PNG): then it is never loaded.
@@ -221,9 +233,17 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   if (mpi.distributed() && !gather_ranks(mpi, job, result, o.stats_channels)) return 0;
   write_or_keep(o, request, job, result, checkpoint.get());
   if (checkpoint) checkpoint->warn_where_kept();  // even when quiet
-  if (result.stopped) return report_interrupted(job, result, checkpoint.get());
-  if (!o.quiet) print_summary(job, result, mpi);
-  return interrupted_outside_render("after the render ended; the image is complete");
+  int code = 0;
+  if (result.stopped) {
+    code = report_interrupted(job, result, checkpoint.get());
+  } else {
+    if (!o.quiet) print_summary(job, result, mpi);
+    code = interrupted_outside_render("after the render ended; the image is complete");
+  }
+  if (!o.summary_json.empty()) {
+    write_text_atomically(o.summary_json, render_summary_json(job, result, mpi.size(), code));
+  }
+  return code;
 }
 
 }  // namespace

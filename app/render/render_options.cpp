@@ -145,6 +145,10 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
 
 void add_run_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
+  cmd->add_option("--summary-json", o.summary_json,
+                  "Also write the render's summary as JSON here, for scripts: time, rays, rate, "
+                  "samples, threads, the error asked and reached, the exit code (schema in "
+                  "docs/usage.md); written after the image, also when a signal stops the render");
   cmd->add_option(
       "--sample-range", o.sample_range,
       "Render only samples A:B (from sample A up to, not including, B; B at most --spp, "

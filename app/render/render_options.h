@@ -35,6 +35,7 @@ struct RenderOptions {
   int min_spp = RenderRequest{}.min_samples;
   bool stats_channels = false;
   bool quiet = false;
+  std::string summary_json;  // empty: none
   bool reproducible = false;
   double checkpoint_seconds = 60.0;  // 0: none
   bool resume = false;

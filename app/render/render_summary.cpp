@@ -1,0 +1,52 @@
+#include "app/render/render_summary.h"
+
+#include <nlohmann/json.hpp>
+
+#include "core/parallel/thread_count.h"
+#include "core/render/render_outcome.h"
+#include "core/sampling/sampler.h"
+#include "core/version.h"
+
+namespace rtiow {
+
+std::string render_summary_json(const RenderJob& job, const RenderResult& result, int ranks,
+                                int exit_code) {
+  const RenderSettings& s = job.settings;
+  const RenderOutcome outcome = describe_outcome(s, result);
+  const double seconds = result.render_seconds;
+  nlohmann::ordered_json j;
+  j["schema"] = kRenderSummarySchema;
+  j["version"] = version();
+  j["command"] = "render";
+  j["output"] = job.output;
+  j["scene"] = job.scene.name;
+  j["width"] = s.width;
+  j["height"] = s.height;
+  j["depth"] = s.max_depth;
+  j["accelerator"] = to_string(s.accel);
+  j["sampler"] = to_string(s.sampler);
+  j["threads"] = thread_count(s.threads);
+  j["ranks"] = ranks;
+  j["spp"] = {{"least", outcome.least}, {"most", outcome.most}, {"mean", outcome.mean}};
+  j["samples"] = outcome.samples;
+  j["stopped"] =
+      outcome.stopped.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(outcome.stopped);
+  j["exit_code"] = exit_code;
+  j["seconds"] = seconds;
+  j["build_seconds"] = result.build_seconds;
+  j["rays"] = result.rays_traced;
+  j["mrays_per_second"] = seconds > 0 ? double(result.rays_traced) / seconds * 1e-6 : 0.0;
+  // The error-driven modes: the goal asked and where the render ended.
+  if (const auto* image = std::get_if<ImageErrorTarget>(&s.samples)) {
+    j["error"] = {
+        {"kind", "image"}, {"asked", image->error}, {"estimated", result.estimated_image_error}};
+  } else if (const auto* pixel = std::get_if<PixelErrorTarget>(&s.samples)) {
+    j["error"] = {
+        {"kind", "pixel"}, {"asked", pixel->error}, {"pixels_above", result.pixels_above_target}};
+  } else {
+    j["error"] = nullptr;
+  }
+  return j.dump(2) + "\n";
+}
+
+}  // namespace rtiow
