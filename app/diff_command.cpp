@@ -5,12 +5,15 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/cli_checks.h"
+#include "app/diff_summary.h"
 #include "core/compare/diff_images.h"
 #include "core/compare/image_diff.h"
+#include "core/io/atomic_file.h"
 #include "core/io/image_output.h"
 #include "core/io/input_file.h"
 #include "core/io/output_claim.h"
@@ -29,6 +32,7 @@ struct DiffOptions {
   double alpha = 0.01;
   int block = 16;
   std::string out_diff, out_z;
+  std::string summary_json;  // empty: none
 };
 
 // Refuses, before reading them, more images of the reference's size than half of this
@@ -73,9 +77,10 @@ int run_diff(const DiffOptions& o) {
   inputs.insert(inputs.end(), o.tests.begin(), o.tests.end());
   if (!o.out_diff.empty()) check_image_output(o.out_diff, inputs);
   if (!o.out_z.empty()) check_image_output(o.out_z, inputs);
-  // The pictures' outputs, claimed before the images are read.
+  if (!o.summary_json.empty()) check_output_path(o.summary_json, inputs, "--summary-json");
+  // The outputs, claimed before the images are read.
   std::vector<std::unique_ptr<OutputClaim>> claims;
-  for (const std::string* out : {&o.out_diff, &o.out_z}) {
+  for (const std::string* out : {&o.out_diff, &o.out_z, &o.summary_json}) {
     if (!out->empty()) claims.push_back(std::make_unique<OutputClaim>(*out));
   }
   const DiffInput reference = read_diff_input(o.reference);
@@ -99,8 +104,14 @@ int run_diff(const DiffOptions& o) {
   const DiffInput test = tests.size() > 1 ? mean_image(tests) : tests[0];
   const NonFinite bad = find_non_finite(test, reference);
   DiffVerdict verdict = DiffVerdict::Pass;
+  DiffSummary summary;
+  summary.reference = o.reference, summary.tests = o.tests, summary.mode = mode;
+  summary.width = test.width, summary.height = test.height;
+  std::optional<PlainDiff> plain;
+  std::optional<NoiseDiff> noise;
   if (mode == "plain") {
-    const PlainDiff d = plain_diff(test, reference, o.thresholds);
+    const PlainDiff& d = plain.emplace(plain_diff(test, reference, o.thresholds));
+    summary.plain = &d, summary.thresholds = &o.thresholds;
     std::printf("%s\n", describe(d, o.thresholds).c_str());
     verdict = d.verdict;
     // Most pixels off by a little is what two renders of one job with other seeds look like:
@@ -114,8 +125,10 @@ int run_diff(const DiffOptions& o) {
           d.fail_percent);
     }
   } else {
-    const NoiseDiff d = mode == "seeds" ? seeds_diff(tests, reference, o.block, o.alpha)
-                                        : noise_diff(test, reference, o.block, o.alpha);
+    const NoiseDiff& d =
+        noise.emplace(mode == "seeds" ? seeds_diff(tests, reference, o.block, o.alpha)
+                                      : noise_diff(test, reference, o.block, o.alpha));
+    summary.noise = &d;
     std::printf("%s\n", describe(d).c_str());
     verdict = d.verdict;
     if (!o.out_z.empty()) write_image(o.out_z, z_image(d, test.width, test.height));
@@ -128,6 +141,10 @@ int run_diff(const DiffOptions& o) {
   }
   if (!o.out_diff.empty()) write_image(o.out_diff, difference_image(test, reference));
   std::printf("%s\n", to_string(verdict).c_str());
+  if (!o.summary_json.empty()) {
+    summary.non_finite = bad, summary.verdict = verdict;
+    write_text_atomically(o.summary_json, diff_summary_json(summary));
+  }
   return int(verdict);
 }
 
@@ -181,6 +198,9 @@ std::function<int()> add_diff_command(CLI::App& app) {
   cmd->add_option("--out-diff", o->out_diff,
                   "Write |test - reference| (several tests: their mean), scaled so the largest "
                   "difference is white");
+  cmd->add_option("--summary-json", o->summary_json,
+                  "Also write the verdict and the figures as JSON here, for scripts (schema in "
+                  "docs/diff.md)");
   cmd->add_option("--out-z", o->out_z,
                   "Noise-aware: write the blocks' z (or t) scores (red: test brighter, blue: "
                   "darker, full colour at the critical value)");

@@ -715,6 +715,41 @@ TEST(Cli, TheSummaryForScriptsAgreesWithTheImage) {
       << r.stderr_text;
 }
 
+// diff --summary-json: the verdict and figures a script reads are those the command printed
+// and exited with.
+TEST(Cli, TheDiffSummaryForScriptsIsTheVerdictPrinted) {
+  const fs::path a = output_path("a.exr"), b = output_path("b.exr"), c = output_path("c.exr");
+  const fs::path summary = output_path("diff.json");
+  for (const auto& [path, args] :
+       {std::pair{a, std::string("--seed 1")}, std::pair{b, std::string("--seed 2")},
+        std::pair{c, std::string("--seed 1 --depth 1")}}) {
+    ASSERT_EQ(run_rtiow("render -q --width 48 --height 32 --spp 16 --stats-channels " + args +
+                        " -o " + path.string())
+                  .exit_code,
+              0);
+  }
+  CommandResult r =
+      run_rtiow("diff " + a.string() + " " + b.string() + " --summary-json " + summary.string());
+  auto j = nlohmann::json::parse(slurp(summary));
+  EXPECT_EQ(j["schema"], 1);
+  EXPECT_EQ(j["command"], "diff");
+  EXPECT_EQ(j["mode"], "noise");
+  EXPECT_EQ(j["exit_code"], r.exit_code);
+  EXPECT_NE(r.stdout_text.find(j["verdict"].get<std::string>()), std::string::npos);
+  EXPECT_EQ(j["noise"]["blocks"], 6);
+  EXPECT_TRUE(j["plain"].is_null());
+  // A real change, compared plainly: a failure, with the figures printed.
+  r = run_rtiow("diff --mode plain " + a.string() + " " + c.string() + " --summary-json " +
+                summary.string());
+  j = nlohmann::json::parse(slurp(summary));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(j["verdict"], "FAILURE");
+  EXPECT_EQ(j["exit_code"], 2);
+  EXPECT_GT(j["plain"]["max_error"].get<double>(), 0.0);
+  EXPECT_TRUE(j["plain"]["thresholds"]["hardfail"].is_null());
+  EXPECT_TRUE(j["noise"].is_null());
+}
+
 TEST(Cli, EveryAdvertisedFormatIsWritten) {
   for (const char* ext : {".png", ".exr", ".ppm", ".jpg", ".tif"}) {
     const fs::path out = output_path(std::string("format") + ext);

@@ -1,0 +1,29 @@
+#pragma once
+// `rtiow diff --summary-json FILE`: the comparison's verdict and figures for a script, in one
+// documented schema (docs/diff.md, "A summary for scripts"), beside the lines on stdout.
+
+#include <string>
+#include <vector>
+
+#include "core/compare/image_diff.h"
+
+namespace rtiow {
+
+inline constexpr int kDiffSummarySchema = 1;
+
+struct DiffSummary {
+  std::string reference;
+  std::vector<std::string> tests;
+  std::string mode;  // plain, noise or seeds
+  int width = 0, height = 0;
+  const PlainDiff* plain = nullptr;  // the figures of the mode used
+  const PlainThresholds* thresholds = nullptr;
+  const NoiseDiff* noise = nullptr;
+  NonFinite non_finite;
+  DiffVerdict verdict = DiffVerdict::Pass;
+};
+
+// The summary as JSON text.
+std::string diff_summary_json(const DiffSummary& summary);
+
+}  // namespace rtiow
