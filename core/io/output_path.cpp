@@ -33,7 +33,8 @@ constexpr std::array<ImageFormat, 10> kFormats{{
     {".hdr", true, false, false, Provenance::None},
 }};
 
-// The temporary written beside the target adds ".", ".tmp-<pid>": keep room for it.
+// Room for what rtiow adds to a name: a checkpoint's ".rtiow-checkpoint", and a temporary's "."
+// and ".rtiow-tmp-" with 8 letters (237 bytes at most, under the 255 a name may have).
 constexpr std::size_t kMaxFileNameBytes = 200;
 constexpr std::size_t kMaxPathBytes = 3000;
 
