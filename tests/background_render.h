@@ -6,6 +6,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <algorithm>
 
 #include <chrono>
 #include <csignal>
@@ -64,30 +65,39 @@ class BackgroundRender {
 
   void signal(int sig) const { ::kill(pid_, sig); }
 
-  // Waits (up to 20 s) until the render has begun: it holds its output's lock
-  // (`.<name>.rtiow-lock` beside the -o path), taken after the scene is loaded and just before
-  // the render starts. A signal before that ends the command before any work, as it should,
-  // but would test nothing of a render's stop. A render with no -o: until it catches SIGINT.
+  // Waits (up to 20 s) until the render has begun: it holds the locks of everything it writes
+  // (`.<name>.rtiow-lock` beside the -o path, its checkpoint's and --summary-json's), taken one
+  // after another once the scene is loaded and just before the render starts. A signal before
+  // that ends the command before any work, as it should, but would test nothing of a render's
+  // stop. A render with no -o: until it catches SIGINT.
   bool wait_until_rendering() const {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-    std::string lock;
+    std::vector<std::string> locks;
+    const auto lock_of = [](const std::filesystem::path& out, const char* suffix) {
+      std::string name = ".";  // appended: GCC 12 warns falsely (-Wrestrict) on "." + ...
+      name.append(out.filename().string()).append(suffix).append(".rtiow-lock");
+      return (out.parent_path() / name).string();
+    };
     for (std::size_t i = 0; i + 1 < args_.size(); ++i) {
       if (args_[i] == "-o" || args_[i] == "--output") {
-        const std::filesystem::path out(args_[i + 1]);
-        std::string name = ".";  // appended: GCC 12 warns falsely (-Wrestrict) on "." + ...
-        name.append(out.filename().string()).append(".rtiow-lock");
-        lock = (out.parent_path() / name).string();
+        locks.push_back(lock_of(args_[i + 1], ""));
+        locks.push_back(lock_of(args_[i + 1], ".rtiow-checkpoint"));
+      } else if (args_[i] == "--summary-json") {
+        locks.push_back(lock_of(args_[i + 1], ""));
       }
     }
     const std::string status_path = "/proc/" + std::to_string(pid_) + "/status";
     while (std::chrono::steady_clock::now() < deadline) {
-      // The lock is taken once its holder's pid is in it (it exists a moment before, while
+      // A lock is taken once its holder's pid is in it (it exists a moment before, while
       // rtiow still checks it is the file it locked).
-      std::error_code no_file;
-      if (!lock.empty() && std::filesystem::file_size(lock, no_file) > 0 && !no_file) return true;
+      const auto taken = [](const std::string& lock) {
+        std::error_code no_file;
+        return std::filesystem::file_size(lock, no_file) > 0 && !no_file;
+      };
+      if (!locks.empty() && std::all_of(locks.begin(), locks.end(), taken)) return true;
       std::ifstream status(status_path);
       std::string line;
-      while (lock.empty() && std::getline(status, line)) {
+      while (locks.empty() && std::getline(status, line)) {
         if (line.rfind("SigCgt:", 0) == 0) {
           const unsigned long long caught = std::stoull(line.substr(7), nullptr, 16);
           if (caught & (1ull << (SIGINT - 1))) return true;
