@@ -5,11 +5,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <new>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "app/cli_checks.h"
+#include "app/command_error.h"
 #include "app/diff_summary.h"
 #include "core/compare/diff_images.h"
 #include "core/compare/image_diff.h"
@@ -90,8 +92,9 @@ int run_diff(const DiffOptions& o) {
     tests.push_back(read_diff_input(path));
     try {
       check_comparable(tests.back(), reference);
-    } catch (const InvalidInput& e) {
-      throw InvalidInput("image " + quote_value(path) + " against the reference: " + e.what());
+    } catch (const ImagesNotComparable& e) {
+      throw ImagesNotComparable("image " + quote_value(path) +
+                                " against the reference: " + e.what());
     }
   }
   const std::string mode = chosen_mode(o, reference, tests);
@@ -154,10 +157,11 @@ std::function<int()> add_diff_command(CLI::App& app) {
   auto o = std::make_shared<DiffOptions>();
   CLI::App* cmd = app.add_subcommand(
       "diff",
-      "Compare a test image, or several renders with other seeds, with a reference: exit 0 "
-      "pass, 1 warning, 2 failure (or refused input). Noise-aware when given several renders "
-      "or when both images carry variance channels (--stats-channels EXR): then a difference "
-      "fails only where the noise cannot explain it");
+      "Compare a test image, or several renders with other seeds, with a reference. Exit 0 "
+      "pass, 1 warning, 2 failure; no verdict: 3 images of other sizes (or linear against "
+      "8-bit), 4 a missing or unreadable file or a bad option. Noise-aware when given several "
+      "renders or when both images carry variance channels (--stats-channels EXR): then a "
+      "difference fails only where the noise cannot explain it");
   cmd->add_option("reference", o->reference, "The reference image")->required();
   cmd->add_option("test", o->tests,
                   "The image to check, or several renders of the same job with other seeds")
@@ -179,11 +183,13 @@ std::function<int()> add_diff_command(CLI::App& app) {
                   "Plain: fail when any channel differs by more (default: no limit)")
       ->check(kFiniteNotNegative);
   cmd->add_option("--warn", o->thresholds.warn,
-                  "Plain: a pixel warns when a channel differs by more")
+                  "Plain: a pixel warns when a channel differs by more (default: --fail's value "
+                  "when --fail is given)")
       ->check(kFiniteNotNegative)
       ->capture_default_str();
   cmd->add_option("--warnpercent", o->thresholds.warn_percent,
-                  "Plain: the percentage of warning pixels allowed")
+                  "Plain: the percentage of warning pixels allowed (default: --failpercent's "
+                  "value when --failpercent is given)")
       ->check(kFiniteNotNegative)
       ->capture_default_str();
   cmd->add_option("--alpha", o->alpha,
@@ -204,7 +210,27 @@ std::function<int()> add_diff_command(CLI::App& app) {
   cmd->add_option("--out-z", o->out_z,
                   "Noise-aware: write the blocks' z (or t) scores (red: test brighter, blue: "
                   "darker, full colour at the critical value)");
-  return [o, cmd] { return cmd->parsed() ? run_diff(*o) : -1; };
+  return [o, cmd] {
+    if (!cmd->parsed()) return -1;
+    // A warning threshold left unset follows the failure one given, so plain thresholds for
+    // failure alone do not leave every image warning at 1e-6.
+    if (cmd->count("--fail") > 0 && cmd->count("--warn") == 0) {
+      o->thresholds.warn = o->thresholds.fail;
+    }
+    if (cmd->count("--failpercent") > 0 && cmd->count("--warnpercent") == 0) {
+      o->thresholds.warn_percent = o->thresholds.fail_percent;
+    }
+    // Exit codes 1 and 2 are verdicts: whatever keeps diff from giving one exits 3 or 4.
+    try {
+      return run_diff(*o);
+    } catch (const ImagesNotComparable& e) {
+      throw CommandError(e.what(), kDiffImagesDiffer);
+    } catch (const std::bad_alloc&) {
+      throw CommandError("out of memory; nothing was compared", kDiffCouldNotCompare);
+    } catch (const std::exception& e) {
+      throw CommandError(e.what(), kDiffCouldNotCompare);
+    }
+  };
 }
 
 }  // namespace rtiow

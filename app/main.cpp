@@ -18,8 +18,10 @@
 #include <memory>
 #include <new>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "app/command_error.h"
 #include "app/diff_command.h"
 #include "app/help_format.h"
 #include "app/interrupt.h"
@@ -114,6 +116,9 @@ int run_parsed_command(const std::vector<std::function<int()>>& commands,
       const int code = command();
       if (code >= 0) return code;
     }
+  } catch (const rtiow::CommandError& e) {  // a command's own exit code
+    if (mpi.rank() == 0) report(e.what());
+    return e.exit_code();
   } catch (const rtiow::InvalidInput& e) {
     // Bad input is seen alike by every rank before any work: say it once, all exit.
     if (mpi.rank() == 0) report(e.what());
@@ -200,7 +205,8 @@ int main(int argc, char** argv) {
     return print_and_exit(app, e);
   } catch (const CLI::ParseError& e) {
     report(rtiow::explain_parse_error(app, e).c_str());
-    return 2;
+    // diff's 2 is a verdict (FAILURE): a command line it cannot use is "could not compare".
+    return argc > 1 && std::string_view(argv[1]) == "diff" ? rtiow::kDiffCouldNotCompare : 2;
   }
 
   return check_standard_output(run_parsed_command(commands, mpi));

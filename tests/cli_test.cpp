@@ -367,8 +367,9 @@ TEST(Cli, AMissingImageBackendIsReportedBeforeTheRender) {
   EXPECT_TRUE(fs::exists(root / "x.png"));
 }
 
-// rtiow diff's exit codes: 0 for two seeds, 2 for a turned camera, 2 (and one line) for
-// images that cannot be compared.
+// rtiow diff's exit codes, idiff's: 0 for two seeds, 2 (FAILURE) for a turned camera; no
+// verdict, and one line: 3 for images that cannot be compared, 4 for a file or option it
+// cannot use, so `! rtiow diff ...` never passes on a typo.
 TEST(Cli, DiffPassesOtherSeedsFailsAMutationAndRefusesMismatches) {
   const std::string render =
       "render -q --scene cover --width 64 --height 36 --spp 16 --stats-channels ";
@@ -386,10 +387,15 @@ TEST(Cli, DiffPassesOtherSeedsFailsAMutationAndRefusesMismatches) {
   const CommandResult mutated = run_rtiow("diff " + a.string() + " " + turned.string());
   EXPECT_EQ(mutated.exit_code, 2) << mutated.stdout_text;
   const CommandResult refused = run_rtiow("diff " + a.string() + " " + small.string());
-  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_EQ(refused.exit_code, 3);
   EXPECT_EQ(count_lines(refused.stderr_text), 1) << refused.stderr_text;
   EXPECT_NE(refused.stderr_text.find("differ in size"), std::string::npos);
-  EXPECT_EQ(run_rtiow("diff " + a.string() + " /nonexistent.exr").exit_code, 2);
+  const CommandResult missing = run_rtiow("diff " + a.string() + " /nonexistent.exr");
+  EXPECT_EQ(missing.exit_code, 4);
+  EXPECT_EQ(count_lines(missing.stderr_text), 1) << missing.stderr_text;
+  EXPECT_EQ(missing.stdout_text.find("FAILURE"), std::string::npos) << missing.stdout_text;
+  EXPECT_EQ(run_rtiow("diff --mdoe plain " + a.string() + " " + b.string()).exit_code, 4);
+  EXPECT_EQ(run_rtiow("diff " + a.string()).exit_code, 4) << "no test image";
 
   // Several renders: compared by their spread (Student's t); a mismatched one is named.
   const CommandResult seeds =
@@ -398,22 +404,40 @@ TEST(Cli, DiffPassesOtherSeedsFailsAMutationAndRefusesMismatches) {
       << seeds.stdout_text;
   const CommandResult mixed =
       run_rtiow("diff " + a.string() + " " + b.string() + " " + small.string());
-  EXPECT_EQ(mixed.exit_code, 2);
+  EXPECT_EQ(mixed.exit_code, 3);
   EXPECT_EQ(count_lines(mixed.stderr_text), 1) << mixed.stderr_text;
   EXPECT_NE(mixed.stderr_text.find("-s.exr' against the reference"), std::string::npos)
       << mixed.stderr_text;
   const CommandResult plain_of_several =
       run_rtiow("diff --mode plain " + a.string() + " " + b.string() + " " + b.string());
-  EXPECT_EQ(plain_of_several.exit_code, 2);
+  EXPECT_EQ(plain_of_several.exit_code, 4);
   EXPECT_NE(plain_of_several.stderr_text.find("--mode seeds"), std::string::npos);
-  EXPECT_EQ(run_rtiow("diff --mode seeds " + a.string() + " " + b.string()).exit_code, 2);
+  EXPECT_EQ(run_rtiow("diff --mode seeds " + a.string() + " " + b.string()).exit_code, 4);
   // Thresholds and alpha are finite amounts: NaN would make every comparison false.
   for (const char* option : {"--alpha nan", "--fail nan", "--hardfail inf", "--warn -1"}) {
     const CommandResult r =
         run_rtiow(std::string("diff ") + option + " " + a.string() + " " + b.string());
-    EXPECT_EQ(r.exit_code, 2) << option;
+    EXPECT_EQ(r.exit_code, 4) << option;
     EXPECT_EQ(count_lines(r.stderr_text), 1) << option << ": " << r.stderr_text;
   }
+}
+
+// Plain thresholds given for failure alone: the warning ones follow them (idiff's --warn
+// defaults to 1e-6, which would make every image of two seeds WARN).
+TEST(Cli, DiffWarningThresholdsFollowTheFailureOnesGiven) {
+  const std::string render = "render -q --scene cover --width 48 --height 27 --spp 8 ";
+  const fs::path a = output_path("warn-a.png"), b = output_path("warn-b.png");
+  ASSERT_EQ(run_rtiow(render + "--seed 1 -o " + a.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow(render + "--seed 2 -o " + b.string()).exit_code, 0);
+  const std::string both = " " + a.string() + " " + b.string();
+  const CommandResult loose = run_rtiow("diff --mode plain --fail 1 --failpercent 100" + both);
+  EXPECT_EQ(loose.exit_code, 0) << loose.stdout_text;
+  EXPECT_NE(loose.stdout_text.find("PASS"), std::string::npos) << loose.stdout_text;
+  // A warning threshold given still counts on its own.
+  const CommandResult warned =
+      run_rtiow("diff --mode plain --fail 1 --failpercent 100 --warn 0.001 --warnpercent 1" + both);
+  EXPECT_EQ(warned.exit_code, 1) << warned.stdout_text;
+  EXPECT_NE(warned.stdout_text.find("WARNING"), std::string::npos) << warned.stdout_text;
 }
 
 // A PNG whose header claims `side` x `side` pixels and holds none.
@@ -445,7 +469,7 @@ TEST(Cli, DiffRefusesAnImageWhoseHeaderClaimsTooManyPixels) {
                 .exit_code,
             0);
   const CommandResult r = run_rtiow("diff " + huge.string() + " " + small.string());
-  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.exit_code, 4);
   EXPECT_EQ(count_lines(r.stderr_text), 1) << r.stderr_text;
   EXPECT_NE(r.stderr_text.find("pixels"), std::string::npos) << r.stderr_text;
 
@@ -453,7 +477,7 @@ TEST(Cli, DiffRefusesAnImageWhoseHeaderClaimsTooManyPixels) {
   const fs::path truncated = output_path("truncated.png");
   rtiow::test::write_file(truncated, png_claiming(8).substr(0, 40));
   const CommandResult cut = run_rtiow("diff " + small.string() + " " + truncated.string());
-  EXPECT_EQ(cut.exit_code, 2);
+  EXPECT_EQ(cut.exit_code, 4);
   EXPECT_EQ(count_lines(cut.stderr_text), 1) << cut.stderr_text;
 }
 

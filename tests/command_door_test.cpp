@@ -137,6 +137,11 @@ std::vector<Writer> writers() {
   };
 }
 
+// The exit code of a refused command: diff keeps 2 for its FAILURE verdict (idiff's codes).
+int refusal_code(const Writer& w) {
+  return w.label == "diff" ? 4 : 2;
+}
+
 // ---- No shell: any name works as --out, and a helper's output is a private temporary.
 
 TEST(CommandDoor, NoShellRunsWhateverTheOutputIsCalled) {
@@ -214,7 +219,7 @@ TEST(CommandDoor, TwoCommandsAimedAtOneOutputOneRefusesInOneLine) {
     for (const auto& args : others) {
       SCOPED_TRACE(args[0]);
       const CommandRun r = run_in(dir, args);
-      EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+      EXPECT_EQ(r.exit_code, args[0] == "diff" ? 4 : 2) << r.stderr_text;  // diff's 2: FAILURE
       EXPECT_NE(r.stderr_text.find("another rtiow (pid " + std::to_string(holder.pid())),
                 std::string::npos)
           << r.stderr_text;
@@ -239,7 +244,7 @@ TEST(CommandDoor, TwoCommandsAimedAtOneOutputOneRefusesInOneLine) {
   // One command naming one file twice: refused, not a lost write.
   const CommandRun twice =
       run_in(dir, {"diff", "part.exr", "part.exr", "--out-diff", "x.exr", "--out-z", "./x.exr"});
-  EXPECT_EQ(twice.exit_code, 2) << twice.stderr_text;
+  EXPECT_EQ(twice.exit_code, 4) << twice.stderr_text;
   EXPECT_NE(twice.stderr_text.find("another output of this command"), std::string::npos)
       << twice.stderr_text;
 }
@@ -271,7 +276,7 @@ TEST(CommandDoor, EveryCommandsLockNameRefusesWhatRtiowNeverMakes) {
       const fs::path lock = dir / lock_name;
       plant(lock);
       const CommandRun r = run_in(dir, w.args, 30);
-      EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+      EXPECT_EQ(r.exit_code, refusal_code(w)) << r.stderr_text;
       EXPECT_NE(r.stderr_text.find("cannot take its lock"), std::string::npos) << r.stderr_text;
       EXPECT_NE(r.stderr_text.find(why), std::string::npos) << r.stderr_text;
       EXPECT_TRUE(one_line(r.stderr_text)) << r.stderr_text;
@@ -303,12 +308,12 @@ TEST(CommandDoor, EveryCommandsOutputNameIsReplacedNeverFollowedOrOpened) {
     fs::remove(dir / w.name);
     ASSERT_EQ(::mkfifo((dir / w.name).c_str(), 0600), 0);
     r = run_in(dir, w.args, 20);
-    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_EQ(r.exit_code, refusal_code(w)) << r.stderr_text;
     EXPECT_TRUE(one_line(r.stderr_text)) << r.stderr_text;
     fs::remove(dir / w.name);
     fs::create_directory(dir / w.name);
     r = run_in(dir, w.args, 20);
-    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_EQ(r.exit_code, refusal_code(w)) << r.stderr_text;
     EXPECT_NE(r.stderr_text.find("directory"), std::string::npos) << r.stderr_text;
     fs::remove(dir / w.name);
     EXPECT_EQ(leftovers(dir), "");

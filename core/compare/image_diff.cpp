@@ -24,12 +24,12 @@ int channel_index(const ImageHeader& header, const std::string& name) {
 
 void check_comparable(const DiffInput& a, const DiffInput& b) {
   if (a.width != b.width || a.height != b.height) {
-    throw InvalidInput("the images differ in size: " + std::to_string(a.width) + "x" +
-                       std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
-                       std::to_string(b.height));
+    throw ImagesNotComparable("the images differ in size: " + std::to_string(a.width) + "x" +
+                              std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
+                              std::to_string(b.height));
   }
   if (a.linear != b.linear) {
-    throw InvalidInput(
+    throw ImagesNotComparable(
         "one image is linear float and the other 8-bit display-referred: compare like with "
         "like");
   }

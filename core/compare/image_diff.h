@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/film/film.h"
+#include "core/limits/error.h"
 
 namespace rtiow {
 
@@ -46,6 +47,13 @@ DiffInput read_diff_input(const std::string& path);
 
 // Throws InvalidInput when the two cannot be compared: other sizes, or a linear float image
 // against an 8-bit display-referred one.
+// Two images that cannot be compared as they are: of different sizes, or one linear float and
+// the other 8-bit display-referred.
+class ImagesNotComparable : public InvalidInput {
+ public:
+  using InvalidInput::InvalidInput;
+};
+
 void check_comparable(const DiffInput& a, const DiffInput& b);
 
 // True when all three channels of pixel p are finite.
