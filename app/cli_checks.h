@@ -34,4 +34,15 @@ inline const CLI::Validator kFiniteNotNegative(
     },
     "NUMBER >= 0");
 
+// A finite number > 0 (error targets: 0 would be a target no render reaches, and leaving the
+// option out is how to ask for none).
+inline const CLI::Validator kFinitePositive(
+    [](std::string& text) -> std::string {
+      double value = 0;
+      return CLI::detail::lexical_cast(text, value) && std::isfinite(value) && value > 0
+                 ? ""
+                 : "must be a finite number > 0 (leave the option out for no error target)";
+    },
+    "NUMBER > 0");
+
 }  // namespace rtiow

@@ -189,6 +189,9 @@ int main(int argc, char** argv) {
   app.formatter(std::make_shared<rtiow::ReadableHelpFormatter>());
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("rtiow ") + rtiow::version());
+  app.footer(
+      "The docs/ pages the help cites are in the source tree, and in share/doc/rtiow/ where "
+      "rtiow is installed.");
   std::vector<std::function<int()>> commands{
       rtiow::add_render_command(app, mpi), rtiow::add_scene_command(app),
       rtiow::add_merge_command(app),       rtiow::add_bench_command(app),

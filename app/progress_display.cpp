@@ -2,26 +2,57 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <string>
 #include <system_error>
+
+#include "app/progress_status.h"
 
 namespace rtiow {
 namespace {
 
-void format_duration(char* out, std::size_t size, double seconds) {
+std::string duration(double seconds) {
+  char text[32];
   if (seconds < 60.0) {
-    std::snprintf(out, size, "%.1fs", seconds);
+    std::snprintf(text, sizeof text, "%.1fs", seconds);
   } else {
-    const int total = int(seconds + 0.5);
-    std::snprintf(out, size, "%dm%02ds", total / 60, total % 60);
+    const long long total = (long long)(seconds + 0.5);
+    std::snprintf(text, sizeof text, "%lldm%02llds", total / 60, total % 60);
   }
+  return text;
+}
+
+// "37.5%  elapsed 12.0s  ETA 20.0s  error 0.031 (asked 0.02)  14.2 Mrays/s"; a mode with no
+// share of its end to show counts its samples instead, and one with no honest time to go
+// shows none. A log's lines (`tenths`) give the share in whole tenths, as they come.
+std::string progress_line(const ProgressStatus& status, const ProgressSnapshot& now, bool tenths) {
+  char text[64];
+  std::string line;
+  if (status.fraction >= 0.0 && tenths) {
+    std::snprintf(text, sizeof text, "%3d%%", 10 * int(status.fraction * 10.0));
+  } else if (status.fraction >= 0.0) {
+    std::snprintf(text, sizeof text, "%5.1f%%", 100.0 * status.fraction);
+  } else {
+    std::snprintf(text, sizeof text, "%.3g samples", double(now.samples_done));
+  }
+  line += text;
+  line += "  elapsed " + duration(now.elapsed);
+  if (status.fraction >= 0.0) {
+    line += "  ETA " + (status.seconds_to_go >= 0.0 ? duration(status.seconds_to_go) : "?");
+  }
+  if (!status.detail.empty()) line += "  " + status.detail;
+  const double mrays = now.elapsed > 0 ? double(now.rays_traced) / now.elapsed * 1e-6 : 0.0;
+  std::snprintf(text, sizeof text, "  %.1f Mrays/s", mrays);
+  return line + text;
 }
 
 }  // namespace
 
-ProgressDisplay::ProgressDisplay(const RenderProgress& progress, std::uint64_t total_samples)
+ProgressDisplay::ProgressDisplay(const RenderProgress& progress, const RenderSettings& settings)
     : progress_(progress),
-      total_samples_(total_samples),
+      settings_(settings),
+      pixels_(std::uint64_t(settings.width) * std::uint64_t(settings.height)),
       terminal_(::isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()) {
   try {
@@ -52,54 +83,23 @@ void ProgressDisplay::run() {
 void ProgressDisplay::report(bool final_report) {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  if (total_samples_ == 0) {
-    report_open_ended(final_report, elapsed);
-    return;
-  }
-  const std::uint64_t done = progress_.samples_done, resumed = progress_.samples_resumed;
-  const double fraction = total_samples_ ? double(done) / double(total_samples_) : 1;
-  const double mrays = elapsed > 0 ? double(progress_.rays_traced) / elapsed * 1e-6 : 0.0;
-  char elapsed_text[32], eta_text[32] = "?";
-  format_duration(elapsed_text, sizeof elapsed_text, elapsed);
-  // The samples still to do at this run's rate: a resumed render's checkpointed samples took
-  // no time of this run, and counting them made the ETA 2-3x too short.
-  const double to_go = seconds_to_go(done, resumed, total_samples_, elapsed);
-  if (to_go >= 0.0) format_duration(eta_text, sizeof eta_text, to_go);
-
+  const ProgressSnapshot now = snapshot(progress_, elapsed);
+  const ProgressStatus status = progress_status(settings_, pixels_, now);
   if (terminal_) {
-    std::fprintf(stderr, "\r\033[K%5.1f%%  elapsed %s  ETA %s  %.1f Mrays/s", 100.0 * fraction,
-                 elapsed_text, eta_text, mrays);
+    std::fprintf(stderr, "\r\033[K%s", progress_line(status, now, false).c_str());
     std::fflush(stderr);
     return;
   }
-  // Not a terminal: one line per completed tenth, so a log stays short; none once a signal
-  // has asked the render to stop (its "stopping" line is the last word until the summary).
-  const int decile = int(fraction * 10.0);
-  if (final_report || decile <= last_decile_ || progress_.stop_requested) return;
-  last_decile_ = decile;
-  std::fprintf(stderr, "progress: %3d%%  elapsed %s  ETA %s  %.1f Mrays/s\n", decile * 10,
-               elapsed_text, eta_text, mrays);
-}
-
-// The total is not known in advance (adaptive sampling, a time limit without --spp): the
-// samples done so far instead of a percentage, and no ETA.
-void ProgressDisplay::report_open_ended(bool final_report, double elapsed) {
-  const double mrays = elapsed > 0 ? double(progress_.rays_traced) / elapsed * 1e-6 : 0.0;
-  char elapsed_text[32];
-  format_duration(elapsed_text, sizeof elapsed_text, elapsed);
-  const double samples = double(progress_.samples_done);
-  if (terminal_) {
-    std::fprintf(stderr, "\r\033[K%.3g samples  elapsed %s  %.1f Mrays/s", samples, elapsed_text,
-                 mrays);
-    std::fflush(stderr);
-    return;
-  }
-  // Not a terminal: a line every ten seconds.
-  const int tens = int(elapsed / 10.0);
-  if (final_report || tens <= last_decile_ || progress_.stop_requested) return;
-  last_decile_ = tens;
-  std::fprintf(stderr, "progress: %.3g samples  elapsed %s  %.1f Mrays/s\n", samples, elapsed_text,
-               mrays);
+  // Not a terminal: a line per tenth of the way (or, with no share to show, every ten seconds)
+  // and per round judged, so a log stays short; none once a signal has asked the render to
+  // stop (its "stopping" line is the last word until the summary).
+  if (final_report || progress_.stop_requested) return;
+  const int step = status.fraction >= 0.0 ? int(status.fraction * 10.0) : int(elapsed / 10.0);
+  const std::uint32_t judgement = progress_.judgements;
+  const bool judged = !status.detail.empty() && judgement != last_judgement_;
+  if (step <= last_step_ && !judged) return;
+  last_step_ = std::max(step, last_step_), last_judgement_ = judgement;
+  std::fprintf(stderr, "progress: %s\n", progress_line(status, now, true).c_str());
 }
 
 }  // namespace rtiow

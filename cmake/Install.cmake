@@ -35,6 +35,12 @@ install(DIRECTORY core materials DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rtiow
         PATTERN "json_stream.h" EXCLUDE PATTERN "rapidjson.h" EXCLUDE
         PATTERN "json_reader.h" EXCLUDE PATTERN "material_json.h" EXCLUDE)
 
+# The user's pages, which --help cites as docs/<page> (the measurements stay in the source).
+install(FILES README.md docs/usage.md docs/scene-format.md docs/diff.md docs/distributed.md
+              docs/robustness.md
+        DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(FILES docs/gallery/cover.png DESTINATION ${CMAKE_INSTALL_DOCDIR}/gallery)
+
 set(rtiow_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/rtiow)
 install(EXPORT rtiowTargets NAMESPACE rtiow:: DESTINATION ${rtiow_cmake_dir})
 configure_package_config_file(cmake/rtiowConfig.cmake.in

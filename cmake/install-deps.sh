@@ -1,17 +1,32 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages rtiow needs to build, test and benchmark, and only
-# those that are missing. Works as root, or as a user with sudo.
+# Installs the Debian 12 packages rtiow needs, and only those that are missing. Works as root,
+# or as a user with sudo.
+#   bash cmake/install-deps.sh            to build, test and benchmark (the README's second command)
+#   bash cmake/install-deps.sh --program  to build and run the program alone (the first command):
+#                                         no test frameworks, MPI, sanitizer runtime or plotting
 set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libpng-dev
+  libembree-dev libtbb-dev libopenimageio-dev libpng-dev
   libcli11-dev nlohmann-json3-dev rapidjson-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
-  clang libclang-rt-14-dev
-  libopenmpi-dev openmpi-bin
-  python3-matplotlib
 )
+case "${1:-}" in
+  --program) ;;
+  "")
+    packages+=(
+      openimageio-tools
+      libgtest-dev libgmock-dev libbenchmark-dev
+      clang libclang-rt-14-dev
+      libopenmpi-dev openmpi-bin
+      python3-matplotlib
+    )
+    ;;
+  *)
+    echo "install-deps: unknown argument '$1' (give none, or --program)" >&2
+    exit 2
+    ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -3,11 +3,12 @@
 // against it (or fill RenderSettings yourself), render, write the film. The same request gives
 // the image `rtiow render` gives for the same options.
 
-#include "core/io/image_output.h"        // write_image
-#include "core/render/render.h"          // RenderSettings, render, validate
-#include "core/render/render_request.h"  // RenderRequest, resolve: what the command line does
-#include "core/scene/builtin_scenes.h"   // make_builtin_scene
-#include "core/scene/scene.h"            // Scene, CameraSettings, Background
-#include "core/scene_file/scene_file.h"       // load_scene_file, scene_to_json
-#include "core/version.h"                // version
-#include "materials/material.h"          // Lambertian, Metal, Dielectric
+#include "core/io/image_output.h"         // write_image
+#include "core/render/render.h"           // RenderSettings, render, validate
+#include "core/render/render_metadata.h"  // render_metadata: what --like reads back
+#include "core/render/render_request.h"   // RenderRequest, resolve: what the command line does
+#include "core/scene/builtin_scenes.h"    // make_builtin_scene
+#include "core/scene/scene.h"             // Scene, CameraSettings, Background
+#include "core/scene_file/scene_file.h"   // load_scene_file, scene_to_json
+#include "core/version.h"                 // version
+#include "materials/material.h"           // Lambertian, Metal, Dielectric

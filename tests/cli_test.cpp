@@ -25,7 +25,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/progress_display.h"
+#include "app/progress_status.h"
 #include "core/rtiow.h"
 #include "tests/background_render.h"
 #include "tests/test_files.h"
@@ -126,6 +126,40 @@ TEST(Cli, HelpShowsKindsAndDescriptionsNotParserStrings) {
   EXPECT_EQ(run_rtiow("bogus").stderr_text.find("bench-point"), std::string::npos);
 }
 
+// Help fits a terminal (issue 60): every line within the width asked ($COLUMNS), descriptions
+// wrapped beside their options, and render's options in named groups rather than one list.
+TEST(Cli, HelpFitsTheTerminalAndGroupsRendersOptions) {
+  for (const char* columns : {"80", "100"}) {
+    ::setenv("COLUMNS", columns, 1);
+    for (const char* command :
+         {"", "render ", "scene ", "merge ", "bench ", "bench-point ", "accuracy ", "diff "}) {
+      const CommandResult help = run_rtiow(std::string(command) + "--help");
+      std::istringstream lines(help.stdout_text);
+      for (std::string line; std::getline(lines, line);) {
+        // A usage line lists every option, as CLI11 writes it; everything else fits.
+        if (line.rfind("Usage:", 0) == 0) continue;
+        EXPECT_LE(line.size(), std::stoul(columns)) << command << "--help: " << line;
+      }
+    }
+  }
+  ::unsetenv("COLUMNS");
+  const std::string render = run_rtiow("render --help").stdout_text;
+  for (const char* group : {"Scene:", "Output:", "Sampling:", "Camera (each replaces the scene's):",
+                            "Long renders:", "Speed and distribution:"}) {
+    EXPECT_NE(render.find(std::string("\n") + group + "\n"), std::string::npos) << group;
+  }
+  // Only help itself is left in the catch-all group.
+  const std::size_t options = render.find("\nOptions:\n");
+  ASSERT_NE(options, std::string::npos);
+  std::istringstream block(render.substr(options + 10, render.find("\n\n", options + 1) - options));
+  std::vector<std::string> listed;
+  for (std::string line; std::getline(block, line);) {
+    if (line.rfind("  -", 0) == 0) listed.push_back(line);
+  }
+  ASSERT_EQ(listed.size(), 1u) << render;
+  EXPECT_NE(listed[0].find("--help"), std::string::npos);
+}
+
 // docs/usage.md shows `rtiow --help` and `rtiow render --help`: they must be what the binary
 // prints, or the docs have gone stale.
 // The subcommands `rtiow --help` lists, in its order.
@@ -137,6 +171,7 @@ std::vector<std::string> subcommands() {
   std::getline(lines, line);
   while (std::getline(lines, line)) {
     if (line.rfind("  ", 0) != 0) break;
+    if (line.rfind("   ", 0) == 0) continue;  // a description wrapped onto its next line
     std::istringstream words(line);
     std::string name;
     words >> name;
@@ -149,6 +184,7 @@ std::vector<std::string> subcommands() {
 // RTIOW_UPDATE_DOCS=1 build/bin/cli_tests --gtest_filter='Cli.TheDocs*' rewrites the stale
 // blocks and adds a missing command's at the end of "Every command's options".
 TEST(Cli, TheDocsShowEveryCommandsHelpAsTheBinaryPrintsIt) {
+  ::setenv("COLUMNS", "80", 1);  // the docs show help as an 80-column terminal gets it
   const fs::path path = fs::path(RTIOW_SOURCE_DIR) / "docs" / "usage.md";
   std::string docs = slurp(path);
   const bool update = std::getenv("RTIOW_UPDATE_DOCS") != nullptr;
@@ -201,16 +237,18 @@ std::string timing_form(const std::string& line) {
       "N threads");
 }
 
-// The render examples in docs/usage.md print what the program prints. An example of a small
-// render (a --width of at most 400, no --time-limit) is run as written, into a scratch
-// directory, and must print the lines the docs show but for its timing; the others (the full
-// cover, a time limit) are run at 16 pixels wide and must print them in form (numbers and
-// paths aside). RTIOW_UPDATE_DOCS=1 rewrites the small examples' output from the program.
-TEST(Cli, TheDocsRenderExamplesShowWhatTheProgramPrints) {
-  const fs::path path = fs::path(RTIOW_SOURCE_DIR) / "docs" / "usage.md";
+// The render examples of a page (docs/usage.md, README.md) print what the program prints. An
+// example of a small render (a --width of at most 400, no --time-limit) is run as written, into
+// a scratch directory, and must print the lines the page shows but for its timing; the others
+// (the full cover, a time limit) are run at 16 pixels wide and must print them in form (numbers
+// and paths aside). An example whose output is an error line must be refused (exit 2).
+// RTIOW_UPDATE_DOCS=1 rewrites the small examples' output from the program. Returns how many
+// examples were checked, and of those exactly.
+std::pair<int, int> check_render_examples(const fs::path& path) {
   const std::string docs = slurp(path);
   const bool update = std::getenv("RTIOW_UPDATE_DOCS") != nullptr;
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + "-dir");
+  const fs::path dir =
+      fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + "-" + path.stem().string() + "-dir");
   fs::remove_all(dir);
   fs::create_directories(dir);
   const std::string prompt = "$ build/bin/rtiow render ";
@@ -239,13 +277,15 @@ TEST(Cli, TheDocsRenderExamplesShowWhatTheProgramPrints) {
     for (std::size_t k = i + 1; k < end; ++k) {
       if (lines[k] != "..." && lines[k].rfind("progress:", 0) != 0) shown.push_back(lines[k]);
     }
+    const bool refused = !shown.empty() && shown[0].rfind("rtiow: error:", 0) == 0;
     std::string args = command.substr(prompt.size());
     std::smatch width;
-    const bool small = std::regex_search(args, width, std::regex(R"(--width (\d+))")) &&
-                       std::stoi(width[1]) <= 400 && args.find("--time-limit") == std::string::npos;
+    const bool small =
+        refused || (std::regex_search(args, width, std::regex(R"(--width (\d+))")) &&
+                    std::stoi(width[1]) <= 400 && args.find("--time-limit") == std::string::npos);
     if (!small) args = "--width 16 " + std::regex_replace(args, std::regex(R"(--width \d+)"), "");
     const CommandResult r = run_rtiow("render " + args, "cd " + dir.string() + " && ");
-    ASSERT_EQ(r.exit_code, 0) << command << "\n" << r.stderr_text;
+    EXPECT_EQ(r.exit_code, refused ? 2 : 0) << command << "\n" << r.stderr_text;
     std::vector<std::string> printed, printed_lines;
     std::istringstream out(r.stdout_text + r.stderr_text);
     for (std::string line; std::getline(out, line);) {
@@ -263,16 +303,30 @@ TEST(Cli, TheDocsRenderExamplesShowWhatTheProgramPrints) {
     }
     if (!update) {
       EXPECT_EQ(expected, printed)
-          << "docs/usage.md: `" << command << "` shows other lines than the program prints"
+          << path.filename().string() << ": `" << command
+          << "` shows other lines than the program prints"
           << (small ? " (RTIOW_UPDATE_DOCS=1 build/bin/cli_tests --gtest_filter='Cli.TheDocs*')"
                     : "");
     }
     ++checked;
     exact += small;
   }
+  if (update) std::ofstream(path, std::ios::binary) << rewritten;
+  return {checked, exact};
+}
+
+TEST(Cli, TheDocsRenderExamplesShowWhatTheProgramPrints) {
+  const auto [checked, exact] =
+      check_render_examples(fs::path(RTIOW_SOURCE_DIR) / "docs" / "usage.md");
   EXPECT_GE(checked, 8) << "the render examples were not found in docs/usage.md";
   EXPECT_GE(exact, 5) << "fewer render examples than expected are checked exactly";
-  if (update) std::ofstream(path, std::ios::binary) << rewritten;
+}
+
+// The README's examples too, each exactly (issue 60: its first render's ray count had drifted).
+TEST(Cli, TheDocsOfTheReadmeShowWhatTheProgramPrints) {
+  const auto [checked, exact] = check_render_examples(fs::path(RTIOW_SOURCE_DIR) / "README.md");
+  EXPECT_GE(checked, 2) << "the render examples were not found in README.md";
+  EXPECT_EQ(exact, checked) << "a README example is checked only in form";
 }
 
 // docs/diff.md's example comparisons print what `rtiow diff` prints, in form: two seeds with
@@ -529,7 +583,7 @@ TEST(Cli, OptionErrorsSuggestWhatWasMeant) {
             std::string::npos)
       << diff.stderr_text;
   const CommandResult mode = run_rtiow("diff --mode nois a.png b.png");
-  EXPECT_EQ(mode.exit_code, 2);
+  EXPECT_EQ(mode.exit_code, 4) << "diff's 2 is a FAILURE verdict";
   EXPECT_NE(mode.stderr_text.find("did you mean noise? (see rtiow diff --help)"), std::string::npos)
       << mode.stderr_text;
   const CommandResult version = run_rtiow("--verison");
@@ -564,6 +618,79 @@ TEST(Cli, TheTimeToGoCountsOnlyThisRunsWork) {
   EXPECT_DOUBLE_EQ(rtiow::seconds_to_go(300, 0, 1000, 1.0), 7.0 / 3.0);  // a fresh render
   EXPECT_LT(rtiow::seconds_to_go(250, 250, 1000, 1.0), 0.0);             // no rate yet
   EXPECT_DOUBLE_EQ(rtiow::seconds_to_go(1000, 250, 1000, 3.0), 0.0);
+}
+
+// Every mode shows how far it is toward its end (issue 60): the share of its samples, budget or
+// time, the time to go where one is honest, and the error targets' figures.
+TEST(Cli, EveryModeShowsHowFarItIsTowardItsEnd) {
+  using rtiow::ProgressSnapshot;
+  rtiow::RenderSettings s;
+  s.width = 10, s.height = 10;
+  ProgressSnapshot now;
+  now.samples_done = 2500, now.elapsed = 1.0, now.loop_seconds = 0.9;
+  s.samples = rtiow::FixedSamples{100};
+  rtiow::ProgressStatus p = rtiow::progress_status(s, 100, now);
+  EXPECT_DOUBLE_EQ(p.fraction, 0.25);
+  EXPECT_DOUBLE_EQ(p.seconds_to_go, 3.0);
+  // With a time limit, whichever end is nearer.
+  s.time_limit_seconds = 10.0, now.loop_seconds = 8.0;
+  p = rtiow::progress_status(s, 100, now);
+  EXPECT_DOUBLE_EQ(p.fraction, 0.8);
+  EXPECT_DOUBLE_EQ(p.seconds_to_go, 2.0);
+  // A time limit alone, resumed after 5 s: the limit counts those.
+  s.samples = rtiow::UntilTimeLimit{}, now.loop_seconds = 2.5, now.seconds_before = 5.0;
+  p = rtiow::progress_status(s, 100, now);
+  EXPECT_DOUBLE_EQ(p.fraction, 0.75);
+  EXPECT_DOUBLE_EQ(p.seconds_to_go, 2.5);
+  // --adaptive's budget: unknown until the first round is judged, then in rays.
+  s.time_limit_seconds = 0.0, now.seconds_before = 0.0;
+  s.samples = rtiow::AdaptiveBudget{100, 16};
+  now.rays_traced = 200000, now.loop_seconds = 2.0;
+  p = rtiow::progress_status(s, 100, now);
+  EXPECT_LT(p.fraction, 0.0);
+  EXPECT_LT(p.seconds_to_go, 0.0);
+  now.budget_rays = 1e6, now.spent_rays = 2e5, now.rays_at_judgement = 200000;
+  now.rays_traced = 500000, now.loop_seconds = 5.0;
+  p = rtiow::progress_status(s, 100, now);
+  EXPECT_DOUBLE_EQ(p.fraction, 0.5);
+  EXPECT_DOUBLE_EQ(p.seconds_to_go, 5.0);
+  // The error targets: the error reached against the one asked, and no time to go.
+  s.samples = rtiow::ImageErrorTarget{0.02, 8192, 16};
+  p = rtiow::progress_status(s, 100, now);
+  EXPECT_EQ(p.detail, "error ? (asked 0.02)");
+  now.image_error = 0.031;
+  p = rtiow::progress_status(s, 100, now);
+  EXPECT_EQ(p.detail, "error 0.031 (asked 0.02)");
+  EXPECT_LT(p.fraction, 0.0);
+  EXPECT_LT(p.seconds_to_go, 0.0);
+  s.samples = rtiow::PixelErrorTarget{0.05, 8192, 16}, now.pixels_above_target = 37;
+  EXPECT_EQ(rtiow::progress_status(s, 100, now).detail, "37 of 100 pixels above error 0.05");
+  s.time_limit_seconds = 10.0;  // and a time limit's share beside it
+  EXPECT_DOUBLE_EQ(rtiow::progress_status(s, 100, now).fraction, 0.5);
+}
+
+// What a log shows of each mode: a share and an ETA, or the error against the one asked; and a
+// zero error target, which no render reaches, is refused rather than taken as "off".
+TEST(Cli, AdaptiveAndTimedRendersShowProgressInALog) {
+  // Each long enough for a log's line (one a second at most).
+  const std::string base = "render --scene cover --width 160 --height 90 --checkpoint 0 -o ";
+  for (const char* mode : {" --time-limit 2.5", " --adaptive --spp 800"}) {
+    const CommandResult r = run_rtiow(base + output_path("share.png").string() + mode);
+    ASSERT_EQ(r.exit_code, 0) << mode << ": " << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find("%  elapsed"), std::string::npos) << mode << ": " << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find("ETA "), std::string::npos) << mode << ": " << r.stderr_text;
+  }
+  const CommandResult error =
+      run_rtiow(base + output_path("error.png").string() + " --image-error 0.01");
+  ASSERT_EQ(error.exit_code, 0) << error.stderr_text;
+  EXPECT_NE(error.stderr_text.find("progress: "), std::string::npos) << error.stderr_text;
+  EXPECT_NE(error.stderr_text.find("(asked 0.01)"), std::string::npos) << error.stderr_text;
+  for (const char* option : {"--image-error 0", "--target-error 0"}) {
+    const CommandResult zero = run_rtiow(base + output_path("zero.png").string() + " " + option);
+    EXPECT_EQ(zero.exit_code, 2) << option;
+    EXPECT_NE(zero.stderr_text.find("must be a finite number > 0"), std::string::npos)
+        << zero.stderr_text;
+  }
 }
 
 TEST(Cli, RefusesUnwritableOutputsBeforeRendering) {

@@ -56,7 +56,7 @@ Scene scaled(Scene scene, double factor) {
   }
   scene.camera.lookfrom = factor * scene.camera.lookfrom;
   scene.camera.lookat = factor * scene.camera.lookat;
-  scene.camera.focus_distance *= factor;
+  scene.camera.focus_distance = focus_distance_of(scene.camera) * factor;
   scene.camera.aperture *= factor;
   return scene;
 }

@@ -16,7 +16,8 @@ set(prefix ${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 foreach(installed bin/rtiow lib/librtiow.a lib/librtiow_image_io.so include/rtiow/core/rtiow.h
                   include/rtiow/materials/material.h lib/cmake/rtiow/rtiowConfig.cmake
-                  lib/cmake/rtiow/RtiowImageTest.cmake lib/cmake/rtiow/RtiowImageTestRun.cmake)
+                  lib/cmake/rtiow/RtiowImageTest.cmake lib/cmake/rtiow/RtiowImageTestRun.cmake
+                  share/doc/rtiow/usage.md share/doc/rtiow/scene-format.md share/doc/rtiow/diff.md)
   if(NOT EXISTS ${prefix}/${installed})
     message(FATAL_ERROR "not installed: ${installed}")
   endif()

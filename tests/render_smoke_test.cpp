@@ -360,6 +360,9 @@ TEST(Render, DenormalsAreKeptWhateverTheCallersFloatingPointSettings) {
   scene.camera.lookfrom = {0, 0, 5e-39};
   scene.camera.lookat = {0, 0, -1e-38};
   scene.camera.vfov_degrees = 90;
+  // A pinhole's film at distance 1 (at lookat, 1.5e-38 away, it would be below the smallest
+  // focus distance rtiow accepts).
+  scene.camera.focus_distance = 1.0;
   const std::uint32_t grey = scene.add_material(Lambertian{Color(0.5f, 0.5f, 0.5f)});
   scene.spheres.add({0, 0, -3e-38f}, 2e-38f, grey);
   scene.spheres.add({3e-38f, 0, -4e-38f}, 1.5e-38f, grey);
@@ -387,7 +390,7 @@ TEST(Render, DenormalsAreKeptWhateverTheCallersFloatingPointSettings) {
 TEST(Render, RefusesInvalidSettingsBeforeWork) {
   const Scene scene = make_builtin_scene("materials", 1);
   RenderSettings settings = tiny(scene);
-  settings.samples = FixedSamples{0};
+  settings.samples = FixedSamples{-1};  // (0 is the scene's count)
   EXPECT_THROW(render(scene, settings), InvalidInput);
   settings = tiny(scene);
   settings.width = -3;

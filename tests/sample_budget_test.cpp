@@ -67,7 +67,7 @@ TEST(SampleBudget, EachMeaningHasItsOwnChecks) {
   EXPECT_EQ(refusal(s), "accepted");
   s.time_limit_seconds = 0;
   s.samples = AdaptiveBudget{std::nullopt};
-  EXPECT_NE(refusal(s).find("--adaptive needs a budget"), std::string::npos) << refusal(s);
+  EXPECT_NE(refusal(s).find("an AdaptiveBudget needs a budget"), std::string::npos) << refusal(s);
   s.samples = AdaptiveBudget{16, 16};
   EXPECT_NE(refusal(s).find("leaves nothing to allocate"), std::string::npos) << refusal(s);
   s.samples = PixelErrorTarget{0.0, 64};

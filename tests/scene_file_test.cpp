@@ -66,6 +66,44 @@ std::string replace(std::string text, const std::string& from, const std::string
   return text;
 }
 
+// The library's defaults are a scene file's (issue 60): a lens camera with no focus distance,
+// built in C++ and read from a file, each rendered with RenderSettings{} (the scene's image
+// size and count), gives the same bytes. Before, C++ focused at 1.0 and render() refused a
+// width of 0.
+TEST(SceneFile, TheLibrarysDefaultsAreTheSceneFiles) {
+  const Scene read = parse_scene(R"({
+    "version": 1, "name": "lens",
+    "camera": {"lookfrom": [0, 1, 3], "lookat": [0, 0, -1], "vfov": 40, "aperture": 0.4},
+    "image": {"width": 48, "aspect_ratio": 1.7777777777777777, "spp": 4},
+    "materials": {"red": {"type": "lambertian", "albedo": [0.8, 0.1, 0.1]},
+                  "steel": {"type": "metal", "albedo": [0.7, 0.7, 0.7], "fuzz": 0.2}},
+    "spheres": [{"center": [0, 0, -1], "radius": 0.5, "material": "red"},
+                {"center": [0, -100.5, -1], "radius": 100, "material": "steel"}]
+  })",
+                                 "lens.json");
+  Scene built;
+  built.name = "lens";
+  built.camera.lookfrom = Vec3d{0, 1, 3}, built.camera.lookat = Vec3d{0, 0, -1};
+  built.camera.vfov_degrees = 40, built.camera.aperture = 0.4;
+  built.image.width = 48, built.image.samples_per_pixel = 4;
+  const std::uint32_t red = built.add_material(Lambertian{Color{0.8f, 0.1f, 0.1f}});
+  const std::uint32_t steel = built.add_material(Metal{Color{0.7f, 0.7f, 0.7f}, 0.2f});
+  built.spheres.add({0.0f, 0.0f, -1.0f}, 0.5f, red);
+  built.spheres.add({0.0f, -100.5f, -1.0f}, 100.0f, steel);
+  EXPECT_DOUBLE_EQ(focus_distance_of(built.camera), focus_distance_of(read.camera));
+  const RenderResult a = render(built, RenderSettings{});
+  const RenderResult b = render(read, RenderSettings{});
+  EXPECT_EQ(a.film.width(), 48);
+  EXPECT_EQ(a.film.height(), 27) << "the side not given follows the scene's aspect ratio";
+  EXPECT_EQ(a.samples_completed, 4) << "the scene's count";
+  EXPECT_TRUE(test::bit_identical(a.film, b.film));
+  // An error target's cap defaults to the command line's (it was 0, refused as "spp > 0").
+  RenderSettings by_error;
+  by_error.width = 16, by_error.height = 9;
+  by_error.samples = ImageErrorTarget{0.5};
+  EXPECT_NO_THROW(render(built, by_error));
+}
+
 TEST(SceneFile, TheValidSceneLoadsWithItsSettingsAndDefaults) {
   const Scene s = parse_scene(kValid, "dir/valid.json");
   EXPECT_EQ(s.name, "valid") << "the name defaults to the file's stem";
@@ -74,7 +112,8 @@ TEST(SceneFile, TheValidSceneLoadsWithItsSettingsAndDefaults) {
   EXPECT_EQ(s.image.width, 32);
   EXPECT_DOUBLE_EQ(s.image.aspect_ratio, 32.0 / 18.0);
   EXPECT_EQ(s.camera.vup, (Vec3d{0, 1, 0})) << "vup defaults to +y";
-  EXPECT_DOUBLE_EQ(s.camera.focus_distance, 1.0) << "focus defaults to the lookat distance";
+  EXPECT_DOUBLE_EQ(rtiow::focus_distance_of(s.camera), 1.0)
+      << "focus defaults to the lookat distance";
   EXPECT_EQ(s.camera.aperture, 0.0);
   EXPECT_EQ(s.spheres.radius[2], -0.4f) << "negative radius: hollow sphere";
 }
@@ -128,7 +167,10 @@ std::vector<BadCase> bad_cases() {
        "/version: this rtiow reads scene format version 1, got number 1.5"},
       {"unknown top field", replace(v, "\"version\": 1,", "\"version\": 1, \"lights\": [],"),
        "/lights: unknown field"},
-      {"misspelt field", replace(v, "\"vfov\": 90", "\"vfow\": 90"), "/camera/vfow: unknown field"},
+      {"misspelt field", replace(v, "\"vfov\": 90", "\"vfow\": 90"),
+       "/camera/vfow: unknown field; did you mean vfov?"},
+      {"british spelling", replace(v, "{\"center\": [0, 0, -1]", "{\"centre\": [0, 0, -1]"),
+       "/spheres/0/centre: unknown field; did you mean center?"},
       {"missing camera", replace(v, "\"camera\"", "\"kamera\""), "/kamera: unknown field"},
       {"wrong type", replace(v, "\"width\": 32", "\"width\": \"32\""),
        "/image/width: must be a whole number, got string '32'"},

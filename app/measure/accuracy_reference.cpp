@@ -54,9 +54,7 @@ Reference load_or_render_reference(const Scene& scene, const RenderSettings& set
   {
     std::unique_ptr<ProgressDisplay> display;
     if (!quiet) {
-      display = std::make_unique<ProgressDisplay>(
-          progress, std::uint64_t(settings.width) * std::uint64_t(settings.height) *
-                        std::uint64_t(reference_spp(settings)));
+      display = std::make_unique<ProgressDisplay>(progress, settings);
     }
     result = render(scene, settings, &progress);
   }

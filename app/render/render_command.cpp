@@ -37,14 +37,13 @@ int list_scenes() {
 }
 
 // Renders with, unless quiet, a progress display (under MPI on rank 0's share, which moves with
-// the others'); adaptive sampling and an open-ended time limit have no total to show.
+// the others').
 RenderResult render_with_progress(const RenderOptions& o, const RenderJob& job,
                                   const MpiSession& mpi, RenderProgress& progress,
                                   const Checkpointing* checkpointing) {
   std::unique_ptr<ProgressDisplay> display;
   if (!o.quiet && mpi.rank() == 0) {
-    display = std::make_unique<ProgressDisplay>(progress,
-                                                uniform_total_samples(job.settings).value_or(0));
+    display = std::make_unique<ProgressDisplay>(progress, job.settings);
   }
   return render(job.scene, job.settings, &progress, checkpointing);
 }

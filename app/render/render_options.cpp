@@ -1,6 +1,9 @@
 #include "app/render/render_options.h"
 
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "app/cli_checks.h"
 #include "core/io/output_path.h"
@@ -114,14 +117,14 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                   "Adaptive sampling: each pixel stops once its relative standard error is below "
                   "this (e.g. 0.05); --spp is then the most a pixel takes (default " +
                       std::to_string(kDefaultErrorDrivenMaxSpp) + ")")
-      ->check(kFiniteNotNegative);
+      ->check(kFinitePositive);
   cmd->add_option("--image-error", o.image_error,
                   "Adaptive sampling: stop once the image's estimated relative RMS error is "
                   "below this (e.g. 0.02; it aims at 0.92 of it), giving each pixel samples in "
                   "proportion to "
                   "sqrt(variance / cost); --spp is then the most a pixel takes (default " +
                       std::to_string(kDefaultErrorDrivenMaxSpp) + ")")
-      ->check(kFiniteNotNegative);
+      ->check(kFinitePositive);
   cmd->add_flag("--adaptive", o.adaptive,
                 "Adaptive sampling on a budget: the time of --spp uniform samples (or "
                 "--time-limit), spread over the pixels in proportion to sqrt(variance / cost), "
@@ -193,6 +196,25 @@ void add_camera_options(CLI::App* cmd, RenderOptions& o) {
 
 }  // namespace
 
+// --help lists the options in groups, in this order: 40 options in one list were a wall.
+void group_options(CLI::App* cmd) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> groups = {
+      {"Scene", {"--scene", "--list-scenes", "--like", "--scene-seed"}},
+      {"Output",
+       {"-o", "--width", "--height", "--stats-channels", "--reproducible", "-q", "--summary-json"}},
+      {"Sampling",
+       {"--spp", "--depth", "--seed", "--sampler", "--roulette", "--fresnel", "--adaptive",
+        "--image-error", "--target-error", "--min-spp"}},
+      {"Camera (each replaces the scene's)",
+       {"--lookfrom", "--lookat", "--vup", "--vfov", "--aperture", "--focus-dist"}},
+      {"Long renders", {"--time-limit", "--checkpoint", "--resume", "--restart", "--keep-state"}},
+      {"Speed and distribution", {"--threads", "--accel", "--part", "--sample-range"}},
+  };
+  for (const auto& [group, names] : groups) {
+    for (const std::string& name : names) cmd->get_option(name)->group(group);
+  }
+}
+
 RenderOptionHandles add_render_options(CLI::App* cmd, RenderOptions& o) {
   RenderOptionHandles handles;
   handles.scene = add_scene_options(cmd, o);
@@ -200,6 +222,7 @@ RenderOptionHandles add_render_options(CLI::App* cmd, RenderOptions& o) {
   add_sampling_options(cmd, o);
   add_run_options(cmd, o);
   add_camera_options(cmd, o);
+  group_options(cmd);
   return handles;
 }
 

@@ -146,14 +146,18 @@ void render_adaptive(const RenderContext<Accel>& ctx, const PixelErrorTarget& ta
       return neighbourhood_relative_variance(settings, pixels, Pooling::Median);
     });
     result.pixels_above_target = 0;
+    std::int64_t above = 0;  // for a progress display: pixels short of the target, capped or not
     for (std::size_t p = 0; p < targets.size(); ++p) {
       const std::uint32_t n = pixels.samples[p];
       if (judged[p] / double(n) <= target_variance) continue;
+      ++above;
       if (n < most)
         targets[p] = next_target_count(n, judged[p] / double(n), target_variance, rate, most);
       else
         ++result.pixels_above_target;  // at the cap, short of the target
     }
+    progress->pixels_above_target = above;
+    ++progress->judgements;
     if (!any_target_above(state)) break;
   }
   deadline.report(result, pixels);
@@ -196,6 +200,8 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
       const double goal = aim * aim;
       const double estimate = estimated_rel_mse(e.variance, pixels.samples);
       result.estimated_image_error = std::sqrt(estimate);
+      progress->image_error = result.estimated_image_error;
+      ++progress->judgements;
       if (estimate <= goal) break;
       state.targets = with_threads(
           settings.threads, [&] { return allocate_for_error(e, pixels.samples, goal, most); });
@@ -215,6 +221,9 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
       const double rate = double(result.rays_traced) / std::max(deadline.elapsed(), 1e-9);
       budget = std::min(budget, spent + rate * (settings.time_limit_seconds - deadline.elapsed()));
     }
+    progress->budget_rays = budget, progress->spent_rays = spent;
+    progress->rays_at_judgement = progress->rays_traced.load();
+    ++progress->judgements;
     if (!(budget > spent) || state.last_round) break;
     state.last_round = 2.0 * spent >= budget;
     state.targets = with_threads(settings.threads, [&] {

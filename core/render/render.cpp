@@ -32,7 +32,9 @@ namespace {
 constexpr std::uint64_t kBytesPerPixel = sizeof(Color) + sizeof(PixelSum) + sizeof(PixelSpread) +
                                          sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
-// Each kind of budget's own ranges; the time limit is what ends an open-ended one.
+// Each kind of budget's own ranges; the time limit is what ends an open-ended one. Worded for
+// the library's names: the command line refuses its own mistakes first, in its words
+// (core/render/render_request.cpp).
 void validate_budget(const SampleBudget& budget, double time_limit_seconds) {
   const auto positive_spp = [](int spp) {
     if (spp <= 0) throw InvalidInput("spp must be > 0, got " + std::to_string(spp));
@@ -56,17 +58,18 @@ void validate_budget(const SampleBudget& budget, double time_limit_seconds) {
   } else if (const auto* a = std::get_if<AdaptiveBudget>(&budget)) {
     valid_least(a->least);
     if (!a->per_pixel && !timed) {
-      throw InvalidInput("--adaptive needs a budget: --spp, a time limit or both");
+      throw InvalidInput(
+          "an AdaptiveBudget needs a budget: per_pixel, a time limit (time_limit_seconds) or "
+          "both");
     }
     if (a->per_pixel) positive_spp(*a->per_pixel);
     // A budget no larger than the minimum leaves nothing to allocate: the render would be
     // uniform while its metadata says adaptive.
     if (a->per_pixel && *a->per_pixel <= a->least) {
-      throw InvalidInput("--adaptive: a budget of " + std::to_string(*a->per_pixel) +
-                         " spp leaves nothing to allocate after every pixel's minimum of " +
+      throw InvalidInput("AdaptiveBudget: per_pixel " + std::to_string(*a->per_pixel) +
+                         " leaves nothing to allocate after every pixel's minimum (least) of " +
                          std::to_string(a->least) +
-                         " (--min-spp); give --spp above it, or leave out --adaptive for a "
-                         "uniform render");
+                         "; give per_pixel above it, or FixedSamples for a uniform render");
     }
   } else if (const auto* t = std::get_if<PixelErrorTarget>(&budget)) {
     finite_error(t->error, "target error");
@@ -122,6 +125,10 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   progress->samples_resumed = resumed;
   progress->samples_done += resumed;
   RenderJournal journal(state, checkpointing);
+  progress->seconds_before = journal.elapsed();
+  progress->loop_start_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                std::chrono::steady_clock::now().time_since_epoch())
+                                .count();
   if (const auto* target = std::get_if<PixelErrorTarget>(&settings.samples)) {
     render_adaptive(ctx, *target, progress, journal, result);
   } else if (is_adaptive(settings)) {
@@ -192,9 +199,28 @@ void validate(const Scene& scene, const RenderSettings& settings) {
   validate(scene.camera, settings.width, settings.height);
 }
 
-RenderResult render(const Scene& scene, const RenderSettings& settings, RenderProgress* progress,
+RenderSettings with_scene_image(const Scene& scene, RenderSettings settings) {
+  const ImageSettings& image = scene.image;
+  // A side derived beyond an int's range stays 0, which validation then names.
+  const auto side = [](double value) {
+    return value >= 1.0 && value <= double(limits::kMaxImageSide) ? int(value) : 0;
+  };
+  if (settings.width == 0 && settings.height == 0) settings.width = image.width;
+  if (settings.height == 0 && settings.width > 0) {
+    settings.height = side(height_for_width(settings.width, image.aspect_ratio));
+  } else if (settings.width == 0 && settings.height > 0) {
+    settings.width = side(width_for_height(settings.height, image.aspect_ratio));
+  }
+  if (auto* fixed = std::get_if<FixedSamples>(&settings.samples); fixed && fixed->per_pixel == 0) {
+    fixed->per_pixel = image.samples_per_pixel;
+  }
+  return settings;
+}
+
+RenderResult render(const Scene& scene, const RenderSettings& asked, RenderProgress* progress,
                     const Checkpointing* checkpointing) {
   const IeeeFloatingPoint ieee;  // the checks and the camera too, whatever the caller's settings
+  const RenderSettings settings = with_scene_image(scene, asked);
   validate(scene, settings);
   if (checkpointing && checkpointing->resume) check_resumable(*checkpointing->resume, settings);
   const Camera camera(scene.camera, settings.width, settings.height);

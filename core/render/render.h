@@ -24,9 +24,17 @@ RenderState state_of(const RenderResult& result);
 // pixel, and the pixel sums continue across passes in sample order, so the image does not
 // depend on how samples were grouped into passes. With `checkpointing`, the render starts
 // from a saved state and saves its own as it goes: continued, it gives the same bits.
+//
+// What `settings` leave to the scene (a side or the count of 0) is taken from its image
+// settings first (with_scene_image).
 RenderResult render(const Scene& scene, const RenderSettings& settings,
                     RenderProgress* progress = nullptr,
                     const Checkpointing* checkpointing = nullptr);
+
+// `settings` with what they leave to the scene filled in from its ImageSettings: width and
+// height 0 (one of them 0: it follows the other and the aspect ratio), a FixedSamples count
+// of 0.
+RenderSettings with_scene_image(const Scene& scene, RenderSettings settings);
 
 // Starts oneTBB now rather than at the render's first pass. oneTBB dlopens its allocator on
 // first use, and a dlopen waits for any other under way: a program that loads a library on

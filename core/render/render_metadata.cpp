@@ -27,7 +27,7 @@ std::string triple(const Vec3d& v) {
 std::string describe_camera(const CameraSettings& c) {
   return "--lookfrom " + triple(c.lookfrom) + " --lookat " + triple(c.lookat) + " --vup " +
          triple(c.vup) + " --vfov " + number(c.vfov_degrees) + " --aperture " + number(c.aperture) +
-         " --focus-dist " + number(c.focus_distance);
+         " --focus-dist " + number(focus_distance_of(c));
 }
 
 // The reflectance models of the scene's glass ("schlick", "exact" or both), empty without glass.

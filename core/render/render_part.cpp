@@ -197,8 +197,8 @@ void read_part_header(const ImageHeader& header, const std::string& name, Render
     throw InvalidInput(name + ": header field size " + std::to_string(header.width) + "x" +
                        std::to_string(header.height) + " is not an image rtiow renders");
   }
-  RenderSettings size;
-  size.width = header.width, size.height = header.height;
+  RenderSettings size;  // only the size is checked here
+  size.width = header.width, size.height = header.height, size.samples = FixedSamples{1};
   try {
     validate(size);  // pixel count and memory
   } catch (const InvalidInput& e) {

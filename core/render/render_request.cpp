@@ -66,10 +66,19 @@ SampleBudget budget_asked(const RenderRequest& r, const ImageSettings& image) {
   const bool timed = r.time_limit_seconds > 0.0;
   if (r.adaptive) {
     // With only a time limit, the time is the budget; with neither, the scene's count.
-    return AdaptiveBudget{r.spp   ? r.spp
-                          : timed ? std::nullopt
-                                  : std::optional<int>(image.samples_per_pixel),
-                          r.min_samples};
+    const std::optional<int> spp = r.spp   ? r.spp
+                                   : timed ? std::nullopt
+                                           : std::optional<int>(image.samples_per_pixel);
+    // A budget no larger than the minimum leaves nothing to allocate: the render would be
+    // uniform while its metadata says adaptive.
+    if (spp && *spp > 0 && *spp <= r.min_samples) {
+      throw InvalidInput("--adaptive: a budget of " + std::to_string(*spp) +
+                         " spp leaves nothing to allocate after every pixel's minimum of " +
+                         std::to_string(r.min_samples) +
+                         " (--min-spp); give --spp above it, or leave out --adaptive for a "
+                         "uniform render");
+    }
+    return AdaptiveBudget{spp, r.min_samples};
   }
   if (r.spp) return FixedSamples{*r.spp};
   if (timed) return UntilTimeLimit{};

@@ -19,9 +19,6 @@ struct CameraOverrides {
   std::optional<double> vfov_degrees, aperture, focus_distance;
 };
 
-// The most samples a pixel takes under an error target when no --spp caps it.
-inline constexpr int kDefaultErrorDrivenMaxSpp = 8192;
-
 struct RenderRequest {
   // Empty: the scene's. With only one side given, the other follows the scene's aspect ratio.
   std::optional<int> width, height;

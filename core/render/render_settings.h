@@ -25,10 +25,13 @@ std::string to_string(AccelKind kind);
 AccelKind parse_accel(const std::string& name);  // throws InvalidInput
 
 struct RenderSettings {
+  // 0: the scene's image (ImageSettings), as a scene file and the command line take it: the
+  // side not given follows from the other and the scene's aspect ratio.
   int width = 0;
   int height = 0;
-  // How many samples per pixel and what ends the render (core/render/sample_budget.h)...
-  SampleBudget samples = FixedSamples{1};
+  // How many samples per pixel and what ends the render (core/render/sample_budget.h); a
+  // count of 0 is the scene's samples_per_pixel...
+  SampleBudget samples = FixedSamples{0};
   std::uint64_t first_sample = 0;  // ...starting at this sample index (a share of a render)
   int max_depth = 50;
   std::uint64_t seed = 1;
@@ -91,6 +94,19 @@ struct RenderProgress {
   std::atomic<std::uint64_t> samples_resumed{0};
   std::atomic<std::uint64_t> rays_traced{0};  // by this run
   std::atomic<bool> stop_requested{false};
+  // What the time limit counts: when this run's sample loop began (steady clock, ns since its
+  // epoch; 0: not yet), and the seconds a resumed render's checkpoint had spent before.
+  std::atomic<std::int64_t> loop_start_ns{0};
+  std::atomic<double> seconds_before{0.0};
+  // What the adaptive modes publish each time a round is judged (`judgements` counts them):
+  // --image-error's estimated error; --target-error's pixels still above the target;
+  // --adaptive's budget and the cost spent, in rays, with this run's rays_traced then.
+  std::atomic<std::uint32_t> judgements{0};
+  std::atomic<double> image_error{-1.0};
+  std::atomic<std::int64_t> pixels_above_target{-1};
+  std::atomic<double> budget_rays{0.0};
+  std::atomic<double> spent_rays{0.0};
+  std::atomic<std::uint64_t> rays_at_judgement{0};
 };
 
 struct RenderResult {

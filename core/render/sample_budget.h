@@ -12,6 +12,9 @@ namespace rtiow {
 // The fewest samples an adaptive mode gives a pixel before judging it (--min-spp).
 inline constexpr int kDefaultLeastSamples = 16;
 
+// The most samples a pixel takes under an error target when nothing else caps it (--spp).
+inline constexpr int kDefaultErrorDrivenMaxSpp = 8192;
+
 // Every pixel exactly `per_pixel` samples (fewer if a time limit or a stop ends it first).
 struct FixedSamples {
   int per_pixel = 1;
@@ -31,7 +34,7 @@ struct AdaptiveBudget {
 // `least` samples up to `most`.
 struct PixelErrorTarget {
   double error = 0.0;
-  int most = 0;
+  int most = kDefaultErrorDrivenMaxSpp;
   int least = kDefaultLeastSamples;
 };
 
@@ -39,7 +42,7 @@ struct PixelErrorTarget {
 // from `least` samples up to `most`.
 struct ImageErrorTarget {
   double error = 0.0;
-  int most = 0;
+  int most = kDefaultErrorDrivenMaxSpp;
   int least = kDefaultLeastSamples;
 };
 

@@ -54,10 +54,14 @@ void validate(const CameraSettings& s) {
   require(std::isfinite(s.aperture) && s.aperture >= 0.0 && s.aperture <= limits::kMaxCoordinate,
           "aperture must be from 0 to " + number(limits::kMaxCoordinate) + ", got " +
               number(s.aperture));
-  require(std::isfinite(s.focus_distance) && s.focus_distance >= kMinFocusDistance &&
-              s.focus_distance <= limits::kMaxCoordinate,
+  const double focus = focus_distance_of(s);
+  require(std::isfinite(focus) && focus >= kMinFocusDistance && focus <= limits::kMaxCoordinate,
           "focus distance must be from " + number(kMinFocusDistance) + " to " +
-              number(limits::kMaxCoordinate) + ", got " + number(s.focus_distance));
+              number(limits::kMaxCoordinate) + ", got " + number(focus));
+}
+
+double focus_distance_of(const CameraSettings& s) {
+  return s.focus_distance ? *s.focus_distance : length(s.lookat - s.lookfrom);
 }
 
 void validate(const CameraSettings& s, int image_width, int image_height) {
@@ -82,9 +86,10 @@ Camera::Camera(const CameraSettings& s, int image_width, int image_height) {
   const Vec3d u = normalize(cross(s.vup, w));
   const Vec3d v = cross(w, u);
 
-  const Vec3d horizontal = s.focus_distance * viewport_width * u;
-  const Vec3d vertical = -s.focus_distance * viewport_height * v;  // film t grows downwards
-  const Vec3d upper_left = s.lookfrom - 0.5 * horizontal - 0.5 * vertical - s.focus_distance * w;
+  const double focus = focus_distance_of(s);
+  const Vec3d horizontal = focus * viewport_width * u;
+  const Vec3d vertical = -focus * viewport_height * v;  // film t grows downwards
+  const Vec3d upper_left = s.lookfrom - 0.5 * horizontal - 0.5 * vertical - focus * w;
 
   origin_ = Vec3(s.lookfrom);
   // Store the corner relative to the origin: rays are built as direction vectors, so a

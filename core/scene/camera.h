@@ -2,6 +2,8 @@
 // The book's positionable thin-lens camera. Settings are validated once; the basis is
 // derived in double so large or tiny scenes keep their precision, and rays are float.
 
+#include <optional>
+
 #include "core/geometry/ray.h"
 #include "core/geometry/vec3.h"
 
@@ -11,10 +13,15 @@ struct CameraSettings {
   Vec3d lookfrom{0, 0, 0};
   Vec3d lookat{0, 0, -1};
   Vec3d vup{0, 1, 0};
-  double vfov_degrees = 90.0;   // vertical field of view
-  double aperture = 0.0;        // lens diameter; 0 is a pinhole
-  double focus_distance = 1.0;  // distance to the plane in focus
+  double vfov_degrees = 90.0;  // vertical field of view
+  double aperture = 0.0;       // lens diameter; 0 is a pinhole
+  // The distance to the plane in focus; unset: the distance from lookfrom to lookat, as a
+  // scene file without "focus_distance" has it.
+  std::optional<double> focus_distance;
 };
+
+// The distance in focus that `settings` ask for (set, or lookfrom to lookat).
+double focus_distance_of(const CameraSettings& settings);
 
 // The smallest focus distance: below it float film vectors lose their direction.
 inline constexpr double kMinFocusDistance = 1e-12;

@@ -15,10 +15,12 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/geometry/vec3.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/limits/nearest_name.h"
 #include "core/scene_file/json_stream.h"
 
 namespace rtiow::scene_json {
@@ -90,8 +92,14 @@ class Reader {
       const std::string_view key = text_of(m.name);
       if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
       std::string list;
-      for (std::string_view a : allowed) list.append(list.empty() ? "" : ", ").append(a);
-      fail(Place(at, key), "unknown field (expected one of: " + list + ")");
+      std::vector<std::string> names;
+      for (std::string_view a : allowed) {
+        list.append(list.empty() ? "" : ", ").append(a);
+        names.emplace_back(a);
+      }
+      // A slip ("centre", "albedoo") is named with what it meant.
+      fail(Place(at, key),
+           "unknown field" + did_you_mean(key, names) + " (expected one of: " + list + ")");
     }
   }
 

@@ -79,7 +79,7 @@ void read_camera(const Reader& r, const JsonValue& v, CameraSettings& cam) {
     if (degrees < 0.0 || degrees >= 180.0) {
       r.fail(Place(p, "defocus_angle"), "must be in [0, 180), got " + Reader::format(degrees));
     }
-    cam.aperture = 2.0 * cam.focus_distance * std::tan(degrees * std::numbers::pi / 360.0);
+    cam.aperture = 2.0 * focus_distance_of(cam) * std::tan(degrees * std::numbers::pi / 360.0);
   }
   try {
     validate(cam);
@@ -570,7 +570,7 @@ std::string scene_settings_json(const Scene& scene) {
   const CameraSettings& c = scene.camera;
   head["camera"] = {{"lookfrom", double3(c.lookfrom)}, {"lookat", double3(c.lookat)},
                     {"vup", double3(c.vup)},           {"vfov", c.vfov_degrees},
-                    {"aperture", c.aperture},          {"focus_distance", c.focus_distance}};
+                    {"aperture", c.aperture},          {"focus_distance", focus_distance_of(c)}};
   head["image"] = {{"width", scene.image.width},
                    {"aspect_ratio", scene.image.aspect_ratio},
                    {"spp", scene.image.samples_per_pixel},

@@ -20,18 +20,18 @@ int main(int argc, char** argv) {
     scene.spheres.add({4, 1, 0}, 1, steel);
     scene.camera.lookfrom = {13, 2, 3};
     scene.camera.lookat = {0, 0, 0};
-    scene.camera.vfov_degrees = 20;
-    scene.camera.focus_distance = 10;
+    scene.camera.vfov_degrees = 20;  // a pinhole: no aperture, so no focus distance either
 
+    // Left unset, a setting is the scene's, as in a scene file: here the height follows the
+    // width and the scene's aspect ratio (16:9).
     rtiow::RenderSettings settings;
     settings.width = 400;
-    settings.height = 225;
     settings.samples = rtiow::FixedSamples{32};
     settings.max_depth = 20;
     const rtiow::RenderResult result = rtiow::render(scene, settings);
     rtiow::write_image(output, result.film);
-    std::printf("rendered %s: %dx%d, %d spp -> %s\n", scene.name.c_str(), settings.width,
-                settings.height, result.samples_completed, output);
+    std::printf("rendered %s: %dx%d, %d spp -> %s\n", scene.name.c_str(), result.film.width(),
+                result.film.height(), result.samples_completed, output);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "spheres: error: %s\n", e.what());
     return 1;

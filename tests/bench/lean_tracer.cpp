@@ -378,7 +378,7 @@ int main(int argc, char** argv) {
   V3 uv{up.y * wv.z - up.z * wv.y, up.z * wv.x - up.x * wv.z, up.x * wv.y - up.y * wv.x};
   uv = unit(uv);
   const V3 vv{wv.y * uv.z - wv.z * uv.y, wv.z * uv.x - wv.x * uv.z, wv.x * uv.y - wv.y * uv.x};
-  const float fd = float(cs.focus_distance);
+  const float fd = float(rtiow::focus_distance_of(cs));
   Cam cam;
   cam.origin = to(cs.lookfrom);
   cam.horizontal = (fd * float(vw)) * uv;
