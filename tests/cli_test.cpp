@@ -693,6 +693,49 @@ TEST(Cli, AdaptiveAndTimedRendersShowProgressInALog) {
   }
 }
 
+// --preview (issue 61): the output is replaced while the render runs, each preview a whole
+// image whose metadata says how far the render is; the finished file is the one a render
+// without --preview writes, byte for byte, and nothing else is left.
+TEST(Cli, APreviewShowsTheRenderAsItGoesAndTheFinishedFileIsTheSame) {
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + "-dir");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path watched = dir / "watched.exr";
+  BackgroundRender r({"render", "-q", "--scene", "cover", "--width", "160", "--spp", "1000000",
+                      "--checkpoint", "0", "--preview", "0.1", "-o", watched.string()});
+  ASSERT_TRUE(r.wait_until_rendering());
+  std::string how_far;
+  for (int i = 0; i < 1000 && how_far.empty(); ++i) {  // within 20 s
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::error_code none;
+    if (!fs::exists(watched, none)) continue;
+    auto in = OIIO::ImageInput::open(watched.string());
+    ASSERT_TRUE(in) << "a preview is a whole image";
+    how_far = in->spec().get_string_attribute("rtiow:preview");
+    EXPECT_EQ(in->spec().width, 160);
+  }
+  EXPECT_NE(how_far.find(" of 1000000 spp after "), std::string::npos) << how_far;
+  r.signal(SIGTERM);
+  EXPECT_EQ(r.wait(60.0), 128 + SIGTERM) << r.stderr_text();
+  EXPECT_EQ(rtiow::test::names_in(dir), std::vector<std::string>{"watched.exr"});
+
+  // A render of several passes, previewed at every pass, and the same render unwatched.
+  const std::string job = "render -q --scene cover --width 200 --spp 400 --reproducible -o ";
+  const CommandResult w =
+      run_rtiow(job + (dir / "w.png").string() + " --preview 0.01 --checkpoint 0.01");
+  ASSERT_EQ(w.exit_code, 0) << w.stderr_text;
+  ASSERT_EQ(run_rtiow(job + (dir / "plain.png").string()).exit_code, 0);
+  EXPECT_TRUE(slurp(dir / "w.png") == slurp(dir / "plain.png")) << "the watched file differs";
+  EXPECT_EQ(rtiow::test::names_in(dir),
+            (std::vector<std::string>{"plain.png", "w.png", "watched.exr"}));
+  // A share of a render is no image to watch.
+  const CommandResult part = run_rtiow("render -q --width 16 --spp 4 --part 0/2 --preview 1 -o " +
+                                       (dir / "p.exr").string());
+  EXPECT_EQ(part.exit_code, 2);
+  EXPECT_NE(part.stderr_text.find("--preview shows a whole render"), std::string::npos)
+      << part.stderr_text;
+}
+
 TEST(Cli, RefusesUnwritableOutputsBeforeRendering) {
   const CommandResult bad_ext =
       run_rtiow("render -q --spp 1 --width 8 -o " + output_path("image.nosuchformat").string());

@@ -13,6 +13,7 @@
 #include "app/render/checkpoint_session.h"
 #include "app/render/image_request.h"
 #include "app/render/render_options.h"
+#include "app/render/render_preview.h"
 #include "app/render/render_summary.h"
 #include "core/io/atomic_file.h"
 #include "core/io/image_backend.h"
@@ -209,12 +210,29 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   }
   RenderJob& job = *prepared;
   if (const int code = interrupted_outside_render(kBeforeRender)) return code;
+  if (o.preview_seconds > 0.0 && mpi.distributed()) {
+    throw InvalidInput("--preview is for a render in one process, not under mpirun");
+  }
+  if (o.preview_seconds > 0.0 && job.share) {
+    throw InvalidInput(
+        "--preview shows a whole render; a part file (--part, --sample-range) is a share of one");
+  }
   if (mpi.rank() == 0) note_long_request(job);
   // Rank 0 writes the output (and, alone, keeps a checkpoint).
   const std::unique_ptr<ClaimedOutputs> claimed =
       mpi.rank() == 0 ? std::make_unique<ClaimedOutputs>(job.output, o.summary_json, o.quiet)
                       : nullptr;
   const std::unique_ptr<CheckpointSession> checkpoint = open_checkpoint(o, job, mpi);
+  // --preview: the output replaced at the checkpoints' safe points between passes.
+  RenderPreview preview(job);
+  std::optional<Checkpointing> watched;
+  if (o.preview_seconds > 0.0) {
+    watched =
+        preview.watching(checkpoint ? checkpoint->checkpointing() : nullptr, o.preview_seconds);
+  }
+  const Checkpointing* checkpointing = watched      ? &*watched
+                                       : checkpoint ? checkpoint->checkpointing()
+                                                    : nullptr;
   // The image library loads on a second thread while the render runs (rank 0 writes), unless
   // rtiow encodes the format itself (PNG): then it is never loaded.
   if (mpi.rank() == 0) {
@@ -224,8 +242,7 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   }
   RenderResult result;
   try {
-    result = render_with_progress(o, job, mpi, progress,
-                                  checkpoint ? checkpoint->checkpointing() : nullptr);
+    result = render_with_progress(o, job, mpi, progress, checkpointing);
   } catch (const Cancelled&) {  // a signal while the BVH was built: any checkpoint is as it was
     return interrupted_outside_render(kBeforeRender);
   }

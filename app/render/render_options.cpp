@@ -152,6 +152,11 @@ void add_run_options(CLI::App* cmd, RenderOptions& o) {
                   "Also write the render's summary as JSON here, for scripts: time, rays, rate, "
                   "samples, threads, the error asked and reached, the exit code (schema in "
                   "docs/usage.md); written after the image, also when a signal stops the render");
+  cmd->add_option("--preview", o.preview_seconds,
+                  "Watch the render: every this many seconds, replace the output with the "
+                  "samples so far (its metadata says how far), for any viewer that reloads; the "
+                  "finished file is the same, byte for byte (0: no preview)")
+      ->check(kFiniteNotNegative);
   cmd->add_option(
       "--sample-range", o.sample_range,
       "Render only samples A:B (from sample A up to, not including, B; B at most --spp, "
@@ -201,7 +206,8 @@ void group_options(CLI::App* cmd) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> groups = {
       {"Scene", {"--scene", "--list-scenes", "--like", "--scene-seed"}},
       {"Output",
-       {"-o", "--width", "--height", "--stats-channels", "--reproducible", "-q", "--summary-json"}},
+       {"-o", "--width", "--height", "--stats-channels", "--reproducible", "-q", "--summary-json",
+        "--preview"}},
       {"Sampling",
        {"--spp", "--depth", "--seed", "--sampler", "--roulette", "--fresnel", "--adaptive",
         "--image-error", "--target-error", "--min-spp"}},

@@ -35,7 +35,8 @@ struct RenderOptions {
   int min_spp = RenderRequest{}.min_samples;
   bool stats_channels = false;
   bool quiet = false;
-  std::string summary_json;  // empty: none
+  std::string summary_json;      // empty: none
+  double preview_seconds = 0.0;  // > 0: replace the output with the samples so far this often
   bool reproducible = false;
   double checkpoint_seconds = 60.0;  // 0: none
   bool resume = false;

@@ -36,6 +36,7 @@ inline constexpr const char* kSppMean = "spp_mean";
 inline constexpr const char* kSppLimit = "spp_limit";
 inline constexpr const char* kSppBudget = "spp_budget";  // --adaptive: the uniform spp it costs
 inline constexpr const char* kStopped = "stopped";       // why it ended early
+inline constexpr const char* kPreview = "preview";       // --preview: how far, as the render goes
 inline constexpr const char* kRenderSeconds = "render_seconds";  // left out if reproducible
 // What makes the render again, beyond the scene's name: rtiow's version, the digest of the
 // scene rendered (core/scene_file/scene_digest.h: its spheres, materials, camera, sky and image

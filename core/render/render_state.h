@@ -37,11 +37,16 @@ enum class SaveReason { Periodic, Stopped, Finished };
 
 // How a render keeps its state. `save` is called between passes (or in the middle of an
 // adaptive round) once `interval_seconds` have passed since the last save, and once more when
-// the render ends. A render given `resume` continues from it (moved from).
+// the render ends. A render given `resume` continues from it (moved from). `preview`, a look
+// at the render as it goes (--preview), is called at the same safe points once
+// `preview_seconds` have passed since the last; never at the end, which the caller writes.
+// Neither changes the image: a pixel's sum does not depend on where passes or rounds pause.
 struct Checkpointing {
   RenderState* resume = nullptr;
   double interval_seconds = 0.0;  // 0: only when the render ends
   std::function<void(const RenderState& state, SaveReason reason)> save;
+  double preview_seconds = 0.0;  // 0: no preview
+  std::function<void(const RenderState& state)> preview;
 };
 
 // The render loops' side of checkpointing: the state they add to, when a save is due, and
@@ -50,23 +55,25 @@ class RenderJournal {
  public:
   RenderJournal(RenderState& state, const Checkpointing* checkpointing)
       : state_(state),
-        checkpointing_(checkpointing && checkpointing->save ? checkpointing : nullptr),
+        checkpointing_(checkpointing && (checkpointing->save || checkpointing->preview)
+                           ? checkpointing
+                           : nullptr),
         earlier_seconds_(state.render_seconds),
         start_(Clock::now()),
-        last_save_(start_) {}
+        last_save_(start_),
+        last_preview_(start_) {}
 
   RenderState& state() { return state_; }
 
   // Seconds spent on the render, by this process and before it.
   double elapsed() const { return earlier_seconds_ + seconds_since(start_); }
 
-  // Whether a periodic save is due (read by the render's tasks, so it only reads).
-  bool due() const {
-    return checkpointing_ && checkpointing_->interval_seconds > 0.0 &&
-           seconds_since(last_save_) >= checkpointing_->interval_seconds;
-  }
+  // Whether a periodic save or a preview is due (read by the render's tasks, so it only
+  // reads).
+  bool due() const { return save_due() || preview_due(); }
 
-  // Saves the state with what `result` has counted (rays, where the error stands).
+  // Saves the state with what `result` has counted (rays, where the error stands): a periodic
+  // call saves and previews what is due, the render's end saves.
   template <typename Result>
   void save(const Result& result, SaveReason reason = SaveReason::Periodic) {
     if (!checkpointing_) return;
@@ -74,15 +81,30 @@ class RenderJournal {
     state_.estimated_image_error = result.estimated_image_error;
     state_.pixels_above_target = result.pixels_above_target;
     state_.render_seconds = elapsed();
-    checkpointing_->save(state_, reason);
-    last_save_ = Clock::now();
+    if (reason == SaveReason::Periodic && preview_due()) {
+      checkpointing_->preview(state_);
+      last_preview_ = Clock::now();
+    }
+    if (checkpointing_->save && (reason != SaveReason::Periodic || save_due())) {
+      checkpointing_->save(state_, reason);
+      last_save_ = Clock::now();
+    }
   }
 
  private:
+  bool save_due() const {
+    return checkpointing_ && checkpointing_->save && checkpointing_->interval_seconds > 0.0 &&
+           seconds_since(last_save_) >= checkpointing_->interval_seconds;
+  }
+  bool preview_due() const {
+    return checkpointing_ && checkpointing_->preview && checkpointing_->preview_seconds > 0.0 &&
+           seconds_since(last_preview_) >= checkpointing_->preview_seconds;
+  }
+
   RenderState& state_;
   const Checkpointing* checkpointing_;
   double earlier_seconds_;
-  Clock::time_point start_, last_save_;
+  Clock::time_point start_, last_save_, last_preview_;
 };
 
 }  // namespace rtiow

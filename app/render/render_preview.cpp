@@ -1,0 +1,59 @@
+#include "app/render/render_preview.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "core/film/sample_sum.h"
+#include "core/io/image_output.h"
+#include "core/limits/error.h"
+#include "core/render/render_metadata.h"
+
+namespace rtiow {
+
+Checkpointing RenderPreview::watching(const Checkpointing* base, double seconds) {
+  Checkpointing watched = base ? *base : Checkpointing{};
+  watched.preview_seconds = seconds;
+  watched.preview = [this](const RenderState& state) { write(state); };
+  return watched;
+}
+
+void RenderPreview::write(const RenderState& state) {
+  const RenderSettings& s = job_.settings;
+  const auto& samples = state.pixels.samples;
+  RenderResult so_far;
+  so_far.film = Film(s.width, s.height);
+  resolve(state.pixels.sums, samples, so_far.film);
+  for (std::size_t p = 0; p < samples.size(); ++p) {  // not reached yet (an adaptive first round)
+    if (samples[p] == 0)
+      so_far.film.at(int(p % std::size_t(s.width)), int(p / std::size_t(s.width))) =
+          Color(0.0f, 0.0f, 0.0f);
+  }
+  so_far.pixel_samples = samples;
+  so_far.rays_traced = state.rays_traced;
+  so_far.render_seconds = state.render_seconds;
+  so_far.estimated_image_error = state.estimated_image_error;
+  so_far.pixels_above_target = state.pixels_above_target;
+  so_far.samples_completed =
+      samples.empty() ? 0 : int(*std::max_element(samples.begin(), samples.end()));
+  Metadata metadata = render_metadata(job_.scene, s, so_far, /*reproducible=*/false);
+  const auto* fixed = std::get_if<FixedSamples>(&s.samples);
+  const std::string of = fixed ? " of " + std::to_string(fixed->per_pixel) : "";
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.1f", state.render_seconds);
+  metadata.emplace_back(metadata_key::kPreview, std::to_string(so_far.samples_completed) + of +
+                                                    " spp after " + seconds +
+                                                    " s; the render goes on");
+  try {
+    write_image(job_.output, so_far.film, metadata);
+  } catch (const std::exception& e) {
+    if (!warned_) {
+      std::fprintf(stderr, "rtiow: warning: no preview: %s; the render goes on\n",
+                   one_line(e.what()).c_str());
+      warned_ = true;
+    }
+  }
+}
+
+}  // namespace rtiow

@@ -1,0 +1,32 @@
+#pragma once
+// `rtiow render --preview SECONDS`: while the render runs, its output is replaced every
+// SECONDS by an image of the samples so far, so any viewer that reloads the file watches it.
+// Each preview goes through the output's claim like the final image (an exclusive temporary
+// renamed into place), carries the render's metadata with `rtiow:preview` saying how far it
+// is, and is written between passes, where the state is whole; the finished file is the one a
+// render without --preview writes. A preview that cannot be written warns once and the render
+// goes on.
+
+#include <string>
+
+#include "core/render/render_job.h"
+#include "core/render/render_state.h"
+
+namespace rtiow {
+
+class RenderPreview {
+ public:
+  explicit RenderPreview(const RenderJob& job) : job_(job) {}
+
+  // `base` (a checkpoint's saving and resume, or none) with previews every `seconds` added.
+  Checkpointing watching(const Checkpointing* base, double seconds);
+
+  // Replaces the output with `state`'s image.
+  void write(const RenderState& state);
+
+ private:
+  const RenderJob& job_;
+  bool warned_ = false;
+};
+
+}  // namespace rtiow
