@@ -1,6 +1,7 @@
 #include "app/parse_errors.h"
 
 #include <algorithm>
+#include <climits>
 #include <regex>
 
 #include "core/limits/error.h"
@@ -55,9 +56,23 @@ std::string explain_conversion(const CLI::App& command, const std::string& what)
   std::smatch match;
   if (!std::regex_match(what, match, pattern)) return "";
   const std::string option_name = match[1], value = match[2];
-  std::string kind = "another kind of value";
+  std::string kind = "another kind of value", type;
   for (const CLI::Option* option : command.get_options()) {
-    if (option->check_name(option_name)) kind = kind_of(option->get_type_name());
+    if (option->check_name(option_name)) {
+      type = option->get_type_name();
+      kind = kind_of(type);
+    }
+  }
+  // A whole number that still did not convert lies beyond the option's range: say the range.
+  static const std::regex whole("-?[0-9]+");
+  if (std::regex_match(value, whole) && (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0)) {
+    const bool below = value[0] == '-';
+    const std::string bound = below                        ? std::to_string(INT_MIN)
+                              : type.rfind("UINT", 0) == 0 ? "18446744073709551615 (2^64-1)"
+                                                           : std::to_string(INT_MAX);
+    return option_name + ": " + quote_value(value) + " is " +
+           (below ? "below the smallest" : "beyond the largest") + " value it takes, " + bound +
+           " (see " + full_name(command) + " --help)";
   }
   return option_name + " expects " + kind + ", not " + quote_value(value) + " (see " +
          full_name(command) + " --help)";

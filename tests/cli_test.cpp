@@ -565,6 +565,9 @@ TEST(Cli, OptionErrorsSuggestWhatWasMeant) {
   expect_refused("--acel naive", "did you mean --accel?");
   expect_refused("--width=100x", "--width expects a whole number, not '100x'");
   expect_refused("--spp ten", "--spp expects a whole number, not 'ten' (see rtiow render --help)");
+  // A whole number beyond the option's type: the range, not "expects a whole number".
+  expect_refused("--spp 99999999999",
+                 "--spp: '99999999999' is beyond the largest value it takes, 2147483647");
   expect_refused("--target-error often", "--target-error: must be a finite number");
   // A value outside an option's choices: the choices in words and the one meant.
   expect_refused("--sampler sobel",
