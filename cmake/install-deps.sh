@@ -6,16 +6,17 @@
 #                                         no test frameworks, MPI, sanitizer runtime or plotting
 set -euo pipefail
 
+# openimageio-tools is the program's too: Debian's OpenImageIO CMake package names its tools'
+# files, and find_package(OpenImageIO) fails where they are missing.
 packages=(
   build-essential cmake pkg-config
-  libembree-dev libtbb-dev libopenimageio-dev libpng-dev
+  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libpng-dev
   libcli11-dev nlohmann-json3-dev rapidjson-dev
 )
 case "${1:-}" in
   --program) ;;
   "")
     packages+=(
-      openimageio-tools
       libgtest-dev libgmock-dev libbenchmark-dev
       clang libclang-rt-14-dev
       libopenmpi-dev openmpi-bin
