@@ -2,16 +2,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/version.h"
+#include "app/summary_json.h"
 
 namespace rtiow {
 
 std::string diff_summary_json(const DiffSummary& d) {
   using json = nlohmann::ordered_json;
-  json j;
-  j["schema"] = kDiffSummarySchema;
-  j["version"] = version();
-  j["command"] = "diff";
+  json j = summary_head("diff");
   j["reference"] = d.reference;
   j["tests"] = d.tests;
   j["mode"] = d.mode;
@@ -52,7 +49,7 @@ std::string diff_summary_json(const DiffSummary& d) {
                   {"image_z", n.image_z},
                   {"image_critical_z", n.image_critical_z}};
   }
-  return j.dump(2) + "\n";
+  return summary_text(j);
 }
 
 }  // namespace rtiow

@@ -1,6 +1,7 @@
 #pragma once
 // `rtiow diff --summary-json FILE`: the comparison's verdict and figures for a script, in one
-// documented schema (docs/diff.md, "A summary for scripts"), beside the lines on stdout.
+// documented schema (app/summary_json.h; diff's keys in docs/diff.md), beside the lines on
+// stdout.
 
 #include <string>
 #include <vector>
@@ -8,8 +9,6 @@
 #include "core/compare/image_diff.h"
 
 namespace rtiow {
-
-inline constexpr int kDiffSummarySchema = 1;
 
 struct DiffSummary {
   std::string reference;

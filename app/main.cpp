@@ -83,8 +83,9 @@ int print_and_exit(const CLI::App& app, const CLI::Error& e) {
 }
 
 // A first word that is no command, or no option rtiow itself takes: name it, with the nearest
-// real one (CLI11 would only say that a command is required). Returns true if it did.
-bool refused_unknown_command(const CLI::App& app, int argc, char** argv) {
+// real one (CLI11 would only say that a command is required). Returns true if it refused;
+// says so if `speaks` (under mpirun, rank 0 speaks for all).
+bool refused_unknown_command(const CLI::App& app, int argc, char** argv, bool speaks) {
   if (argc < 2) return false;
   const std::string first = argv[1];
   std::vector<std::string> names;
@@ -101,6 +102,7 @@ bool refused_unknown_command(const CLI::App& app, int argc, char** argv) {
   std::string known;
   for (const std::string& name : names) known += (known.empty() ? "" : ", ") + name;
   const std::string what = first[0] == '-' ? "unknown option " : "unknown command ";
+  if (!speaks) return true;
   report((what + rtiow::quote_value(first) + rtiow::did_you_mean(first, names) +
           " (known: " + known + "; see rtiow --help)")
              .c_str());
@@ -197,17 +199,19 @@ int main(int argc, char** argv) {
       rtiow::add_merge_command(app),       rtiow::add_bench_command(app),
       rtiow::add_accuracy_command(app),    rtiow::add_diff_command(app)};
 
-  if (refused_unknown_command(app, argc, argv)) return 2;
+  // Under mpirun every rank parses the same command line: rank 0 alone prints what it says.
+  const bool speaks = mpi.rank() == 0;
+  if (refused_unknown_command(app, argc, argv, speaks)) return 2;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return print_and_exit(app, e);
+    return speaks ? print_and_exit(app, e) : 0;
   } catch (const CLI::CallForAllHelp& e) {
-    return print_and_exit(app, e);
+    return speaks ? print_and_exit(app, e) : 0;
   } catch (const CLI::CallForVersion& e) {
-    return print_and_exit(app, e);
+    return speaks ? print_and_exit(app, e) : 0;
   } catch (const CLI::ParseError& e) {
-    report(rtiow::explain_parse_error(app, e).c_str());
+    if (speaks) report(rtiow::explain_parse_error(app, e).c_str());
     // diff's 2 is a verdict (FAILURE): a command line it cannot use is "could not compare".
     return argc > 1 && std::string_view(argv[1]) == "diff" ? rtiow::kDiffCouldNotCompare : 2;
   }

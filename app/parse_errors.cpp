@@ -97,6 +97,22 @@ std::string explain_choice(const CLI::App& command, const std::string& what) {
          did_you_mean(value, choices) + " (see " + full_name(command) + " --help)";
 }
 
+// "--lookfrom: At least 3 required but received 2": how many values, and how to give them.
+std::string explain_count(const CLI::App& command, const std::string& what) {
+  static const std::regex pattern(
+      "(-[^:]*): At (?:[Ll]east|[Mm]ost) ([0-9]+) required but "
+      "received ([0-9]+)");
+  std::smatch match;
+  if (!std::regex_match(what, match, pattern)) return "";
+  const std::string option_name = match[1], wanted = match[2], got = match[3];
+  std::string example;
+  for (int i = 1; i <= std::stoi(wanted) && i <= 4; ++i) {
+    example += (i > 1 ? "," : "") + std::to_string(i);
+  }
+  return option_name + " takes " + wanted + " numbers, got " + got + " (as " + option_name + " " +
+         example + ", with commas or spaces between; see " + full_name(command) + " --help)";
+}
+
 }  // namespace
 
 std::vector<std::string> option_spellings(const CLI::App& command) {
@@ -116,6 +132,8 @@ std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& erro
     message = explain_conversion(command, error.what());
   if (dynamic_cast<const CLI::ValidationError*>(&error) != nullptr)
     message = explain_choice(command, error.what());
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&error) != nullptr)
+    message = explain_count(command, error.what());
   if (!message.empty()) return message;
   return std::string(error.what()) + " (see " + full_name(command) + " --help)";
 }

@@ -10,10 +10,10 @@ install(TARGETS rtiow RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES app/measure/bench_plot.py app/measure/accuracy_plot.py DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS rtiow_core EXPORT rtiowTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # The image backend: the rtiow executable loads the shared one from lib/ beside its bin/ when
-# it reads or writes an image. A program that links rtiow::rtiow links the static one in
-# (forced by its entry point, which the library references weakly), so it runs wherever it
-# is installed and wherever the prefix moves, at the cost of OpenImageIO's start-up, as
-# linking OpenImageIO directly would.
+# it reads or writes an image. A program that links rtiow::rtiow writes PNG with rtiow's own
+# encoder and links no OpenImageIO; one that wants the other formats (EXR, JPEG, TIFF, ...)
+# links rtiow::image_io too, the static backend, so it runs wherever it is installed and
+# wherever the prefix moves, at the cost of OpenImageIO's libraries and start-up.
 install(TARGETS rtiow_image_io LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 set_target_properties(rtiow_image_io_static PROPERTIES EXPORT_NAME image_io
                                                        OUTPUT_NAME rtiow_image_io)
@@ -24,20 +24,20 @@ foreach(oiio_target OpenImageIO OpenImageIO_Util)
   set_property(TARGET rtiow_image_io_static APPEND PROPERTY INTERFACE_LINK_LIBRARIES
                "$<INSTALL_INTERFACE:${oiio_file}>")
 endforeach()
-set_property(TARGET rtiow_core APPEND PROPERTY INTERFACE_LINK_LIBRARIES
-             "$<INSTALL_INTERFACE:rtiow::image_io>")
-set_property(TARGET rtiow_core APPEND PROPERTY INTERFACE_LINK_OPTIONS
+# The backend's entry point, which the core references weakly, pulls it out of its archive.
+set_property(TARGET rtiow_image_io_static APPEND PROPERTY INTERFACE_LINK_OPTIONS
              "$<INSTALL_INTERFACE:LINKER:--undefined=rtiow_image_backend>")
-# The headers, less the scene reader's internals, which need RapidJSON (only the core's
-# sources include them, and the package does not ask for RapidJSON).
-install(DIRECTORY core materials DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rtiow
-        FILES_MATCHING PATTERN "*.h"
-        PATTERN "json_stream.h" EXCLUDE PATTERN "rapidjson.h" EXCLUDE
-        PATTERN "json_reader.h" EXCLUDE PATTERN "material_json.h" EXCLUDE)
+# The public API (cmake/InstallPublicHeaders.cmake): core/rtiow.h and what it includes, as
+# include/rtiow/..., included as <rtiow/rtiow.h>.
+set(rtiow_public_headers ${CMAKE_CURRENT_BINARY_DIR}/public-headers)
+install(CODE "set(RTIOW_SOURCE_DIR \"${PROJECT_SOURCE_DIR}\")
+set(RTIOW_STAGING_DIR \"${rtiow_public_headers}\")
+include(\"${PROJECT_SOURCE_DIR}/cmake/InstallPublicHeaders.cmake\")")
+install(DIRECTORY ${rtiow_public_headers}/rtiow DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 
 # The user's pages, which --help cites as docs/<page> (the measurements stay in the source).
 install(FILES README.md docs/usage.md docs/scene-format.md docs/diff.md docs/distributed.md
-              docs/robustness.md
+              docs/library.md docs/robustness.md
         DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(FILES docs/gallery/cover.png DESTINATION ${CMAKE_INSTALL_DOCDIR}/gallery)
 

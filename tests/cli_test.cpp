@@ -569,6 +569,11 @@ TEST(Cli, OptionErrorsSuggestWhatWasMeant) {
   expect_refused("--spp 99999999999",
                  "--spp: '99999999999' is beyond the largest value it takes, 2147483647");
   expect_refused("--target-error often", "--target-error: must be a finite number");
+  // Too few or too many values for a vector: how many, and how to write them.
+  expect_refused("--lookfrom 1,2",
+                 "--lookfrom takes 3 numbers, got 2 (as --lookfrom 1,2,3, with commas or spaces "
+                 "between; see rtiow render --help)");
+  expect_refused("--vup 0 1 0 0", "--vup takes 3 numbers, got 4");
   // A value outside an option's choices: the choices in words and the one meant.
   expect_refused("--sampler sobel",
                  "--sampler: 'sobel' is not one of independent, sobol, padded-sobol; did you mean "
@@ -1125,6 +1130,30 @@ TEST(Cli, LikeRefusesWhatItCannotRenderAgain) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.stderr_text.find("input"), std::string::npos) << r.stderr_text;
 
+  // A scene file the image names relative to where it was rendered, from elsewhere: the name
+  // is said to be the image's, and the scene given again renders it.
+  const fs::path elsewhere = fs::path(RTIOW_TEST_OUTPUT_DIR) / "like-relative-dir";
+  fs::remove_all(elsewhere);
+  fs::create_directories(elsewhere);
+  fs::copy_file(scene, elsewhere / "edited.json");
+  ASSERT_EQ(run_rtiow("render -q edited.json --width 16 --spp 1 -o relative.png",
+                      "cd " + elsewhere.string() + " && ")
+                .exit_code,
+            0);
+  fs::remove(out);
+  r = run_rtiow("render -q --like " + (elsewhere / "relative.png").string() + " -o " +
+                out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("rendered from scene file 'edited.json', a name relative to the "
+                               "directory that render ran in"),
+            std::string::npos)
+      << r.stderr_text;
+  EXPECT_FALSE(fs::exists(out));
+  r = run_rtiow("render -q --like " + (elsewhere / "relative.png").string() + " " +
+                (elsewhere / "edited.json").string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+  fs::remove(out);
+
   // Metadata edited into what no option takes: refused as the image's, exit 2.
   const fs::path base = output_path("like-hostile-base.png");
   ASSERT_EQ(run_rtiow("render -q --scene cover --width 16 --spp 1 -o " + base.string()).exit_code,
@@ -1248,6 +1277,58 @@ TEST(Cli, QuickRunsTakeTheirOwnSettingsButTheOptionsGiven) {
   EXPECT_EQ(accuracy["max_spp"], 256);
   EXPECT_EQ(accuracy["reference_spp"], 1024);
   EXPECT_EQ(accuracy["repeat"], 1);
+}
+
+// bench and accuracy --summary-json: the shared head, and headline figures that are the ones
+// the full figures hold; a summary path that cannot be written is refused before the work.
+TEST(Cli, MeasurementsWriteSummariesInTheSharedSchema) {
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "measure-summaries";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path bench_summary = dir / "bench-summary.json";
+  CommandResult r = run_rtiow("bench --quick --max-spheres 100 --out " + (dir / "b").string() +
+                              " --summary-json " + bench_summary.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const auto figures = nlohmann::json::parse(slurp(dir / "b" / "bench.json"));
+  const auto bench = nlohmann::json::parse(slurp(bench_summary));
+  EXPECT_EQ(bench["schema"], 1);
+  EXPECT_EQ(bench["command"], "bench");
+  EXPECT_EQ(bench["exit_code"], 0);
+  EXPECT_EQ(bench["version"], rtiow::version());
+  EXPECT_EQ(bench["files"]["figures"], (dir / "b" / "bench.json").string());
+  EXPECT_EQ(bench["cover"]["embree_mrays_per_second"],
+            figures["cover"]["embree"]["mrays_per_second"]);
+  EXPECT_DOUBLE_EQ(bench["cover"]["thread_scaling"].get<double>(),
+                   figures["cover"]["embree"]["mrays_per_second"].get<double>() /
+                       figures["cover"]["embree_1_thread"]["mrays_per_second"].get<double>());
+  ASSERT_EQ(bench["scaling"].size(), figures["scaling"].size());
+  EXPECT_EQ(bench["scaling"][1]["spheres"], 100);
+  EXPECT_GT(bench["seconds"].get<double>(), 0.0);
+  // A warning is in the summary exactly when the command printed it.
+  EXPECT_EQ(bench["warnings"].empty(), r.stderr_text.find("warning:") == std::string::npos)
+      << r.stderr_text;
+
+  const fs::path accuracy_summary = dir / "accuracy-summary.json";
+  r = run_rtiow("accuracy -q --quick --width 32 --out " + (dir / "a").string() + " --cache-dir " +
+                (dir / "cache").string() + " --summary-json " + accuracy_summary.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const auto measured = nlohmann::json::parse(slurp(dir / "a" / "accuracy.json"));
+  const auto accuracy = nlohmann::json::parse(slurp(accuracy_summary));
+  EXPECT_EQ(accuracy["schema"], 1);
+  EXPECT_EQ(accuracy["command"], "accuracy");
+  EXPECT_EQ(accuracy["width"], 32);
+  EXPECT_EQ(accuracy["reference"]["spp"], 1024);
+  EXPECT_EQ(accuracy["files"]["csv"], (dir / "a" / "accuracy.csv").string());
+  EXPECT_EQ(accuracy["book_quality"], measured["summary"]["book_quality"]);
+  ASSERT_EQ(accuracy["image_error"].size(), measured["image_error"].size());
+  EXPECT_EQ(accuracy["image_error"][0]["asked"], measured["image_error"][0]["parameter"]);
+
+  // Refused before the work: nothing measured, no directory made.
+  r = run_rtiow("bench --quick --out " + (dir / "never").string() + " --summary-json " +
+                (dir / "no-such-dir" / "s.json").string());
+  EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("--summary-json"), std::string::npos) << r.stderr_text;
+  EXPECT_FALSE(fs::exists(dir / "never"));
 }
 
 TEST(Cli, AdaptiveRenderWritesStatisticsChannelsAndItsSampleCounts) {

@@ -14,7 +14,7 @@ endfunction()
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
-foreach(installed bin/rtiow lib/librtiow.a lib/librtiow_image_io.so include/rtiow/core/rtiow.h
+foreach(installed bin/rtiow lib/librtiow.a lib/librtiow_image_io.so include/rtiow/rtiow.h
                   include/rtiow/materials/material.h lib/cmake/rtiow/rtiowConfig.cmake
                   lib/cmake/rtiow/RtiowImageTest.cmake lib/cmake/rtiow/RtiowImageTestRun.cmake
                   share/doc/rtiow/usage.md share/doc/rtiow/scene-format.md share/doc/rtiow/diff.md)
@@ -45,23 +45,78 @@ if(size LESS 10000)
 endif()
 message(STATUS "installed rtiow built and ran the example: three.png, ${size} bytes")
 
-# The installed headers need nothing the package does not find (RapidJSON is the core's own).
-file(GLOB_RECURSE headers ${prefix}/include/rtiow/*.h)
+# A program that writes PNG links no OpenImageIO library (it would load some 260 shared
+# libraries); asked for EXR it says what to link. The one that links rtiow::image_io writes EXR.
+function(shared_libraries program out)
+  execute_process(COMMAND ldd ${program} RESULT_VARIABLE code OUTPUT_VARIABLE listed)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "ldd ${program} failed (${code})")
+  endif()
+  string(REGEX MATCHALL "[^\n]*=>[^\n]*" libraries "${listed}")
+  set(${out} "${libraries}" PARENT_SCOPE)
+endfunction()
+shared_libraries(${WORK_DIR}/build/spheres png_only)
+shared_libraries(${WORK_DIR}/build/spheres_any_format any_format)
+list(LENGTH png_only png_only_count)
+list(LENGTH any_format any_format_count)
+list(FILTER png_only INCLUDE REGEX "OpenImageIO")
+list(FILTER any_format INCLUDE REGEX "OpenImageIO")
+list(LENGTH png_only png_only_oiio)
+list(LENGTH any_format any_format_oiio)
+message(STATUS "shared libraries: ${png_only_count} writing PNG (${png_only_oiio} of "
+               "OpenImageIO), ${any_format_count} with rtiow::image_io (${any_format_oiio})")
+if(NOT png_only_oiio EQUAL 0 OR any_format_oiio EQUAL 0)
+  message(FATAL_ERROR "a PNG-only program links ${png_only_oiio} OpenImageIO libraries, one "
+                      "with rtiow::image_io ${any_format_oiio}")
+endif()
+execute_process(COMMAND ${WORK_DIR}/build/spheres ${WORK_DIR}/three.exr RESULT_VARIABLE code
+                OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(code EQUAL 0 OR NOT err MATCHES "rtiow::image_io" OR EXISTS ${WORK_DIR}/three.exr)
+  message(FATAL_ERROR "a PNG-only program asked for EXR (${code}) should say to link "
+                      "rtiow::image_io:\n${out}${err}")
+endif()
+run(${WORK_DIR}/build/spheres_any_format ${WORK_DIR}/three.exr)
+
+# Only the public API is installed: the headers core/rtiow.h includes, under include/rtiow,
+# including one another as "rtiow/..." and needing nothing the package does not find.
+file(GLOB_RECURSE headers RELATIVE ${prefix}/include ${prefix}/include/*)
+list(LENGTH headers header_count)
+message(STATUS "installed headers: ${header_count}")
 foreach(header ${headers})
-  file(STRINGS ${header} internal REGEX "rapidjson|json_stream")
+  if(NOT header MATCHES "^rtiow/")
+    message(FATAL_ERROR "installed outside include/rtiow: ${header}")
+  endif()
+  file(STRINGS ${prefix}/include/${header} includes REGEX "#[ \t]*include[ \t]*\"")
+  foreach(line ${includes})
+    if(NOT line MATCHES "\"rtiow/")
+      message(FATAL_ERROR "installed ${header} includes a header outside the API: ${line}")
+    endif()
+    string(REGEX REPLACE ".*\"([^\"]+)\".*" "\\1" included "${line}")
+    if(NOT EXISTS ${prefix}/include/${included})
+      message(FATAL_ERROR "installed ${header} includes ${included}, not installed")
+    endif()
+    list(APPEND reached ${included})
+  endforeach()
+  file(STRINGS ${prefix}/include/${header} internal REGEX "rapidjson|nlohmann")
   if(internal)
     message(FATAL_ERROR "installed ${header} needs the core's internals: ${internal}")
   endif()
 endforeach()
+# Each installed header but the umbrella is reached from another: nothing internal rides along.
+list(APPEND reached rtiow/rtiow.h)
+list(REMOVE_ITEM headers ${reached})
+if(headers)
+  message(FATAL_ERROR "installed but not part of <rtiow/rtiow.h>: ${headers}")
+endif()
 
 # A program built against the install keeps working when the prefix moves (the image
 # backend is linked in): move it, run the example again, move it back.
-file(REMOVE ${WORK_DIR}/three.png)
+file(REMOVE ${WORK_DIR}/three.exr)
 file(RENAME ${prefix} ${WORK_DIR}/moved)
-execute_process(COMMAND ${WORK_DIR}/build/spheres ${WORK_DIR}/three.png RESULT_VARIABLE code
-                OUTPUT_VARIABLE out ERROR_VARIABLE err)
+execute_process(COMMAND ${WORK_DIR}/build/spheres_any_format ${WORK_DIR}/three.exr
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 file(RENAME ${WORK_DIR}/moved ${prefix})
-if(NOT code EQUAL 0 OR NOT EXISTS ${WORK_DIR}/three.png)
+if(NOT code EQUAL 0 OR NOT EXISTS ${WORK_DIR}/three.exr)
   message(FATAL_ERROR "the example failed once the prefix moved (${code}):\n${out}${err}")
 endif()
 message(STATUS "the example ran with its install prefix moved")

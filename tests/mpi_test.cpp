@@ -1,6 +1,6 @@
 // MPI rendering (built when OpenMPI is installed): mpirun -np 2 and -np 3 give the file one
 // process gives, byte for byte, variance channels included; a rank that dies ends the run instead
-// of hanging it; bad input is reported once.
+// of hanging it; bad input, a misspelt option and --help are printed once.
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -69,30 +69,44 @@ TEST(Mpi, RanksGiveTheSingleProcessFileByteForByte) {
   EXPECT_EQ(slurp(distributed_stats), slurp(single_stats)) << "the variance channels differ";
 }
 
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t count = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
+    ++count;
+  }
+  return count;
+}
+
 TEST(Mpi, BadInputIsReportedOnce) {
   std::string err;
   EXPECT_NE(run(mpirun(2) + kRender + " --vfov 0 -o " + output("bad.png").string(), &err), 0);
-  std::size_t count = 0;
-  for (std::size_t at = err.find("rtiow: error"); at != std::string::npos;
-       at = err.find("rtiow: error", at + 1)) {
-    ++count;
-  }
-  EXPECT_EQ(count, 1u) << err;
+  EXPECT_EQ(occurrences(err, "rtiow: error"), 1u) << err;
   EXPECT_FALSE(fs::exists(output("bad.png")));
+  // A misspelt option, an unknown command and --help: every rank parses them, one speaks.
+  for (const std::string& args : {kRender + " --sp 4", std::string(RTIOW_BINARY) + " rendr"}) {
+    EXPECT_NE(run(mpirun(2) + args, &err), 0);
+    EXPECT_EQ(occurrences(err, "rtiow: error"), 1u) << args << "\n" << err;
+  }
+  const fs::path help = output("help.txt");
+  EXPECT_EQ(run(mpirun(2) + kRender + " --help > " + help.string()), 0);
+  EXPECT_EQ(occurrences(slurp(help), "Usage: rtiow render"), 1u) << slurp(help);
 }
 
 TEST(Mpi, ARankThatDiesEndsTheRun) {
   const fs::path out = output("killed.png");
   const std::string command = mpirun(2) + std::string(RTIOW_BINARY) +
-                              " render --scene cover --width 200 --spp 100000 --threads 1 -q -o " +
+                              " render --scene cover --width 200 --spp 100000 --seed 9042001 "
+                              "--threads 1 -q -o " +
                               out.string() + " 2>/dev/null";
   const auto start = std::chrono::steady_clock::now();
   std::thread killer([] {
     std::this_thread::sleep_for(std::chrono::seconds(2));
     // Only the ranks' command lines start with the binary (not mpirun's, timeout's or this
-    // shell's); the [2] keeps the pattern from matching itself.
+    // shell's), and only theirs hold this seed (not another test's render, running beside this
+    // one under ctest -j); the [1] keeps the pattern from matching itself.
     const std::string pattern =
-        "^" + std::string(RTIOW_BINARY) + " render --scene cover --width [2]00";
+        "^" + std::string(RTIOW_BINARY) + " render --scene cover --width 200 --spp 100000 " +
+        "--seed 904200[1]";
     std::system(("kill -9 $(pgrep -f '" + pattern + "' | tail -1)").c_str());
   });
   const int status = std::system(("timeout 60 " + command).c_str());

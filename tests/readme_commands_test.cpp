@@ -66,4 +66,27 @@ TEST(Readme, IsAManualApartFromTheNotebook) {
   EXPECT_FALSE(has(readme, "2026-")) << "the README cites a dated measurement";
 }
 
+// The user's pages say how; the dated log is the measurement pages' own, after their figures.
+TEST(Readme, TheUsersPagesCarryNoMeasurementLog) {
+  const fs::path docs = fs::path(RTIOW_SOURCE_DIR) / "docs";
+  for (const char* page : {"usage.md", "scene-format.md", "diff.md", "distributed.md", "library.md",
+                           "robustness.md"}) {
+    std::istringstream lines(slurp(docs / page));
+    for (std::string line; std::getline(lines, line);) {
+      const bool link = line.find("](") != std::string::npos;  // may cite a log's anchor
+      EXPECT_FALSE(has(line, "2026-") && !link) << page << ": a dated line: " << line;
+    }
+  }
+  for (const char* page : {"performance.md", "accuracy.md"}) {
+    const std::string text = slurp(docs / page);
+    const std::size_t log = text.find("\n## Measurement log\n");
+    ASSERT_NE(log, std::string::npos) << page << " has no measurement log";
+    std::istringstream lines(text.substr(0, log));
+    for (std::string line; std::getline(lines, line);) {
+      EXPECT_FALSE(line.rfind("## ", 0) == 0 && has(line, "(2026-"))
+          << page << ": a dated section before the log: " << line;
+    }
+  }
+}
+
 }  // namespace

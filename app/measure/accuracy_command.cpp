@@ -1,6 +1,7 @@
 #include "app/measure/accuracy_command.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -18,7 +19,10 @@
 #include "app/measure/accuracy_report.h"
 #include "app/measure/accuracy_runs.h"
 #include "app/measure/figure_outputs.h"
+#include "app/measure/measure_summary.h"
 #include "app/measure/quick_run.h"
+#include "core/io/atomic_file.h"
+#include "core/io/output_claim.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/render/render.h"
@@ -102,6 +106,8 @@ int run_accuracy(const AccuracyOptions& o) {
   check_options(o);
   const Scene scene = make_builtin_scene(o.scene, o.scene_seed);
   const RenderSettings base = resolve(scene, base_request(o)).settings;
+  const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<OutputClaim> summary = claim_summary(o.summary_json);
   const FigureOutputs outputs(o.out_dir, {"accuracy.json", "accuracy.csv", "accuracy.png"},
                               "--out");
   const std::string cache_dir = o.cache_dir.empty() ? default_cache_dir() : o.cache_dir;
@@ -131,7 +137,11 @@ int run_accuracy(const AccuracyOptions& o) {
 
   r["summary"] = summarise(r, o);
   print_table(r);
-  write_figures(o, r);
+  const MeasureFiles files = write_figures(o, r);
+  if (summary) {
+    const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - start;
+    write_text_atomically(o.summary_json, accuracy_summary_json(r, files, seconds.count()));
+  }
   return 0;
 }
 
@@ -187,6 +197,9 @@ std::function<int()> add_accuracy_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--cache-dir", o.cache_dir,
                   "Where references are kept (default: $XDG_CACHE_HOME/rtiow or ~/.cache/rtiow)");
+  cmd->add_option("--summary-json", o.summary_json,
+                  "Also write the headline figures as JSON here, for scripts (the schema every "
+                  "command's summary shares: docs/usage.md)");
   cmd->add_flag("-q,--quiet", o.quiet, "No progress on stderr");
   cmd->add_flag("--quick", o.quick,
                 "A short run for a first look: 80 px wide, a reference of 1024 spp, spp up to "

@@ -26,7 +26,8 @@ struct AccuracyOptions {
   std::vector<double> image_errors{0.1, 0.05, 0.03, 0.02};
   int book_spp = 500;  // the book's choice: its quality is the headline's goal
   std::string out_dir = "accuracy";
-  std::string cache_dir;  // default: $XDG_CACHE_HOME/rtiow or ~/.cache/rtiow
+  std::string cache_dir;     // default: $XDG_CACHE_HOME/rtiow or ~/.cache/rtiow
+  std::string summary_json;  // empty: none
   bool quiet = false;
   bool quick = false;
 };

@@ -3,9 +3,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "app/measure/accuracy_fits.h"
 #include "app/measure/plot_script.h"
+#include "app/measure/timing_warnings.h"
 #include "core/io/atomic_file.h"
 #include "core/limits/error.h"
 
@@ -124,13 +126,19 @@ void print_depth_table(const json& r) {
       full = row["seconds"].get<double>();
     }
   }
+  std::vector<double> depths, seconds;
   for (const json& row : r["depth_sweep"]) {
+    depths.push_back(row["parameter"].get<double>());
+    seconds.push_back(row["seconds"].get<double>());
     std::printf("  %5.0f %9.4f %9.0f%% %+9.5f +- %7.5f %10.5f %10.5f %10.3e\n",
                 row["parameter"].get<double>(), row["seconds"].get<double>(),
                 100.0 * (1.0 - row["seconds"].get<double>() / full),
                 row["mean_difference"].get<double>(), row["mean_difference_error"].get<double>(),
                 row["rms_bias"].get<double>(), row["rms_noise"].get<double>(),
                 row["rel_mse"].get<double>());
+  }
+  if (const std::string warning = depth_timing_warning(depths, seconds); !warning.empty()) {
+    std::fprintf(stderr, "rtiow: %s\n", warning.c_str());  // the table stays the figures
   }
 }
 
@@ -209,7 +217,7 @@ void print_table(const json& r) {
   print_adaptive_table(r);
 }
 
-void write_figures(const AccuracyOptions& o, const json& r) {
+MeasureFiles write_figures(const AccuracyOptions& o, const json& r) {
   const std::string json_path = (fs::path(o.out_dir) / "accuracy.json").string();
   const std::string csv_path = (fs::path(o.out_dir) / "accuracy.csv").string();
   const std::string png_path = (fs::path(o.out_dir) / "accuracy.png").string();
@@ -217,7 +225,8 @@ void write_figures(const AccuracyOptions& o, const json& r) {
   write_csv(r, csv_path);
   std::printf("\nfigures: %s\n         %s\n", one_line(json_path).c_str(),
               one_line(csv_path).c_str());
-  run_plot_script("accuracy_plot.py", r.dump(), png_path);
+  const bool plotted = run_plot_script("accuracy_plot.py", r.dump(), png_path);
+  return {json_path, csv_path, plotted ? png_path : std::string()};
 }
 
 }  // namespace rtiow

@@ -4,12 +4,14 @@
 #include <nlohmann/json.hpp>
 
 #include "app/measure/accuracy_options.h"
+#include "app/measure/measure_summary.h"
 
 namespace rtiow {
 
 void print_table(const nlohmann::json& figures);
 
-// accuracy.json, accuracy.csv and accuracy.png in --out.
-void write_figures(const AccuracyOptions& o, const nlohmann::json& figures);
+// accuracy.json, accuracy.csv and accuracy.png in --out; returns the files written (the plot
+// only if it was drawn).
+MeasureFiles write_figures(const AccuracyOptions& o, const nlohmann::json& figures);
 
 }  // namespace rtiow

@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -17,8 +18,11 @@
 #include "app/child_process.h"
 #include "app/measure/bench_report.h"
 #include "app/measure/figure_outputs.h"
+#include "app/measure/measure_summary.h"
 #include "app/measure/quick_run.h"
 #include "app/measure/trace_rate.h"
+#include "core/io/atomic_file.h"
+#include "core/io/output_claim.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/render/render.h"
@@ -39,6 +43,7 @@ struct BenchOptions {
   int repeat = 3;
   int threads = 0;
   std::string out_dir = "bench";  // bench.json and bench.png
+  std::string summary_json;       // empty: none
   bool quick = false;
 };
 
@@ -244,6 +249,8 @@ int run_bench(const BenchOptions& o) {
                     {"spp", o.scaling_spp},
                     {"depth", o.scaling_depth},
                     {"naive_budget_seconds", o.naive_budget}}}};
+  const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<OutputClaim> summary = claim_summary(o.summary_json);
   const FigureOutputs outputs(o.out_dir, {"bench.json", "bench.png"}, "--out");
   const std::string json_path = outputs.path("bench.json");
   results["cover"] = bench_cover(o);
@@ -252,7 +259,12 @@ int run_bench(const BenchOptions& o) {
   print_bench_table(results);
   write_bench_json(results, json_path);
   std::printf("\nfigures: %s\n", one_line(json_path).c_str());
-  plot_bench(results, outputs.path("bench.png"));
+  const bool plotted = plot_bench(results, outputs.path("bench.png"));
+  if (summary) {
+    const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - start;
+    const MeasureFiles files{json_path, "", plotted ? outputs.path("bench.png") : ""};
+    write_text_atomically(o.summary_json, bench_summary_json(results, files, seconds.count()));
+  }
   return 0;
 }
 
@@ -285,6 +297,9 @@ std::function<int()> add_bench_command(CLI::App& app) {
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
   cmd->add_option("--out", o.out_dir, "Directory for bench.json and bench.png")
       ->capture_default_str();
+  cmd->add_option("--summary-json", o.summary_json,
+                  "Also write the headline figures as JSON here, for scripts (the schema every "
+                  "command's summary shares: docs/usage.md)");
   cmd->add_flag("--quick", o.quick,
                 "A short run for a first look: a 200x112 cover at 4 spp, up to 10^4 spheres, "
                 "one run each (options given still apply)");

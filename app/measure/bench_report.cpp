@@ -1,6 +1,7 @@
 #include "app/measure/bench_report.h"
 
 #include "app/measure/plot_script.h"
+#include "app/measure/timing_warnings.h"
 
 #include "core/io/atomic_file.h"
 
@@ -47,6 +48,10 @@ void print_bench_table(const json& r) {
   std::printf("  render / raw trace rate:   %.0f%%\n", 100.0 * embree / trace);
   std::printf("  render / traversal alone:  %.0f%%\n", 100.0 * embree / traversal);
   std::printf("  thread scaling 1 -> %d:     %.2fx\n", r["threads"].get<int>(), embree / one);
+  if (const std::string warning = thread_scaling_warning(r["threads"].get<int>(), one, embree);
+      !warning.empty()) {
+    std::fprintf(stderr, "rtiow: %s\n", warning.c_str());  // the table stays the figures
+  }
 
   const json& s = r["scaling_settings"];
   std::printf("\nScaling, spheres:N (N small spheres + ground + 3 big), %dx%d, %d spp, depth %d\n",
@@ -88,8 +93,8 @@ void write_bench_json(const json& results, const std::string& path) {
   write_text_atomically(path, results.dump(2) + "\n");
 }
 
-void plot_bench(const json& results, const std::string& plot_path) {
-  run_plot_script("bench_plot.py", results.dump(), plot_path);
+bool plot_bench(const json& results, const std::string& plot_path) {
+  return run_plot_script("bench_plot.py", results.dump(), plot_path);
 }
 
 }  // namespace rtiow

@@ -12,7 +12,8 @@ void print_bench_table(const nlohmann::json& results);
 void write_bench_json(const nlohmann::json& results, const std::string& path);
 
 // Draws Mrays/s against N (log-log, one line per accelerator) with Debian's python3 and
-// matplotlib. Without them it says so and draws nothing; the figures are in the JSON.
-void plot_bench(const nlohmann::json& results, const std::string& plot_path);
+// matplotlib. Without them it says so and draws nothing (returns false); the figures are in
+// the JSON.
+bool plot_bench(const nlohmann::json& results, const std::string& plot_path);
 
 }  // namespace rtiow

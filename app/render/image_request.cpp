@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <sstream>
 
@@ -288,6 +289,21 @@ void check_room_for_replicates(CLI::App& render) {
                      "pixels than one sequence: render it again into an .exr (-o NAME.exr)");
 }
 
+// The image records its scene file as it was given, relative to where that render ran: from
+// elsewhere it names no file, and the user is told where the name came from.
+void check_recorded_scene_file(const std::string& scene_file, CLI::App& render) {
+  std::error_code error;
+  if (std::filesystem::exists(scene_file, error)) return;
+  const std::string image = render.get_option("--like")->as<std::string>();
+  const bool relative = std::filesystem::path(scene_file).is_relative();
+  throw InvalidInput("--like image " + quote_value(image) + " was rendered from scene file " +
+                     quote_value(scene_file) +
+                     (relative ? ", a name relative to the directory that render ran in; " : ", ") +
+                     "there is no such file from here: give the scene file (rtiow render FILE "
+                     "--like " +
+                     quote_value(image) + ")");
+}
+
 }  // namespace
 
 bool apply_image_request(const ImageRequest& request, CLI::App& render) {
@@ -296,6 +312,9 @@ bool apply_image_request(const ImageRequest& request, CLI::App& render) {
     if (!given(render, o.group)) taken.push_back(&o);
   }
   const bool scene_chosen = given(render, "scene") || given(render, "--scene-seed");
+  if (!scene_chosen && !request.scene_file.empty()) {
+    check_recorded_scene_file(request.scene_file, render);
+  }
   for (const ImageRequest::Option* o : taken) {
     if (!o->unrepeatable.empty()) throw InvalidInput(o->unrepeatable);
     CLI::Option* option = render.get_option(o->name);

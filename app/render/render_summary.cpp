@@ -2,10 +2,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/summary_json.h"
 #include "core/parallel/thread_count.h"
 #include "core/render/render_outcome.h"
 #include "core/sampling/sampler.h"
-#include "core/version.h"
 
 namespace rtiow {
 
@@ -14,10 +14,7 @@ std::string render_summary_json(const RenderJob& job, const RenderResult& result
   const RenderSettings& s = job.settings;
   const RenderOutcome outcome = describe_outcome(s, result);
   const double seconds = result.render_seconds;
-  nlohmann::ordered_json j;
-  j["schema"] = kRenderSummarySchema;
-  j["version"] = version();
-  j["command"] = "render";
+  nlohmann::ordered_json j = summary_head("render");
   j["output"] = job.output;
   j["scene"] = job.scene.name;
   j["width"] = s.width;
@@ -46,7 +43,7 @@ std::string render_summary_json(const RenderJob& job, const RenderResult& result
   } else {
     j["error"] = nullptr;
   }
-  return j.dump(2) + "\n";
+  return summary_text(j);
 }
 
 }  // namespace rtiow

@@ -1,6 +1,6 @@
 #pragma once
 // `rtiow render --summary-json FILE`: the render's summary for a script, in one documented
-// schema (docs/usage.md, "A summary for scripts"), where the line on stderr is for people.
+// schema (app/summary_json.h, docs/usage.md), where the line on stderr is for people.
 // Written through the command's claim of FILE (core/io/output_claim.h) after the image, also
 // when a signal or a time limit stopped the render.
 
@@ -10,8 +10,6 @@
 #include "core/render/render_settings.h"
 
 namespace rtiow {
-
-inline constexpr int kRenderSummarySchema = 1;
 
 // The summary as JSON text. `ranks` is 1 outside mpirun; `exit_code` is the command's.
 std::string render_summary_json(const RenderJob& job, const RenderResult& result, int ranks,

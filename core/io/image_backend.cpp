@@ -108,7 +108,8 @@ Loaded load() {
   if (found.backend || !found.error.empty()) return found;
   return {nullptr, std::string("cannot read or write images: ") + kImageBackendFile +
                        " (rtiow's OpenImageIO module) was not found (looked at " + looked +
-                       "and the library path)"};
+                       "and the library path); a program built with find_package(rtiow) writes "
+                       "PNG by itself and links rtiow::image_io for every other format"};
 }
 
 std::once_flag started;

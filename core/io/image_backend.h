@@ -1,8 +1,8 @@
 #pragma once
 // Finding the image backend (core/io/image_file.h) at run time. The backend is a shared
 // library, librtiow_image_io.so, that rtiow does not link: it is looked up
-//   1. among the libraries already loaded (a program that linked it, as rtiow::rtiow's
-//      users do through CMake),
+//   1. among the libraries already loaded (a program that linked it, as users of an
+//      installed rtiow do by linking rtiow::image_io),
 //   2. in the lib directory beside the program's bin directory (the build tree and the
 //      installed layout alike),
 //   3. by name, through the program's run path and the system's library path.

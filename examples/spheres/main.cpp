@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "core/rtiow.h"
+#include <rtiow/rtiow.h>
 
 int main(int argc, char** argv) {
   const char* output = argc > 1 ? argv[1] : "three.png";

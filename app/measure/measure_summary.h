@@ -1,0 +1,35 @@
+#pragma once
+// `rtiow bench --summary-json FILE` and `rtiow accuracy --summary-json FILE`: the measurement's
+// headline figures in the summary schema every command shares (app/summary_json.h; the keys
+// in docs/usage.md), beside the full figures (bench.json, accuracy.json) and the table.
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rtiow {
+
+class OutputClaim;
+
+// --summary-json checked and claimed before the measurement's minutes of work, so a path it
+// cannot write is refused at once (core/io/output_claim.h); null when none was asked for.
+std::unique_ptr<OutputClaim> claim_summary(const std::string& path);
+
+// The files the measurement wrote; a plot is listed only if it was drawn.
+struct MeasureFiles {
+  std::string figures;
+  std::string csv;  // accuracy only
+  std::string plot;
+};
+
+// `results` is what bench.json holds; `seconds` the command's wall time.
+std::string bench_summary_json(const nlohmann::json& results, const MeasureFiles& files,
+                               double seconds);
+
+// `results` is what accuracy.json holds.
+std::string accuracy_summary_json(const nlohmann::json& results, const MeasureFiles& files,
+                                  double seconds);
+
+}  // namespace rtiow
