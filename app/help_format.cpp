@@ -38,7 +38,14 @@ std::string readable_type_name(const std::string& type_name) {
   if (choices != std::string::npos) {
     return type_name.substr(choices + 1, type_name.find('}', choices) - choices);
   }
-  return type_name.substr(0, type_name.find(':'));
+  // CLI11's own names carry what a check added after a colon ("TEXT:FILE"); a name rtiow gave
+  // (HOST:PORT) is shown whole.
+  const std::size_t colon = type_name.find(':');
+  const std::string before = type_name.substr(0, colon);
+  for (const char* cli11 : {"TEXT", "INT", "UINT", "FLOAT", "BOOLEAN", "ENUM"}) {
+    if (before == cli11) return before;
+  }
+  return type_name;
 }
 
 std::size_t help_width() {
@@ -79,7 +86,14 @@ std::string ReadableHelpFormatter::make_option_opts(const CLI::Option* option) c
   std::string text = CLI::Formatter::make_option_opts(option);
   const std::string shown = " " + option->get_type_name();
   if (option->get_option_text().empty() && text.rfind(shown, 0) == 0) {
-    text.replace(0, shown.size(), " " + readable_type_name(option->get_type_name()));
+    const std::string readable = readable_type_name(option->get_type_name());
+    text.replace(0, shown.size(), " " + readable);
+    // A name that spells its values out (X,Y,Z) needs no " x 3" after it.
+    const std::string count = " x " + std::to_string(option->get_expected_max());
+    if (readable.find(',') != std::string::npos &&
+        text.compare(1 + readable.size(), count.size(), count) == 0) {
+      text.erase(1 + readable.size(), count.size());
+    }
   }
   return text;
 }

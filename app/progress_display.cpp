@@ -52,7 +52,7 @@ std::string progress_line(const ProgressStatus& status, const ProgressSnapshot& 
 ProgressDisplay::ProgressDisplay(const RenderProgress& progress, const RenderSettings& settings)
     : progress_(progress),
       settings_(settings),
-      pixels_(std::uint64_t(settings.width) * std::uint64_t(settings.height)),
+      pixels_(std::uint64_t(film_width(settings)) * std::uint64_t(film_height(settings))),
       terminal_(::isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()) {
   try {

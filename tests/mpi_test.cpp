@@ -92,6 +92,18 @@ TEST(Mpi, BadInputIsReportedOnce) {
   EXPECT_EQ(occurrences(slurp(help), "Usage: rtiow render"), 1u) << slurp(help);
 }
 
+// A crop under mpirun: the ranks share its samples, and the file is one process's.
+TEST(Mpi, ACropIsTheSingleProcessCrop) {
+  const fs::path single = output("crop-single.exr"), distributed = output("crop-ranks.exr");
+  const std::string crop = kRender + " --crop 20,10,70,40 -o ";
+  ASSERT_EQ(run(crop + single.string()), 0);
+  std::string err;
+  ASSERT_EQ(run(mpirun(2) + crop + distributed.string(), &err), 0) << err;
+  const std::string a = slurp(single);
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a, slurp(distributed)) << "files differ";
+}
+
 TEST(Mpi, ARankThatDiesEndsTheRun) {
   const fs::path out = output("killed.png");
   const std::string command = mpirun(2) + std::string(RTIOW_BINARY) +
@@ -104,9 +116,9 @@ TEST(Mpi, ARankThatDiesEndsTheRun) {
     // Only the ranks' command lines start with the binary (not mpirun's, timeout's or this
     // shell's), and only theirs hold this seed (not another test's render, running beside this
     // one under ctest -j); the [1] keeps the pattern from matching itself.
-    const std::string pattern =
-        "^" + std::string(RTIOW_BINARY) + " render --scene cover --width 200 --spp 100000 " +
-        "--seed 904200[1]";
+    const std::string pattern = "^" + std::string(RTIOW_BINARY) +
+                                " render --scene cover --width 200 --spp 100000 " +
+                                "--seed 904200[1]";
     std::system(("kill -9 $(pgrep -f '" + pattern + "' | tail -1)").c_str());
   });
   const int status = std::system(("timeout 60 " + command).c_str());

@@ -123,6 +123,62 @@ TEST(Render, SobolAndAdaptiveRendersAreDeterministic) {
   }
 }
 
+// The region of `whole` that `crop` covers.
+Film region_of(const Film& whole, const PixelRegion& crop) {
+  Film region(crop.width(), crop.height());
+  for (int y = 0; y < crop.height(); ++y) {
+    for (int x = 0; x < crop.width(); ++x) region.at(x, y) = whole.at(crop.x0 + x, crop.y0 + y);
+  }
+  return region;
+}
+
+// A crop renders the whole image's pixels in its region, bit for bit: with either sampler, a
+// lens (the defocus scene), 1 or 2 threads or the naive intersector, a share of the samples,
+// and any region (the whole frame, an inner block, one corner pixel, a column).
+TEST(Render, ACropIsTheWholeImagesRegionBitForBit) {
+  const Scene scene = make_builtin_scene("defocus", 1);
+  for (const SamplerKind sampler : {SamplerKind::Independent, SamplerKind::Sobol}) {
+    for (const std::uint64_t first : {std::uint64_t(0), std::uint64_t(3)}) {
+      RenderSettings whole = tiny(scene);
+      whole.sampler = sampler;
+      whole.first_sample = first;
+      whole.samples = FixedSamples{5};
+      const RenderResult full = render(scene, whole);
+      const int w = whole.width, h = whole.height;
+      for (const PixelRegion crop : {PixelRegion{0, 0, w, h}, PixelRegion{3, 2, 17, 11},
+                                     PixelRegion{w - 1, h - 1, w, h}, PixelRegion{5, 0, 6, h}}) {
+        SCOPED_TRACE(to_string(crop) + " " + to_string(sampler) + " from " + std::to_string(first));
+        RenderSettings cropped = whole;
+        cropped.crop = crop;
+        const auto [one, two, naive] = render_three_ways(scene, cropped);
+        const Film expected = region_of(full.film, crop);
+        EXPECT_TRUE(test::bit_identical(one.film, expected));
+        EXPECT_TRUE(test::bit_identical(two.film, expected));
+        EXPECT_TRUE(test::bit_identical(naive.film, expected));
+        EXPECT_EQ(one.pixel_samples.size(), std::size_t(crop.width() * crop.height()));
+      }
+    }
+  }
+}
+
+TEST(Render, ACropOutsideTheFrameOrOfAnAdaptiveRenderIsRefused) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  RenderSettings s = tiny(scene);
+  for (const PixelRegion crop : {PixelRegion{0, 0, s.width + 1, 4}, PixelRegion{4, 4, 4, 8},
+                                 PixelRegion{-1, 0, 3, 3}, PixelRegion{0, 3, 3, 2}}) {
+    s.crop = crop;
+    EXPECT_THROW(render(scene, s), InvalidInput) << to_string(crop);
+  }
+  s.crop = PixelRegion{0, 0, 4, 4};
+  s.samples = PixelErrorTarget{0.1, 64};
+  try {
+    render(scene, s);
+    ADD_FAILURE() << "an adaptive crop was rendered";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("uniform sampling only"), std::string::npos) << e.what();
+  }
+}
+
 // --target-error's contract, exactly: when it ends (no time limit), every pixel below the
 // maximum has a relative standard error pooled from its neighbours (their median) at or below
 // the target, judged on the final image (a later round may reopen a pixel whose neighbours

@@ -189,6 +189,27 @@ class RequestBuilder {
     if (const std::string* least = find(key::kMinSpp)) add(group, "--min-spp", {*least});
   }
 
+  // The image's size, or for a crop the frame's size and the region (replaced by --crop, and
+  // by --width or --height, which make another frame).
+  void add_size(const ImageHeader& header) {
+    namespace key = metadata_key;
+    const std::string* crop = find(key::kCrop);
+    const std::string* frame = find(key::kFrame);
+    if (!crop && !frame) {
+      add("size", "--width", {std::to_string(header.width)});
+      add("size", "--height", {std::to_string(header.height)});
+      return;
+    }
+    const Metadata recorded{{key::kCrop, crop ? *crop : std::string()},
+                            {key::kFrame, frame ? *frame : std::string()}};
+    const FramePlacement place = recorded_placement(recorded, image_);
+    add("size", "--width", {std::to_string(place.frame_width)});
+    add("size", "--height", {std::to_string(place.frame_height)});
+    add("crop", "--crop",
+        {std::to_string(place.x), std::to_string(place.y), std::to_string(place.x + header.width),
+         std::to_string(place.y + header.height)});
+  }
+
   ImageRequest build(const ImageHeader& header) {
     namespace key = metadata_key;
     if (recorded_.empty()) {
@@ -212,8 +233,7 @@ class RequestBuilder {
         add("--scene-seed", "--scene-seed", {*seed});
       }
     }
-    add("size", "--width", {std::to_string(header.width)});
-    add("size", "--height", {std::to_string(header.height)});
+    add_size(header);
     add_samples();
     add("--depth", "--depth", {need(key::kDepth)});
     add("--seed", "--seed", {need(key::kSeed)});
@@ -263,6 +283,7 @@ std::vector<std::string> members(const std::string& group) {
   if (group == "scene") return {"scene_file", "--scene"};
   if (group == "--scene-seed") return {"--scene-seed", "scene_file"};
   if (group == "size") return {"--width", "--height"};
+  if (group == "crop") return {"--crop", "--width", "--height"};
   if (group == "samples") {
     return {"--spp", "--target-error", "--image-error", "--adaptive", "--min-spp", "--time-limit"};
   }

@@ -1,6 +1,7 @@
 #include "app/render/render_command.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <new>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "app/render/render_options.h"
 #include "app/render/render_preview.h"
 #include "app/render/render_summary.h"
+#include "app/render/tev_display.h"
 #include "core/io/atomic_file.h"
 #include "core/io/image_backend.h"
 #include "core/io/output_claim.h"
@@ -70,9 +72,10 @@ void print_summary(const RenderJob& job, const RenderResult& result, const MpiSe
   const int threads = thread_count(s.threads);  // the threads used (core/parallel/thread_count.h)
   const std::string ranks = mpi.distributed() ? std::to_string(mpi.size()) + " ranks x " : "";
   std::fprintf(stderr,
-               "rendered %s %dx%d, %s, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
+               "rendered %s %dx%d%s, %s, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
                "%.2f Mrays/s -> %s\n",
                job.scene.name.c_str(), s.width, s.height,
+               s.crop ? (" crop " + to_string(*s.crop)).c_str() : "",
                describe_outcome(s, result).samples.c_str(), s.max_depth, to_string(s.accel).c_str(),
                ranks.c_str(), threads, threads == 1 ? "" : "s", result.render_seconds, rays,
                rays / result.render_seconds * 1e-6, one_line(job.output).c_str());
@@ -147,7 +150,7 @@ void note_long_request(const RenderJob& job) {
                "rtiow: note: %d spp at %dx%d is %.3g samples, about %.3g days on a 2-core machine; "
                "a signal (Ctrl-C) keeps what is done and --resume continues it, --time-limit "
                "bounds it\n",
-               *spp_option(s.samples), s.width, s.height, samples, days);
+               *spp_option(s.samples), film_width(s), film_height(s), samples, days);
 }
 
 // A signal that arrived where the render could not stop for it (the scene's load, the final
@@ -210,25 +213,39 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   }
   RenderJob& job = *prepared;
   if (const int code = interrupted_outside_render(kBeforeRender)) return code;
-  if (o.preview_seconds > 0.0 && mpi.distributed()) {
-    throw InvalidInput("--preview is for a render in one process, not under mpirun");
+  for (const auto& [watching, option] : {std::pair{o.preview_seconds > 0.0, "--preview"},
+                                         std::pair{!o.display.empty(), "--display"}}) {
+    if (watching && mpi.distributed()) {
+      throw InvalidInput(std::string(option) + " is for a render in one process, not under mpirun");
+    }
+    if (watching && job.share) {
+      throw InvalidInput(std::string(option) +
+                         " shows a whole render; a part file (--part, --sample-range) is a share "
+                         "of one");
+    }
   }
-  if (o.preview_seconds > 0.0 && job.share) {
-    throw InvalidInput(
-        "--preview shows a whole render; a part file (--part, --sample-range) is a share of one");
-  }
+  const std::optional<DisplayAddress> display_address =
+      o.display.empty() ? std::nullopt : std::optional(parse_display_address(o.display));
   if (mpi.rank() == 0) note_long_request(job);
   // Rank 0 writes the output (and, alone, keeps a checkpoint).
   const std::unique_ptr<ClaimedOutputs> claimed =
       mpi.rank() == 0 ? std::make_unique<ClaimedOutputs>(job.output, o.summary_json, o.quiet)
                       : nullptr;
   const std::unique_ptr<CheckpointSession> checkpoint = open_checkpoint(o, job, mpi);
-  // --preview: the output replaced at the checkpoints' safe points between passes.
-  RenderPreview preview(job);
+  // --display: the image in tev, from its first pass to its end.
+  std::unique_ptr<TevDisplay> display;
+  if (display_address) {
+    display = std::make_unique<TevDisplay>(
+        *display_address, std::filesystem::path(job.output).filename().string(),
+        film_width(job.settings), film_height(job.settings), frame_placement(job.settings));
+  }
+  // --preview: the output replaced at the checkpoints' safe points between passes (and
+  // --display shown there, every second unless --preview says otherwise).
+  RenderPreview preview(job, o.preview_seconds > 0.0, display.get());
   std::optional<Checkpointing> watched;
-  if (o.preview_seconds > 0.0) {
-    watched =
-        preview.watching(checkpoint ? checkpoint->checkpointing() : nullptr, o.preview_seconds);
+  if (o.preview_seconds > 0.0 || display) {
+    watched = preview.watching(checkpoint ? checkpoint->checkpointing() : nullptr,
+                               o.preview_seconds > 0.0 ? o.preview_seconds : 1.0);
   }
   const Checkpointing* checkpointing = watched      ? &*watched
                                        : checkpoint ? checkpoint->checkpointing()
@@ -247,6 +264,7 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
     return interrupted_outside_render(kBeforeRender);
   }
   if (mpi.distributed() && !gather_ranks(mpi, job, result, o.stats_channels)) return 0;
+  if (display) display->show(result.film);
   write_or_keep(o, request, job, result, checkpoint.get());
   if (checkpoint) checkpoint->warn_where_kept();  // even when quiet
   int code = 0;

@@ -21,6 +21,7 @@ Vec3d to_vec3(const std::vector<double>& v) {
 RenderRequest request_of(const RenderOptions& o) {
   RenderRequest r;
   r.width = o.width, r.height = o.height;
+  if (!o.crop.empty()) r.crop = PixelRegion{o.crop[0], o.crop[1], o.crop[2], o.crop[3]};
   r.spp = o.spp;
   r.max_depth = o.depth;
   CameraOverrides& cam = r.camera;
@@ -78,6 +79,13 @@ CLI::Option* add_image_options(CLI::App* cmd, RenderOptions& o) {
                   "Image height in pixels, 1 to " + side +
                       " (default: from the width and the scene's "
                       "aspect ratio)");
+  cmd->add_option("--crop", o.crop,
+                  "Render only the region X0,Y0,X1,Y1 of the image (pixels from its top left, "
+                  "X1 and Y1 excluded): each pixel is the whole image's, bit for bit; an EXR "
+                  "keeps the region's place in the frame (uniform sampling only)")
+      ->expected(4)
+      ->delimiter(',')
+      ->type_name("X0,Y0,X1,Y1");
   return output_option;
 }
 
@@ -157,6 +165,11 @@ void add_run_options(CLI::App* cmd, RenderOptions& o) {
                   "samples so far (its metadata says how far), for any viewer that reloads; the "
                   "finished file is the same, byte for byte (0: no preview)")
       ->check(kFiniteNotNegative);
+  cmd->add_option("--display", o.display,
+                  "Watch the render in the tev viewer at HOST:PORT (tev's default: "
+                  "127.0.0.1:14158), sent at each --preview (every second without it) and at the "
+                  "end; an unreachable viewer is a warning, not an error")
+      ->type_name("HOST:PORT");
   cmd->add_option(
       "--sample-range", o.sample_range,
       "Render only samples A:B (from sample A up to, not including, B; B at most --spp, "
@@ -189,11 +202,16 @@ void add_run_options(CLI::App* cmd, RenderOptions& o) {
 void add_camera_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--lookfrom", o.lookfrom, "Camera position x,y,z (overrides the scene)")
       ->expected(3)
-      ->delimiter(',');
+      ->delimiter(',')
+      ->type_name("X,Y,Z");
   cmd->add_option("--lookat", o.lookat, "Point the camera looks at x,y,z")
       ->expected(3)
-      ->delimiter(',');
-  cmd->add_option("--vup", o.vup, "Camera up vector x,y,z")->expected(3)->delimiter(',');
+      ->delimiter(',')
+      ->type_name("X,Y,Z");
+  cmd->add_option("--vup", o.vup, "Camera up vector x,y,z")
+      ->expected(3)
+      ->delimiter(',')
+      ->type_name("X,Y,Z");
   cmd->add_option("--vfov", o.vfov, "Vertical field of view in degrees, in (0, 180)");
   cmd->add_option("--aperture", o.aperture, "Lens diameter (0: pinhole)");
   cmd->add_option("--focus-dist", o.focus_distance, "Distance to the plane in focus");
@@ -206,8 +224,8 @@ void group_options(CLI::App* cmd) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> groups = {
       {"Scene", {"--scene", "--list-scenes", "--like", "--scene-seed"}},
       {"Output",
-       {"-o", "--width", "--height", "--stats-channels", "--reproducible", "-q", "--summary-json",
-        "--preview"}},
+       {"-o", "--width", "--height", "--crop", "--stats-channels", "--reproducible", "-q",
+        "--summary-json", "--preview", "--display"}},
       {"Sampling",
        {"--spp", "--depth", "--seed", "--sampler", "--roulette", "--fresnel", "--adaptive",
         "--image-error", "--target-error", "--min-spp"}},

@@ -22,6 +22,7 @@ struct RenderOptions {
   bool list_scenes = false;
   std::string output;
   std::optional<int> width, height, spp, depth;
+  std::vector<int> crop;  // X0,Y0,X1,Y1, or empty
   std::uint64_t seed = RenderRequest{}.seed;
   int threads = RenderRequest{}.threads;
   std::string accel = to_string(RenderRequest{}.accel);
@@ -37,6 +38,7 @@ struct RenderOptions {
   bool quiet = false;
   std::string summary_json;      // empty: none
   double preview_seconds = 0.0;  // > 0: replace the output with the samples so far this often
+  std::string display;           // HOST:PORT of a tev viewer, or empty
   bool reproducible = false;
   double checkpoint_seconds = 60.0;  // 0: none
   bool resume = false;

@@ -5,6 +5,7 @@
 #include <exception>
 #include <string>
 
+#include "app/render/tev_display.h"
 #include "core/film/sample_sum.h"
 #include "core/io/image_output.h"
 #include "core/limits/error.h"
@@ -23,13 +24,15 @@ void RenderPreview::write(const RenderState& state) {
   const RenderSettings& s = job_.settings;
   const auto& samples = state.pixels.samples;
   RenderResult so_far;
-  so_far.film = Film(s.width, s.height);
+  so_far.film = Film(film_width(s), film_height(s));
   resolve(state.pixels.sums, samples, so_far.film);
   for (std::size_t p = 0; p < samples.size(); ++p) {  // not reached yet (an adaptive first round)
     if (samples[p] == 0)
-      so_far.film.at(int(p % std::size_t(s.width)), int(p / std::size_t(s.width))) =
+      so_far.film.at(int(p % std::size_t(film_width(s))), int(p / std::size_t(film_width(s)))) =
           Color(0.0f, 0.0f, 0.0f);
   }
+  if (display_) display_->show(so_far.film);
+  if (!to_file_) return;
   so_far.pixel_samples = samples;
   so_far.rays_traced = state.rays_traced;
   so_far.render_seconds = state.render_seconds;
@@ -46,7 +49,7 @@ void RenderPreview::write(const RenderState& state) {
                                                     " spp after " + seconds +
                                                     " s; the render goes on");
   try {
-    write_image(job_.output, so_far.film, metadata);
+    write_image(job_.output, so_far.film, metadata, {}, frame_placement(s));
   } catch (const std::exception& e) {
     if (!warned_) {
       std::fprintf(stderr, "rtiow: warning: no preview: %s; the render goes on\n",

@@ -14,18 +14,24 @@
 
 namespace rtiow {
 
+class TevDisplay;
+
 class RenderPreview {
  public:
-  explicit RenderPreview(const RenderJob& job) : job_(job) {}
+  // Replaces the output if `to_file`; shows the image on `display` if there is one (--display).
+  RenderPreview(const RenderJob& job, bool to_file, TevDisplay* display)
+      : job_(job), to_file_(to_file), display_(display) {}
 
   // `base` (a checkpoint's saving and resume, or none) with previews every `seconds` added.
   Checkpointing watching(const Checkpointing* base, double seconds);
 
-  // Replaces the output with `state`'s image.
+  // Replaces the output with `state`'s image, and shows it.
   void write(const RenderState& state);
 
  private:
   const RenderJob& job_;
+  bool to_file_;
+  TevDisplay* display_;
   bool warned_ = false;
 };
 

@@ -19,6 +19,8 @@ std::string render_summary_json(const RenderJob& job, const RenderResult& result
   j["scene"] = job.scene.name;
   j["width"] = s.width;
   j["height"] = s.height;
+  j["crop"] = s.crop ? nlohmann::ordered_json{s.crop->x0, s.crop->y0, s.crop->x1, s.crop->y1}
+                     : nlohmann::ordered_json();
   j["depth"] = s.max_depth;
   j["accelerator"] = to_string(s.accel);
   j["sampler"] = to_string(s.sampler);

@@ -8,6 +8,15 @@
 
 namespace rtiow {
 
+// Where a film lies in the frame the camera sees (a crop): film pixel (x, y) is frame pixel
+// (x + this->x, y + this->y) of a frame_width x frame_height image. Sizes of 0: the film is
+// the whole frame.
+struct FramePlacement {
+  int x = 0, y = 0;
+  int frame_width = 0, frame_height = 0;
+  bool whole() const { return frame_width == 0 && frame_height == 0; }
+};
+
 class Film {
  public:
   Film() = default;

@@ -77,7 +77,7 @@ std::uint8_t encode_gamma2_8bit(float linear) {
 }
 
 void write_image(const std::string& path, const Film& film, const Metadata& metadata,
-                 const std::vector<ExtraChannel>& extra) {
+                 const std::vector<ExtraChannel>& extra, const FramePlacement& placement) {
   const ImageFormat* image = image_format(path);
   if (!image || (!extra.empty() && !image->extra_channels)) {
     throw std::invalid_argument("cannot write '" + path + "': not a format for this image");
@@ -87,6 +87,10 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
   ImageHeader header;
   header.width = header.full_width = film.width();
   header.height = header.full_height = film.height();
+  if (!placement.whole() && image->data_window) {
+    header.x = placement.x, header.y = placement.y;
+    header.full_width = placement.frame_width, header.full_height = placement.frame_height;
+  }
   header.channel_names = {"R", "G", "B"};
   for (const ExtraChannel& e : extra) header.channel_names.push_back(e.name);
   header.channel_types.assign(std::size_t(channels),

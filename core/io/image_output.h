@@ -34,8 +34,11 @@ struct ExtraChannel {
 // then untouched.
 // The format must be one of image_format()'s, and extra channels need one that holds them
 // (throws std::invalid_argument otherwise): check_image_output() refuses both before work.
+// A film that is a crop of a larger frame (`placement`) keeps its place in a format with a
+// data window (EXR: data window at the crop, display window the frame); the others hold the
+// film alone.
 void write_image(const std::string& path, const Film& film, const Metadata& metadata = {},
-                 const std::vector<ExtraChannel>& extra = {});
+                 const std::vector<ExtraChannel>& extra = {}, const FramePlacement& placement = {});
 
 // The book's gamma 2 and 8-bit quantisation, applied to one linear value.
 std::uint8_t encode_gamma2_8bit(float linear);

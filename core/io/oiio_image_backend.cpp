@@ -110,6 +110,12 @@ OIIO::ImageSpec to_spec(const ImageHeader& header) {
     for (const PixelType t : header.channel_types) spec.channelformats.push_back(to_oiio(t));
   }
   spec.format = to_oiio(header.channel_types.front());
+  // A crop: the data window at its place, the display window the whole frame.
+  spec.x = header.x, spec.y = header.y;
+  if (header.full_width > 0 && header.full_height > 0) {
+    spec.full_x = 0, spec.full_y = 0;
+    spec.full_width = header.full_width, spec.full_height = header.full_height;
+  }
   // OpenImageIO stamps EXR and TIFF files with the time of writing unless given a DateTime;
   // an empty one writes none. rtiow's files carry no wall-clock date (the render's time is
   // rtiow:render_seconds, left out by --reproducible), so one job gives one file, byte for

@@ -21,16 +21,16 @@ namespace fs = std::filesystem;
 // image ("null"), and formats that cannot hold RGB as rtiow writes it: only these are real.
 // (PFM is not here: Debian's OpenImageIO 2.4 reads it but has no writer.)
 constexpr std::array<ImageFormat, 10> kFormats{{
-    {".png", false, false, true, Provenance::Attributes},
-    {".jpg", false, false, false, Provenance::Description},
-    {".jpeg", false, false, false, Provenance::Description},
-    {".ppm", false, false, false, Provenance::None},
-    {".bmp", false, false, false, Provenance::None},
-    {".tga", false, false, false, Provenance::None},
-    {".tif", false, false, false, Provenance::Description},
-    {".tiff", false, false, false, Provenance::Description},
-    {".exr", true, true, false, Provenance::Attributes},
-    {".hdr", true, false, false, Provenance::None},
+    {".png", false, false, true, Provenance::Attributes, false},
+    {".jpg", false, false, false, Provenance::Description, false},
+    {".jpeg", false, false, false, Provenance::Description, false},
+    {".ppm", false, false, false, Provenance::None, false},
+    {".bmp", false, false, false, Provenance::None, false},
+    {".tga", false, false, false, Provenance::None, false},
+    {".tif", false, false, false, Provenance::Description, false},
+    {".tiff", false, false, false, Provenance::Description, false},
+    {".exr", true, true, false, Provenance::Attributes, true},
+    {".hdr", true, false, false, Provenance::None, false},
 }};
 
 // Room for what rtiow adds to a name: a checkpoint's ".rtiow-checkpoint", and a temporary's "."

@@ -24,6 +24,7 @@ struct ImageFormat {
   bool extra_channels;  // can hold channels beyond R, G, B (--stats-channels, part files)
   bool own_encoder;     // encoded by rtiow itself (core/io/png_encoder.h), not the image library
   Provenance provenance;
+  bool data_window;  // keeps a crop's place in the frame (a data window inside a display window)
 };
 
 // The format of `path`, or nullptr when rtiow does not write that extension.

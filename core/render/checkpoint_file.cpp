@@ -342,7 +342,9 @@ CheckpointIdentity checkpoint_identity(const Scene& scene, const RenderSettings&
     }
     mode = value + min_spp + spp;
   }
-  return {version(), scene_digest(scene), std::to_string(s.width) + "x" + std::to_string(s.height),
+  return {version(), scene_digest(scene),
+          std::to_string(s.width) + "x" + std::to_string(s.height) +
+              (s.crop ? " crop " + to_string(*s.crop) : ""),
           std::to_string(s.max_depth), std::to_string(s.seed),
           // One sequence draws other samples than two replicates (an older checkpoint's).
           to_string(s.sampler) + (replicates(s) == 1 ? " (one sequence)" : "") +
@@ -432,7 +434,7 @@ std::optional<RenderState> read_checkpoint(const std::string& path,
   }
   // Every field against the request and the limits, before anything is allocated.
   const std::uint64_t expected_pixels =
-      std::uint64_t(settings.width) * std::uint64_t(settings.height);
+      std::uint64_t(film_width(settings)) * std::uint64_t(film_height(settings));
   const std::uint64_t pixels = field_number(header, "pixels", path, limits::kMaxPixels);
   if (pixels != expected_pixels) {
     throw bad_file(path, "holds " + std::to_string(pixels) + " pixels, not the image's " +

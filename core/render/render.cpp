@@ -103,16 +103,46 @@ void check_resumable(const RenderState& state, const RenderSettings& settings) {
   }
 }
 
+// A crop's region inside the frame, and a mode that renders a region as the frame would.
+void validate_crop(const RenderSettings& s) {
+  if (!s.crop) return;
+  const PixelRegion& c = *s.crop;
+  if (c.x0 < 0 || c.y0 < 0 || c.x1 > s.width || c.y1 > s.height || c.x0 >= c.x1 || c.y0 >= c.y1) {
+    throw InvalidInput("crop " + to_string(c) + " is not a region of the " +
+                       std::to_string(s.width) + "x" + std::to_string(s.height) +
+                       " image (X0,Y0,X1,Y1 in pixels from its top left, X1 and Y1 excluded: "
+                       "0 <= X0 < X1 <= width, 0 <= Y0 < Y1 <= height)");
+  }
+  if (is_adaptive(s)) {
+    throw InvalidInput(
+        "a crop renders a region with uniform sampling only: adaptive sampling shares samples out "
+        "by each pixel's neighbours and the whole image, so a region would get other pixels than "
+        "the whole image has there");
+  }
+}
+
+// The settings the sample loop works with: the film's size (a crop's), and where it lies in
+// the frame.
+RenderSettings film_settings(RenderSettings settings) {
+  if (settings.crop) {
+    settings.width = settings.crop->width();
+    settings.height = settings.crop->height();
+    settings.crop.reset();
+  }
+  return settings;
+}
+
 template <typename Accel>
 RenderResult render_with(const Scene& scene, const Camera& camera, const RenderSettings& settings,
-                         RenderProgress* progress, const Checkpointing* checkpointing) {
+                         const FramePlacement& frame, RenderProgress* progress,
+                         const Checkpointing* checkpointing) {
   RenderProgress unobserved;
   if (!progress) progress = &unobserved;
   RenderResult result;
   const auto build_start = Clock::now();
   const Accel accel(scene.spheres);
   result.build_seconds = seconds_since(build_start);
-  const RenderContext<Accel> ctx{scene, camera, accel, settings};
+  const RenderContext<Accel> ctx{scene, camera, accel, settings, frame};
 
   const std::size_t n = std::size_t(settings.width) * std::size_t(settings.height);
   RenderState state =
@@ -155,6 +185,11 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
 
 }  // namespace
 
+std::string to_string(const PixelRegion& region) {
+  return std::to_string(region.x0) + "," + std::to_string(region.y0) + "," +
+         std::to_string(region.x1) + "," + std::to_string(region.y1);
+}
+
 std::string to_string(AccelKind kind) {
   return kind == AccelKind::Embree ? EmbreeAccel::name() : NaiveAccel::name();
 }
@@ -191,6 +226,7 @@ void validate(const RenderSettings& s) {
   if (s.first_sample > 0 && !fixed) {
     throw InvalidInput("a share of a render (its first sample above 0) has a fixed sample count");
   }
+  validate_crop(s);
 }
 
 void validate(const Scene& scene, const RenderSettings& settings) {
@@ -222,13 +258,16 @@ RenderResult render(const Scene& scene, const RenderSettings& asked, RenderProgr
   const IeeeFloatingPoint ieee;  // the checks and the camera too, whatever the caller's settings
   const RenderSettings settings = with_scene_image(scene, asked);
   validate(scene, settings);
-  if (checkpointing && checkpointing->resume) check_resumable(*checkpointing->resume, settings);
+  // The camera sees the whole frame; the sample loop fills the film (a crop of it).
   const Camera camera(scene.camera, settings.width, settings.height);
+  const RenderSettings film = film_settings(settings);
+  const FramePlacement frame = frame_placement(settings);
+  if (checkpointing && checkpointing->resume) check_resumable(*checkpointing->resume, film);
   // The accelerator's build inside the render's thread count too.
-  return with_threads(settings.threads, [&] {
-    return settings.accel == AccelKind::Naive
-               ? render_with<NaiveAccel>(scene, camera, settings, progress, checkpointing)
-               : render_with<EmbreeAccel>(scene, camera, settings, progress, checkpointing);
+  return with_threads(film.threads, [&] {
+    return film.accel == AccelKind::Naive
+               ? render_with<NaiveAccel>(scene, camera, film, frame, progress, checkpointing)
+               : render_with<EmbreeAccel>(scene, camera, film, frame, progress, checkpointing);
   });
 }
 

@@ -135,11 +135,12 @@ void write_job_result(const JobRequest& r, const RenderJob& job, const RenderRes
                       const Metadata& metadata) {
   if (!job.share) {
     write_image(job.output, result.film, metadata,
-                r.stats_channels ? statistics_channels(result) : std::vector<ExtraChannel>{});
+                r.stats_channels ? statistics_channels(result) : std::vector<ExtraChannel>{},
+                frame_placement(job.settings));
     return;
   }
   RenderPart part;
-  part.width = job.settings.width, part.height = job.settings.height;
+  part.width = film_width(job.settings), part.height = film_height(job.settings);
   part.first_sample = job.settings.first_sample;
   part.samples = std::uint64_t(result.samples_completed);
   part.job_samples = job.samples_asked;

@@ -46,13 +46,15 @@ inline int tile_size(int width, int height, int threads) {
 }
 
 // What every per-pixel function needs, passed as one: the scene, its camera, the
-// accelerator built over it and the render's settings.
+// accelerator built over it, the render's settings (their width and height the film's) and
+// where the film lies in the frame (a crop).
 template <typename Accel>
 struct RenderContext {
   const Scene& scene;
   const Camera& camera;
   const Accel& accel;
   const RenderSettings& settings;
+  FramePlacement frame{};
 };
 
 // A run of pixels of one row that all go from the same count to the same count: the unit
@@ -85,11 +87,17 @@ template <typename Accel>
                                                                    RunAccumulators out) {
   const RenderSettings& settings = ctx.settings;
   const Camera& camera = ctx.camera;
-  const float inv_w = 1.0f / float(settings.width), inv_h = 1.0f / float(settings.height);
+  // The frame's pixel the film's stands for: its samples and its camera rays are the ones the
+  // whole frame's render gives it.
+  const FramePlacement& frame = ctx.frame;
+  const int frame_width = frame.frame_width > 0 ? frame.frame_width : settings.width;
+  const int frame_height = frame.frame_height > 0 ? frame.frame_height : settings.height;
+  const float inv_w = 1.0f / float(frame_width), inv_h = 1.0f / float(frame_height);
+  const int x0 = run.x + frame.x, y = run.y + frame.y;
   std::array<std::optional<PixelSampler>, kTileSize> samplers;
   for (int j = 0; j < run.length; ++j) {
-    samplers[std::size_t(j)].emplace(settings.sampler, settings.seed, std::uint32_t(run.x + j),
-                                     std::uint32_t(run.y), replicates(settings));
+    samplers[std::size_t(j)].emplace(settings.sampler, settings.seed, std::uint32_t(x0 + j),
+                                     std::uint32_t(y), replicates(settings));
   }
   std::array<std::optional<SampleStream>, kRayPacketSize> streams;
   std::array<int, kRayPacketSize> owner;            // the pixel of the run each sample belongs to
@@ -109,8 +117,8 @@ template <typename Accel>
       const auto k = std::size_t(count);
       SampleStream& rng = streams[k].emplace(*samplers[std::size_t(pixel)], i);
       const std::array<float, 4> u = rng.next_camera();  // a pinhole ignores the lens's two
-      lanes.s[k] = (float(run.x + pixel) + u[0]) * inv_w;
-      lanes.t[k] = (float(run.y) + u[1]) * inv_h;
+      lanes.s[k] = (float(x0 + pixel) + u[0]) * inv_w;
+      lanes.t[k] = (float(y) + u[1]) * inv_h;
       lanes.lens_u[k] = u[2], lanes.lens_v[k] = u[3];
       owner[k] = pixel;
       index[k] = i;

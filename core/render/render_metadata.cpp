@@ -1,9 +1,12 @@
 #include "core/render/render_metadata.h"
 
 #include <charconv>
+#include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
+#include "core/limits/error.h"
 #include "core/limits/input_limits.h"
 #include "core/render/render_outcome.h"
 #include "core/scene_file/scene_digest.h"
@@ -54,6 +57,10 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
   if (const std::string fresnel = glass_reflectance(scene); !fresnel.empty())
     metadata.emplace_back(key::kFresnel, fresnel);
   if (scene.layout_seed) metadata.emplace_back(key::kSceneSeed, std::int64_t(*scene.layout_seed));
+  if (s.crop) {
+    metadata.emplace_back(key::kCrop, to_string(*s.crop));
+    metadata.emplace_back(key::kFrame, std::to_string(s.width) + "x" + std::to_string(s.height));
+  }
   metadata.insert(metadata.end(), {
                                       {key::kDepth, std::int64_t(s.max_depth)},
                                       {key::kSeed, std::int64_t(s.seed)},
@@ -100,6 +107,53 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
   if (!outcome.stopped.empty()) metadata.emplace_back(key::kStopped, outcome.stopped);
   if (!reproducible) metadata.emplace_back(key::kRenderSeconds, r.render_seconds);
   return metadata;
+}
+
+namespace {
+
+// Whole numbers separated by `separator`, exactly `count` of them, each within [0, limit].
+std::optional<std::vector<int>> numbers(const std::string& text, char separator, std::size_t count,
+                                        int limit) {
+  std::vector<int> values;
+  const char* at = text.data();
+  const char* end = text.data() + text.size();
+  while (values.size() < count) {
+    int value = 0;
+    const auto [next, error] = std::from_chars(at, end, value);
+    if (error != std::errc() || value < 0 || value > limit) return std::nullopt;
+    values.push_back(value);
+    at = next;
+    if (values.size() < count) {
+      if (at == end || *at != separator) return std::nullopt;
+      ++at;
+    }
+  }
+  if (at != end) return std::nullopt;
+  return values;
+}
+
+}  // namespace
+
+FramePlacement recorded_placement(const Metadata& metadata, const std::string& source) {
+  const std::string* crop = nullptr;
+  const std::string* frame = nullptr;
+  for (const auto& [key, value] : metadata) {
+    if (key == metadata_key::kCrop) crop = std::get_if<std::string>(&value);
+    if (key == metadata_key::kFrame) frame = std::get_if<std::string>(&value);
+  }
+  if (!crop && !frame) return {};
+  const auto region =
+      crop ? numbers(*crop, ',', 4, limits::kMaxImageSide) : std::optional<std::vector<int>>();
+  const auto size =
+      frame ? numbers(*frame, 'x', 2, limits::kMaxImageSide) : std::optional<std::vector<int>>();
+  if (!region || !size || (*region)[0] >= (*region)[2] || (*region)[1] >= (*region)[3] ||
+      (*region)[2] > (*size)[0] || (*region)[3] > (*size)[1]) {
+    throw InvalidInput(source + ": " + kMetadataPrefix + metadata_key::kCrop + " " +
+                       quote_value(crop ? *crop : "") + " and " + kMetadataPrefix +
+                       metadata_key::kFrame + " " + quote_value(frame ? *frame : "") +
+                       " are not a region of a frame");
+  }
+  return {(*region)[0], (*region)[1], (*size)[0], (*size)[1]};
 }
 
 }  // namespace rtiow

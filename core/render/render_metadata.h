@@ -46,6 +46,10 @@ inline constexpr const char* kSceneDigest = "scene_digest";
 inline constexpr const char* kCamera = "camera";
 inline constexpr const char* kFresnel = "fresnel";
 inline constexpr const char* kSceneFile = "scene_file";  // the file it was read from, if any
+// A crop: its region as --crop takes it ("X0,Y0,X1,Y1") and the frame it is a region of
+// ("WIDTHxHEIGHT"); the image's own size is the region's.
+inline constexpr const char* kCrop = "crop";
+inline constexpr const char* kFrame = "frame";
 
 }  // namespace rtiow::metadata_key
 
@@ -55,5 +59,10 @@ namespace rtiow {
 // scene, settings and seed give a byte-identical file.
 Metadata render_metadata(const Scene& scene, const RenderSettings& settings,
                          const RenderResult& result, bool reproducible);
+
+// The crop the metadata records (kCrop, kFrame), as a place in the frame; the whole frame
+// where it records none. Throws InvalidInput, naming `source`, where they cannot be read or
+// the region does not fit the frame.
+FramePlacement recorded_placement(const Metadata& metadata, const std::string& source);
 
 }  // namespace rtiow

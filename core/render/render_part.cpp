@@ -93,6 +93,7 @@ std::string render_digest(const Scene& scene, const RenderSettings& settings) {
     text.append("|").append(std::to_string(v));
   }
   text.append("|").append(to_string(settings.sampler));
+  if (settings.crop) text.append("|crop ").append(to_string(*settings.crop));
   if (replicates(settings) == 1) text.append("|one sequence");  // other samples than replicates'
   if (!settings.russian_roulette) text.append("|no roulette");
   std::uint64_t h = 0x6a09e667f3bcc908ull;

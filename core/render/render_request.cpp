@@ -104,6 +104,7 @@ ResolvedRender resolve(Scene scene, const RenderRequest& r) {
     s.height =
         derived_side(s.width, height_for_width(s.width, image.aspect_ratio), "height", "--width");
   }
+  s.crop = r.crop;
   s.samples = budget_asked(r, image);
   s.max_depth = r.max_depth.value_or(image.max_depth);
   s.seed = r.seed;

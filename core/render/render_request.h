@@ -22,6 +22,7 @@ struct CameraOverrides {
 struct RenderRequest {
   // Empty: the scene's. With only one side given, the other follows the scene's aspect ratio.
   std::optional<int> width, height;
+  std::optional<PixelRegion> crop;  // of the width x height image (RenderSettings::crop)
   // As --spp: with an error target the most a pixel takes (empty: kDefaultErrorDrivenMaxSpp),
   // with `adaptive` a budget of that many uniform samples (empty: the time limit's, or the
   // scene's count), otherwise every pixel's count (empty: as the time limit allows, or the

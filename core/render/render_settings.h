@@ -21,6 +21,17 @@ namespace rtiow {
 
 enum class AccelKind { Embree, Naive };
 
+// A region of the frame, in pixels: columns [x0, x1) and rows [y0, y1), row 0 at the top.
+struct PixelRegion {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  bool operator==(const PixelRegion&) const = default;
+};
+
+// As --crop and the metadata write it: "X0,Y0,X1,Y1".
+std::string to_string(const PixelRegion& region);
+
 std::string to_string(AccelKind kind);
 AccelKind parse_accel(const std::string& name);  // throws InvalidInput
 
@@ -29,6 +40,10 @@ struct RenderSettings {
   // side not given follows from the other and the scene's aspect ratio.
   int width = 0;
   int height = 0;
+  // Render only this region of the width x height frame: the film holds the region's pixels,
+  // each the same bits the whole frame's render gives it (uniform sampling only: an adaptive
+  // pixel's samples depend on pixels outside any region).
+  std::optional<PixelRegion> crop;
   // How many samples per pixel and what ends the render (core/render/sample_budget.h); a
   // count of 0 is the scene's samples_per_pixel...
   SampleBudget samples = FixedSamples{0};
@@ -56,6 +71,20 @@ inline std::string roulette_name(bool russian_roulette) {
   return russian_roulette ? "on" : "off";
 }
 
+// The film's size: the crop's, or the frame's.
+inline int film_width(const RenderSettings& s) {
+  return s.crop ? s.crop->width() : s.width;
+}
+inline int film_height(const RenderSettings& s) {
+  return s.crop ? s.crop->height() : s.height;
+}
+
+// Where the film lies in the frame: a crop's place, or the whole frame.
+inline FramePlacement frame_placement(const RenderSettings& s) {
+  if (!s.crop) return {};
+  return {s.crop->x0, s.crop->y0, s.width, s.height};
+}
+
 // Whether pixels get different sample counts (any adaptive mode).
 inline bool is_adaptive(const RenderSettings& s) {
   return is_adaptive(s.samples);
@@ -78,7 +107,8 @@ inline int replicates(const RenderSettings& s) {
 inline std::optional<std::uint64_t> uniform_total_samples(const RenderSettings& s) {
   const auto* fixed = std::get_if<FixedSamples>(&s.samples);
   if (!fixed) return std::nullopt;
-  return std::uint64_t(s.width) * std::uint64_t(s.height) * std::uint64_t(fixed->per_pixel);
+  return std::uint64_t(film_width(s)) * std::uint64_t(film_height(s)) *
+         std::uint64_t(fixed->per_pixel);
 }
 
 // Throws InvalidInput naming the setting: non-positive size or spp, negative depth,
