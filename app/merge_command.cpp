@@ -70,7 +70,8 @@ int run_merge(const MergeOptions& o) {
   const MergedRender merged = merge_parts(parts);
   write_image(o.output, merged.film, merged.metadata,
               o.stats_channels ? merged_statistics(merged, parts) : std::vector<ExtraChannel>{},
-              recorded_placement(merged.metadata, "part " + quote_value(o.parts.front())));
+              recorded_placement(merged.metadata, "part " + quote_value(o.parts.front()),
+                                 merged.film.width(), merged.film.height()));
   if (!o.quiet) {
     std::fprintf(stderr, "merged %zu parts: %dx%d, %llu spp -> %s\n", parts.size(),
                  merged.film.width(), merged.film.height(),

@@ -1469,7 +1469,9 @@ TEST(Cli, LikeRefusesWhatItCannotRenderAgain) {
        std::vector<std::pair<std::string, std::string>>{{"rtiow:spp", "ten"},
                                                         {"rtiow:sampler", "bogus"},
                                                         {"rtiow:camera", "--lookfrom nan,1,1"},
-                                                        {"rtiow:camera", "--lookfrom 1,2"}}) {
+                                                        {"rtiow:camera", "--lookfrom 1,2"},
+                                                        {"rtiow:crop", "0,0,5,5"},
+                                                        {"rtiow:frame", "16x9"}}) {
     SCOPED_TRACE(key + "=" + value);
     const fs::path edited = output_path("like-hostile.png");
     OIIO::ImageBuf buffer(base.string());

@@ -202,7 +202,7 @@ class RequestBuilder {
     }
     const Metadata recorded{{key::kCrop, crop ? *crop : std::string()},
                             {key::kFrame, frame ? *frame : std::string()}};
-    const FramePlacement place = recorded_placement(recorded, image_);
+    const FramePlacement place = recorded_placement(recorded, image_, header.width, header.height);
     add("size", "--width", {std::to_string(place.frame_width)});
     add("size", "--height", {std::to_string(place.frame_height)});
     add("crop", "--crop",

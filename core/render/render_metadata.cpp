@@ -134,7 +134,8 @@ std::optional<std::vector<int>> numbers(const std::string& text, char separator,
 
 }  // namespace
 
-FramePlacement recorded_placement(const Metadata& metadata, const std::string& source) {
+FramePlacement recorded_placement(const Metadata& metadata, const std::string& source, int width,
+                                  int height) {
   const std::string* crop = nullptr;
   const std::string* frame = nullptr;
   for (const auto& [key, value] : metadata) {
@@ -152,6 +153,11 @@ FramePlacement recorded_placement(const Metadata& metadata, const std::string& s
                        quote_value(crop ? *crop : "") + " and " + kMetadataPrefix +
                        metadata_key::kFrame + " " + quote_value(frame ? *frame : "") +
                        " are not a region of a frame");
+  }
+  if ((*region)[2] - (*region)[0] != width || (*region)[3] - (*region)[1] != height) {
+    throw InvalidInput(source + ": " + kMetadataPrefix + metadata_key::kCrop + " " +
+                       quote_value(*crop) + " is not the " + std::to_string(width) + "x" +
+                       std::to_string(height) + " image's region");
   }
   return {(*region)[0], (*region)[1], (*size)[0], (*size)[1]};
 }

@@ -60,9 +60,11 @@ namespace rtiow {
 Metadata render_metadata(const Scene& scene, const RenderSettings& settings,
                          const RenderResult& result, bool reproducible);
 
-// The crop the metadata records (kCrop, kFrame), as a place in the frame; the whole frame
-// where it records none. Throws InvalidInput, naming `source`, where they cannot be read or
-// the region does not fit the frame.
-FramePlacement recorded_placement(const Metadata& metadata, const std::string& source);
+// The crop the metadata of a `width` x `height` image records (kCrop, kFrame), as a place in
+// the frame; the whole frame where it records none. Throws InvalidInput, naming `source`,
+// where they cannot be read, the region does not fit the frame, or the image is not the
+// region's size.
+FramePlacement recorded_placement(const Metadata& metadata, const std::string& source, int width,
+                                  int height);
 
 }  // namespace rtiow
