@@ -68,14 +68,31 @@ int run_merge(const MergeOptions& o) {
   std::vector<RenderPart> parts;
   for (const std::string& path : o.parts) parts.push_back(read_part(path));
   const MergedRender merged = merge_parts(parts);
-  write_image(o.output, merged.film, merged.metadata,
-              o.stats_channels ? merged_statistics(merged, parts) : std::vector<ExtraChannel>{},
+  std::vector<ExtraChannel> channels =
+      o.stats_channels ? merged_statistics(merged, parts) : std::vector<ExtraChannel>{};
+  // The passes the parts were rendered with, where the output holds them.
+  const bool passes = merged.passes.any() && format && format->extra_channels;
+  if (passes) {
+    const RenderResult whole = merged_result(merged, SamplerKind::Independent, kReplicates);
+    for (ExtraChannel& c : pass_channels(whole, merged.passes)) channels.push_back(std::move(c));
+  } else if (merged.passes.any()) {
+    std::fprintf(stderr,
+                 "rtiow: warning: the parts hold the passes %s, which %s cannot: merge to .exr "
+                 "to keep them\n",
+                 to_string(merged.passes).c_str(), quote_value(o.output).c_str());
+  }
+  Metadata metadata = merged.metadata;
+  if (!passes) {
+    std::erase_if(metadata, [](const auto& entry) { return entry.first == metadata_key::kPasses; });
+  }
+  write_image(o.output, merged.film, metadata, channels,
               recorded_placement(merged.metadata, "part " + quote_value(o.parts.front()),
                                  merged.film.width(), merged.film.height()));
   if (!o.quiet) {
-    std::fprintf(stderr, "merged %zu parts: %dx%d, %llu spp -> %s\n", parts.size(),
-                 merged.film.width(), merged.film.height(),
-                 static_cast<unsigned long long>(merged.samples), one_line(o.output).c_str());
+    std::fprintf(
+        stderr, "merged %zu parts: %dx%d, %llu spp%s -> %s\n", parts.size(), merged.film.width(),
+        merged.film.height(), static_cast<unsigned long long>(merged.samples),
+        passes ? (", passes " + to_string(merged.passes)).c_str() : "", one_line(o.output).c_str());
   }
   return 0;
 }

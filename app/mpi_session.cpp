@@ -19,7 +19,7 @@ bool launched_by_mpi() {
   return false;
 }
 
-// Exact per-pixel sums (PixelSum, PixelSpread) add in any order to the same bits.
+// Exact per-pixel sums (PixelSum, PixelSpread, FirstHitSum) add in any order to the same bits.
 template <typename Exact>
 void add_exact(void* in, void* inout, int* count, MPI_Datatype*) {
   auto* into = static_cast<Exact*>(inout);
@@ -62,10 +62,12 @@ MpiSession::~MpiSession() {
   if (initialized_) MPI_Finalize();
 }
 
-void MpiSession::reduce_sums(std::vector<PixelSum>& sums, std::vector<PixelSpread>* spreads) const {
+void MpiSession::reduce_sums(std::vector<PixelSum>& sums, std::vector<PixelSpread>* spreads,
+                             std::vector<FirstHitSum>* first_hits) const {
   if (!distributed()) return;
   reduce_exact(rank_, sums);
   if (spreads) reduce_exact(rank_, *spreads);
+  if (first_hits) reduce_exact(rank_, *first_hits);
 }
 
 std::uint64_t MpiSession::reduce_sum(std::uint64_t value) const {
@@ -91,7 +93,8 @@ void MpiSession::abort(int code) const {
 
 MpiSession::MpiSession(int&, char**&) {}
 MpiSession::~MpiSession() = default;
-void MpiSession::reduce_sums(std::vector<PixelSum>&, std::vector<PixelSpread>*) const {}
+void MpiSession::reduce_sums(std::vector<PixelSum>&, std::vector<PixelSpread>*,
+                             std::vector<FirstHitSum>*) const {}
 std::uint64_t MpiSession::reduce_sum(std::uint64_t value) const {
   return value;
 }

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/film/first_hit_sum.h"
 #include "core/film/pixel_variance.h"
 #include "core/film/sample_sum.h"
 
@@ -28,9 +29,10 @@ class MpiSession {
   int size() const { return size_; }
   bool distributed() const { return size_ > 1; }
 
-  // Adds every rank's sums, and spreads if given, into rank 0's (the others' are left as
-  // they were).
-  void reduce_sums(std::vector<PixelSum>& sums, std::vector<PixelSpread>* spreads) const;
+  // Adds every rank's sums, and spreads and the passes' sums if given, into rank 0's (the
+  // others' are left as they were).
+  void reduce_sums(std::vector<PixelSum>& sums, std::vector<PixelSpread>* spreads,
+                   std::vector<FirstHitSum>* first_hits = nullptr) const;
   // Sum and maximum over ranks, delivered on rank 0.
   std::uint64_t reduce_sum(std::uint64_t value) const;
   double reduce_max(double value) const;

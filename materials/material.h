@@ -64,6 +64,18 @@ inline unsigned bounce_uses(const Material& material) {
   return visit_material(material, [](const auto& m) { return bounce_uses(m); });
 }
 
+// The material's colour, for the albedo pass: the albedo it is given, or white for one that
+// absorbs nothing (glass).
+inline Color albedo(const Material& material) {
+  return visit_material(material, [](const auto& m) {
+    if constexpr (requires { m.albedo; }) {
+      return m.albedo;
+    } else {
+      return Color{1.0f, 1.0f, 1.0f};
+    }
+  });
+}
+
 // Samples the scattered ray from the bounce's uniforms; none when the ray is absorbed.
 inline std::optional<Scattered> scatter(const Material& material, const Vec3& in_direction,
                                         const SurfaceHit& hit, const BounceSample& u) {

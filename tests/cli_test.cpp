@@ -861,6 +861,108 @@ TEST(Cli, ACropRendersTheWholeImagesPixelsInEveryWayARenderIsMade) {
   EXPECT_FALSE(fs::exists(at("outside.png")) || fs::exists(at("adaptive.png")));
 }
 
+// Channel `name` of an EXR, one float a pixel; empty when the file or the channel is missing.
+std::vector<float> exr_channel(const fs::path& path, const std::string& name) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) return {};
+  const int c = in->spec().channelindex(name);
+  if (c < 0) return {};
+  std::vector<float> values(std::size_t(in->spec().width) * std::size_t(in->spec().height));
+  in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, values.data());
+  return values;
+}
+
+// --passes: the albedo, normal and depth channels beside an EXR's image, which they leave as it
+// was; merged from parts, resumed from a checkpoint and repeated with --like to the same bytes
+// as one render; refused where no channel fits, and a checkpoint without them is not resumed.
+TEST(Cli, PassesAreWrittenBesideTheImageAndCombineLikeIt) {
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "passes";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto at = [&](const std::string& name) { return (dir / name).string(); };
+  const std::string base = "render -q --scene cover --width 64 --reproducible ";
+  const std::string passes = " --passes albedo,normal,depth";
+  CommandResult r = run_rtiow(base + "--spp 6" + passes + " -o " + at("full.exr") +
+                              " --summary-json " + at("summary.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  ASSERT_EQ(run_rtiow(base + "--spp 6 -o " + at("plain.exr")).exit_code, 0);
+  int width = 0, height = 0, w = 0, h = 0;
+  EXPECT_EQ(exr_pixels(at("full.exr"), width, height), exr_pixels(at("plain.exr"), w, h))
+      << "the passes changed the image";
+  {
+    auto in = OIIO::ImageInput::open(at("full.exr"));
+    ASSERT_TRUE(in);
+    std::vector<std::string> names = in->spec().channelnames;
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"B", "G", "N.X", "N.Y", "N.Z", "R", "Z", "albedo.B",
+                                               "albedo.G", "albedo.R"}));
+    EXPECT_EQ(in->spec().get_string_attribute("rtiow:passes"), "albedo,normal,depth");
+  }
+  // The cover's top-left pixel is sky: all 0; much of its bottom row sees only the ground: its
+  // albedo of 0.5, the normal +y, and a distance.
+  const std::vector<float> depth = exr_channel(at("full.exr"), "Z");
+  const std::vector<float> ny = exr_channel(at("full.exr"), "N.Y");
+  const std::vector<float> albedo = exr_channel(at("full.exr"), "albedo.G");
+  ASSERT_EQ(depth.size(), std::size_t(width * height));
+  EXPECT_EQ(depth[0], 0.0f);
+  EXPECT_EQ(ny[0], 0.0f);
+  EXPECT_EQ(albedo[0], 0.0f);
+  int ground = 0;
+  for (int x = 0; x < width; ++x) {
+    const std::size_t p = std::size_t((height - 1) * width + x);
+    if (albedo[p] == 0.5f && ny[p] > 0.9999f && depth[p] > 1.0f) ++ground;
+  }
+  EXPECT_GT(ground, width / 3);
+  const auto summary = nlohmann::json::parse(slurp(at("summary.json")));
+  EXPECT_EQ(summary["passes"], nlohmann::json({"albedo", "normal", "depth"}));
+
+  // Two parts, merged: the one render's file, byte for byte.
+  for (const char* part : {"0/2", "1/2"}) {
+    r = run_rtiow(base + "--spp 6" + passes + " --part " + part + " -o " +
+                  at(std::string("part") + part[0] + ".exr"));
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  }
+  r = run_rtiow("merge -q " + at("part0.exr") + " " + at("part1.exr") + " -o " + at("merged.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_EQ(slurp(at("merged.exr")), slurp(at("full.exr"))) << "merged parts differ";
+  // A part without the passes does not merge with one that has them.
+  ASSERT_EQ(run_rtiow(base + "--spp 6 --part 1/2 -o " + at("bare.exr")).exit_code, 0);
+  r = run_rtiow("merge -q " + at("part0.exr") + " " + at("bare.exr") + " -o " + at("no.exr"));
+  EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("with the same passes"), std::string::npos) << r.stderr_text;
+  EXPECT_FALSE(fs::exists(at("no.exr")));
+
+  // Resumed from a kept checkpoint: 3 spp kept, refined to 6.
+  ASSERT_EQ(
+      run_rtiow(base + "--spp 3 --keep-state" + passes + " -o " + at("resumed.exr")).exit_code, 0);
+  r = run_rtiow(base + "--spp 6 --resume" + passes + " -o " + at("resumed.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_EQ(slurp(at("resumed.exr")), slurp(at("full.exr"))) << "the resumed passes differ";
+  // A checkpoint kept without the passes has no sums for them: refused by name.
+  ASSERT_EQ(run_rtiow(base + "--spp 3 --keep-state -o " + at("bare_state.exr")).exit_code, 0);
+  r = run_rtiow(base + "--spp 6 --resume" + passes + " -o " + at("bare_state.exr"));
+  EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("passes (--passes): the checkpoint's 'none'"), std::string::npos)
+      << r.stderr_text;
+
+  // Again from the image's own record; into a PNG, which holds no passes, the image alone.
+  r = run_rtiow("render -q --like " + at("full.exr") + " -o " + at("like.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_EQ(slurp(at("like.exr")), slurp(at("full.exr"))) << "--like lost the passes";
+  r = run_rtiow("render -q --like " + at("full.exr") + " -o " + at("like.png"));
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+
+  // Refused before any work: a format without channels, an unknown pass.
+  r = run_rtiow(base + "--spp 1" + passes + " -o " + at("passes.png"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("--passes: output"), std::string::npos) << r.stderr_text;
+  r = run_rtiow(base + "--spp 1 --passes albedo,depht -o " + at("typo.exr"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("unknown pass 'depht'; did you mean depth?"), std::string::npos)
+      << r.stderr_text;
+  EXPECT_FALSE(fs::exists(at("passes.png")) || fs::exists(at("typo.exr")));
+}
+
 // The viewer's end of --display: a tev that accepts one connection on 127.0.0.1 and keeps
 // every byte it is sent, until the sender closes (or a minute passes).
 class FakeTev {

@@ -93,9 +93,10 @@ TEST(Mpi, BadInputIsReportedOnce) {
 }
 
 // A crop under mpirun: the ranks share its samples, and the file is one process's.
+// A crop with the passes: the ranks' pass sums add to one process's too.
 TEST(Mpi, ACropIsTheSingleProcessCrop) {
   const fs::path single = output("crop-single.exr"), distributed = output("crop-ranks.exr");
-  const std::string crop = kRender + " --crop 20,10,70,40 -o ";
+  const std::string crop = kRender + " --crop 20,10,70,40 --passes albedo,normal,depth -o ";
   ASSERT_EQ(run(crop + single.string()), 0);
   std::string err;
   ASSERT_EQ(run(mpirun(2) + crop + distributed.string(), &err), 0) << err;

@@ -256,6 +256,15 @@ class RequestBuilder {
         (replicates && *replicates == "2" && (find(key::kSpp) || find(key::kAdaptive)))) {
       add("--stats-channels", "--stats-channels", {});
     }
+    if (const std::string* passes = find(key::kPasses)) {
+      try {
+        parse_passes(*passes);
+      } catch (const InvalidInput&) {
+        refuse(std::string(kMetadataPrefix) + key::kPasses + " " + quote_value(*passes) +
+               " is not a list of passes (" + pass_names() + ")");
+      }
+      add("--passes", "--passes", {*passes});
+    }
     if (!find(key::kRenderSeconds)) add("--reproducible", "--reproducible", {});
     return std::move(request_);
   }
@@ -297,13 +306,19 @@ bool given(CLI::App& render, const std::string& group) {
   return false;
 }
 
-// Two replicates give other pixels than one sequence, and only .exr holds the channels that
-// --stats-channels adds: the image's pixels are rendered again only into an .exr.
-void check_room_for_replicates(CLI::App& render) {
+// Whether the output holds channels beyond R, G, B: the passes an image recorded are written
+// again there, and left out of a format that cannot hold them (they never change the image).
+bool output_holds_channels(CLI::App& render) {
   CLI::Option* output = render.get_option("--output");
   const ImageFormat* format =
       output->count() > 0 ? image_format(output->as<std::string>()) : nullptr;
-  if (format && format->extra_channels) return;
+  return format && format->extra_channels;
+}
+
+// Two replicates give other pixels than one sequence, and only .exr holds the channels that
+// --stats-channels adds: the image's pixels are rendered again only into an .exr.
+void check_room_for_replicates(CLI::App& render) {
+  if (output_holds_channels(render)) return;
   const std::string image = render.get_option("--like")->as<std::string>();
   throw InvalidInput("--like image " + quote_value(image) +
                      " was rendered with --stats-channels, whose two replicates give other "
@@ -340,6 +355,7 @@ bool apply_image_request(const ImageRequest& request, CLI::App& render) {
     if (!o->unrepeatable.empty()) throw InvalidInput(o->unrepeatable);
     CLI::Option* option = render.get_option(o->name);
     if (o->name == "--stats-channels") check_room_for_replicates(render);
+    if (o->name == "--passes" && !output_holds_channels(render)) continue;
     try {
       if (o->values.empty()) {
         option->add_result(std::string("true"));  // a flag

@@ -57,7 +57,8 @@ bool gather_ranks(const MpiSession& mpi, RenderJob& job, RenderResult& result, b
   const std::uint64_t done = mpi.reduce_sum(std::uint64_t(result.samples_completed));
   result.rays_traced = mpi.reduce_sum(result.rays_traced);
   result.render_seconds = mpi.reduce_max(result.render_seconds);
-  mpi.reduce_sums(result.sums, spreads ? &result.spreads : nullptr);
+  mpi.reduce_sums(result.sums, spreads ? &result.spreads : nullptr,
+                  job.settings.passes.any() ? &result.first_hits : nullptr);
   if (mpi.rank() != 0) return false;
   result.stopped = done < job.samples_asked;
   complete_from_shares(done, result);

@@ -7,6 +7,7 @@
 
 #include "app/cli_checks.h"
 #include "core/io/output_path.h"
+#include "core/limits/error.h"
 #include "core/limits/input_limits.h"
 #include "core/render/render_request.h"
 
@@ -41,6 +42,13 @@ RenderRequest request_of(const RenderOptions& o) {
   r.min_samples = o.min_spp;
   r.estimate_error = o.stats_channels;
   r.russian_roulette = o.roulette == roulette_name(true);  // CLI11 checked it is on or off
+  if (!o.passes.empty()) {
+    try {
+      r.passes = parse_passes(o.passes);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(std::string("--passes: ") + e.what());
+    }
+  }
   return r;
 }
 
@@ -86,6 +94,11 @@ CLI::Option* add_image_options(CLI::App* cmd, RenderOptions& o) {
       ->expected(4)
       ->delimiter(',')
       ->type_name("X0,Y0,X1,Y1");
+  cmd->add_option("--passes", o.passes,
+                  "Add the first hit's passes to an .exr output, any of albedo, normal and depth "
+                  "(channels albedo.R/G/B, N.X/Y/Z, Z), each the mean over the pixel's samples; "
+                  "0 where a sample saw the sky")
+      ->type_name("LIST");
   return output_option;
 }
 
@@ -224,8 +237,8 @@ void group_options(CLI::App* cmd) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> groups = {
       {"Scene", {"--scene", "--list-scenes", "--like", "--scene-seed"}},
       {"Output",
-       {"-o", "--width", "--height", "--crop", "--stats-channels", "--reproducible", "-q",
-        "--summary-json", "--preview", "--display"}},
+       {"-o", "--width", "--height", "--crop", "--passes", "--stats-channels", "--reproducible",
+        "-q", "--summary-json", "--preview", "--display"}},
       {"Sampling",
        {"--spp", "--depth", "--seed", "--sampler", "--roulette", "--fresnel", "--adaptive",
         "--image-error", "--target-error", "--min-spp"}},

@@ -35,6 +35,7 @@ struct RenderOptions {
   bool adaptive = false;
   int min_spp = RenderRequest{}.min_samples;
   bool stats_channels = false;
+  std::string passes;  // "albedo,normal,depth" or a part of it; empty: none
   bool quiet = false;
   std::string summary_json;      // empty: none
   double preview_seconds = 0.0;  // > 0: replace the output with the samples so far this often

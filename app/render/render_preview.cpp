@@ -49,7 +49,9 @@ void RenderPreview::write(const RenderState& state) {
                                                     " spp after " + seconds +
                                                     " s; the render goes on");
   try {
-    write_image(job_.output, so_far.film, metadata, {}, frame_placement(s));
+    so_far.first_hits = state.pixels.first_hits;
+    write_image(job_.output, so_far.film, metadata, pass_channels(so_far, s.passes),
+                frame_placement(s));
   } catch (const std::exception& e) {
     if (!warned_) {
       std::fprintf(stderr, "rtiow: warning: no preview: %s; the render goes on\n",

@@ -21,6 +21,11 @@ std::string render_summary_json(const RenderJob& job, const RenderResult& result
   j["height"] = s.height;
   j["crop"] = s.crop ? nlohmann::ordered_json{s.crop->x0, s.crop->y0, s.crop->x1, s.crop->y1}
                      : nlohmann::ordered_json();
+  nlohmann::ordered_json passes = nlohmann::ordered_json::array();
+  if (s.passes.albedo) passes.push_back("albedo");
+  if (s.passes.normal) passes.push_back("normal");
+  if (s.passes.depth) passes.push_back("depth");
+  j["passes"] = passes;
   j["depth"] = s.max_depth;
   j["accelerator"] = to_string(s.accel);
   j["sampler"] = to_string(s.sampler);

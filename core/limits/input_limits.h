@@ -58,8 +58,9 @@ inline constexpr std::uint64_t kMaxPartFileBytes = std::uint64_t(64) << 30;
 // compress further.
 inline constexpr std::uint64_t kMaxImageExpansion = 2048;
 inline constexpr std::uint64_t kImageBytesAlwaysRead = std::uint64_t(64) << 20;
-// A part file holds 3 + 36 channels (core/render/render_part.h); no image rtiow reads more.
-inline constexpr std::size_t kMaxImageChannels = 64;
+// A part file holds 3 + 36 channels, and 28 more with passes (core/render/render_part.h); no
+// image rtiow reads more.
+inline constexpr std::size_t kMaxImageChannels = 72;
 
 // Echoed values in an error line are cut to this many characters.
 inline constexpr std::size_t kMaxEchoedChars = 80;

@@ -33,8 +33,13 @@ constexpr char kMagicFixedRecords[] = "rtiow-checkpoint 2\n";  // still read
 constexpr std::size_t kMaxHeaderBytes = 1 << 16;
 constexpr std::size_t kChunkBytes = 1 << 20;
 // A checkpoint's pixels take at most this many bytes each (version 2's fixed record is 160),
-// so a file much larger than its pixels need is refused before it is read.
+// so a file much larger than its pixels need is refused before it is read; the passes' seven
+// sums add at most kMaxPassBytesPerPixel.
 constexpr std::uint64_t kMaxBytesPerPixel = 4 * 3 * 19 + 3 * 10;
+constexpr std::uint64_t kMaxPassBytesPerPixel = FirstHitSum::kChannels * 19;
+// The identity's word for a render that keeps the passes' sums, and for one that does not.
+constexpr char kPassesKept[] = "albedo, normal and depth kept";
+constexpr char kNoPasses[] = "none";
 // The longest a render can have run, in seconds (a century): beyond, a time is not one.
 constexpr double kMaxRenderSeconds = 3.2e9;
 
@@ -55,6 +60,14 @@ void put_signed(std::vector<char>& out, std::int64_t v) {
 
 void put_sum(std::vector<char>& out, const PixelSum& sum) {
   for (int c = 0; c < 3; ++c) put_varint(out, uint128(sum.channel(c)));
+}
+
+// The passes' sums, signed: zigzagged over 128 bits.
+void put_first_hits(std::vector<char>& out, const FirstHitSum& sum) {
+  for (std::size_t c = 0; c < FirstHitSum::kChannels; ++c) {
+    const int128 v = sum.channel(c);
+    put_varint(out, (uint128(v) << 1) ^ uint128(v >> 127));
+  }
 }
 
 std::string exact(double v) {  // a double in text that reads back to the same bits
@@ -78,6 +91,7 @@ std::string header_text(const CheckpointIdentity& id, const RenderState& state) 
   line("sampler", id.sampler);
   line("first_sample", id.first_sample);
   line("mode", id.mode);
+  line("passes", id.passes);
   line("pixels", std::to_string(samples.size()));
   line("least_samples", std::to_string(samples.empty() ? 0 : *least));
   line("most_samples", std::to_string(samples.empty() ? 0 : *most));
@@ -106,7 +120,8 @@ bool write_state(int fd, const CheckpointIdentity& identity, const RenderState& 
   const PixelAccumulators& p = state.pixels;
   const bool targets = !state.targets.empty();
   std::vector<char> chunk;
-  chunk.reserve(kChunkBytes + kMaxBytesPerPixel);
+  const bool first_hits = !p.first_hits.empty();
+  chunk.reserve(kChunkBytes + kMaxBytesPerPixel + kMaxPassBytesPerPixel);
   std::uint32_t previous_samples = 0;
   for (std::size_t i = 0; i < p.samples.size(); ++i) {
     put_signed(chunk, std::int64_t(p.samples[i]) - std::int64_t(previous_samples));
@@ -116,6 +131,7 @@ bool write_state(int fd, const CheckpointIdentity& identity, const RenderState& 
     put_sum(chunk, p.sums[i]);
     put_sum(chunk, p.spreads[i].squares);
     put_sum(chunk, p.spreads[i].odd);
+    if (first_hits) put_first_hits(chunk, p.first_hits[i]);
     if (chunk.size() >= kChunkBytes || i + 1 == p.samples.size()) {
       if (!write_summed(fd, chunk.data(), chunk.size(), checksum, reason)) return false;
       chunk.clear();
@@ -211,8 +227,11 @@ CheckpointIdentity stored_identity(const Header& header) {
     const auto it = header.fields.find(key);
     return it == header.fields.end() ? std::string("(none)") : it->second;
   };
-  return {get("version"), get("scene"),   get("size"),         get("depth"),
-          get("seed"),    get("sampler"), get("first_sample"), get("mode")};
+  // A checkpoint from before the passes keeps none.
+  const bool passes_named = header.fields.count("passes") != 0;
+  return {get("version"),      get("scene"), get("size"),
+          get("depth"),        get("seed"),  get("sampler"),
+          get("first_sample"), get("mode"),  passes_named ? get("passes") : kNoPasses};
 }
 
 // The most samples a pixel of this render may hold: its cap when adaptive; otherwise what its
@@ -254,6 +273,10 @@ class RecordReader {
       if ((b & 0x80) == 0) return value;
     }
     throw bad_file(path_, "a pixel holds a number too long to be one");
+  }
+  int128 signed_varint128() {
+    const uint128 z = varint();
+    return int128(z >> 1) ^ -int128(z & 1);
   }
   std::int64_t signed_varint() {
     const uint128 z = varint();
@@ -314,6 +337,20 @@ PixelSum read_sum(RecordReader& in, bool fixed_records) {
   return sum;
 }
 
+// The passes' sums of a pixel, each channel within what `samples` samples can add up to:
+// albedos in [0, 1] and unit normals (a rounding above 1 allowed), depths from 0 to the most
+// a value may be.
+bool first_hits_within(const FirstHitSum& sum, std::uint64_t samples) {
+  const int128 unit = int128(samples) * int128(2 * PixelSum::kScale);
+  const int128 far = int128(samples) * int128(FirstHitSum::kMaxValue * PixelSum::kScale);
+  for (std::size_t c = 0; c < FirstHitSum::kChannels; ++c) {
+    const int128 v = sum.channel(c);
+    const bool normal = c >= 3 && c < 6;
+    if (v < (normal ? -unit : 0) || v > (c == 6 ? far : unit)) return false;
+  }
+  return true;
+}
+
 // Whether every channel of `sum` lies in [0, samples * per_sample].
 bool within(const PixelSum& sum, std::uint64_t samples, uint128 per_sample) {
   for (int c = 0; c < 3; ++c) {
@@ -349,7 +386,7 @@ CheckpointIdentity checkpoint_identity(const Scene& scene, const RenderSettings&
           // One sequence draws other samples than two replicates (an older checkpoint's).
           to_string(s.sampler) + (replicates(s) == 1 ? " (one sequence)" : "") +
               (s.russian_roulette ? "" : " (no roulette)"),
-          std::to_string(s.first_sample), mode};
+          std::to_string(s.first_sample), mode, s.passes.any() ? kPassesKept : kNoPasses};
 }
 
 std::string identity_mismatch(const CheckpointIdentity& checkpoint, const CheckpointIdentity& now) {
@@ -368,6 +405,7 @@ std::string identity_mismatch(const CheckpointIdentity& checkpoint, const Checkp
   compare("sampler", checkpoint.sampler, now.sampler);
   compare("first sample", checkpoint.first_sample, now.first_sample);
   compare("sampling", checkpoint.mode, now.mode);
+  compare("passes (--passes)", checkpoint.passes, now.passes);
   return text;
 }
 
@@ -440,7 +478,9 @@ std::optional<RenderState> read_checkpoint(const std::string& path,
     throw bad_file(path, "holds " + std::to_string(pixels) + " pixels, not the image's " +
                              std::to_string(expected_pixels));
   }
-  if (file->size() > pixels * kMaxBytesPerPixel + kMaxHeaderBytes + 8) {
+  const bool first_hits = settings.passes.any();
+  const std::uint64_t most_bytes = kMaxBytesPerPixel + (first_hits ? kMaxPassBytesPerPixel : 0);
+  if (file->size() > pixels * most_bytes + kMaxHeaderBytes + 8) {
     throw bad_file(path, "is larger than its pixels can be");
   }
   const bool adaptive = is_adaptive(settings);
@@ -458,7 +498,10 @@ std::optional<RenderState> read_checkpoint(const std::string& path,
     most_stored = field_number(header, "most_samples", path, most);
   }
 
-  RenderState state{std::size_t(pixels)};
+  if (header.fixed_records && first_hits) {
+    throw bad_file(path, "is of a version that kept no passes");
+  }
+  RenderState state{std::size_t(pixels), first_hits};
   if (targets) state.targets.resize(std::size_t(pixels));
   state.last_round = last_round;
   state.rays_traced = rays_traced;
@@ -507,6 +550,11 @@ std::optional<RenderState> read_checkpoint(const std::string& path,
       const PixelSum squares = read_sum(in, false);
       for (int c = 0; c < 3; ++c) p.spreads[i].squares.set_channel(c, squares.channel(c));
       p.spreads[i].odd = read_sum(in, false);
+      if (first_hits) {
+        for (std::size_t c = 0; c < FirstHitSum::kChannels; ++c) {
+          p.first_hits[i].set_channel(c, in.signed_varint128());
+        }
+      }
     }
     previous = samples;
     if (samples < 0 || std::uint64_t(samples) > most) {
@@ -525,6 +573,9 @@ std::optional<RenderState> read_checkpoint(const std::string& path,
     if (!within(p.sums[i], n, kMostSum) || !within(p.spreads[i].odd, n, kMostSum) ||
         !within(p.spreads[i].squares, n, kMostSquare)) {
       throw bad_pixel("has sums no samples can add up to");
+    }
+    if (first_hits && !first_hits_within(p.first_hits[i], n)) {
+      throw bad_pixel("has pass sums no samples can add up to");
     }
     p.samples[i] = std::uint32_t(n);
     p.rays[i] = rays;

@@ -7,8 +7,9 @@
 // it belongs to and the state's scalars, then "end"), the per-pixel state, and a 64-bit
 // checksum of all that precedes it. Each pixel is a record of variable-length integers
 // (LEB128): its count (as the difference from the previous pixel's), its rays, its adaptive
-// target (as the difference from its count) and its nine exact sums, whose high bytes are
-// mostly zero: 57 bytes a pixel for the cover at 500 spp where version 2's fixed records took
+// target (as the difference from its count), its nine exact sums, whose high bytes are
+// mostly zero, and with passes asked the seven sums they are the mean of (zigzagged, being
+// signed): 57 bytes a pixel for the cover at 500 spp where version 2's fixed records took
 // 156 (version 2 is still read). It is written through core/io/atomic_file.h (an exclusive
 // temporary, flushed, renamed), so a kill at any moment leaves the old checkpoint or the new
 // one, never a torn one, and never writes through a link.
@@ -37,6 +38,7 @@ struct CheckpointIdentity {
   std::string depth, seed, sampler;
   std::string first_sample;  // of a share of a render
   std::string mode;          // uniform, or the adaptive mode with its parameters and --spp
+  std::string passes;        // whether the passes' sums are kept ("none" in older checkpoints)
 };
 
 CheckpointIdentity checkpoint_identity(const Scene& scene, const RenderSettings& settings);

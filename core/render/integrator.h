@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "core/accel/accelerator.h"
+#include "core/film/first_hit_sum.h"
 #include "core/geometry/ray_offset.h"
 #include "core/render/russian_roulette.h"
 #include "core/sampling/sampler.h"
@@ -56,6 +57,15 @@ template <Accelerator Accel>
     ++rays_traced;
     hit = accel.intersect(ray, std::numeric_limits<float>::infinity(), left_behind);
   }
+}
+
+// What a camera ray first met, for the passes: the material's albedo, the normal it shades with
+// and the distance from the ray's origin; all zero for the sky.
+inline FirstHit first_hit(const Scene& scene, const Ray& ray, const std::optional<Hit>& hit) {
+  if (!hit) return {};
+  const SurfaceHit surface = make_surface_hit(scene.spheres, ray, *hit);
+  const Vec3d offset = Vec3d(surface.point) - Vec3d(ray.origin);
+  return {albedo(scene.materials[surface.material]), surface.normal, float(length(offset))};
 }
 
 // Whether a path's first ray is traced at all (a depth of 0, or a ray gone NaN, is black).

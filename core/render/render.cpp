@@ -88,9 +88,11 @@ void check_resumable(const RenderState& state, const RenderSettings& settings) {
   const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
   const PixelAccumulators& p = state.pixels;
   if (p.sums.size() != pixels || p.spreads.size() != pixels || p.samples.size() != pixels ||
-      p.rays.size() != pixels || (!state.targets.empty() && state.targets.size() != pixels)) {
+      p.rays.size() != pixels || (!state.targets.empty() && state.targets.size() != pixels) ||
+      p.first_hits.size() != (settings.passes.any() ? pixels : 0)) {
     throw InvalidInput("the state to resume is not of a " + std::to_string(settings.width) + "x" +
-                       std::to_string(settings.height) + " image");
+                       std::to_string(settings.height) + " image" +
+                       (settings.passes.any() ? " with passes" : " without passes"));
   }
   if (is_adaptive(settings)) return;
   const auto [least, most] = std::minmax_element(p.samples.begin(), p.samples.end());
@@ -145,8 +147,9 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   const RenderContext<Accel> ctx{scene, camera, accel, settings, frame};
 
   const std::size_t n = std::size_t(settings.width) * std::size_t(settings.height);
-  RenderState state =
-      checkpointing && checkpointing->resume ? std::move(*checkpointing->resume) : RenderState(n);
+  RenderState state = checkpointing && checkpointing->resume
+                          ? std::move(*checkpointing->resume)
+                          : RenderState(n, settings.passes.any());
   result.rays_traced = state.rays_traced;
   result.estimated_image_error = state.estimated_image_error;
   result.pixels_above_target = state.pixels_above_target;
@@ -175,6 +178,7 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   result.spreads = std::move(pixels.spreads);
   result.pixel_samples = std::move(pixels.samples);
   result.pixel_rays = std::move(pixels.rays);
+  result.first_hits = std::move(pixels.first_hits);
   result.targets = std::move(state.targets);
   result.last_round = state.last_round;
   result.first_sample = settings.first_sample;
@@ -204,7 +208,8 @@ AccelKind parse_accel(const std::string& name) {
 
 void validate(const RenderSettings& s) {
   // Refuse before allocating what the machine cannot hold: the film and its accumulators.
-  check_image_size(s.width, s.height, kBytesPerPixel);
+  check_image_size(s.width, s.height,
+                   kBytesPerPixel + (s.passes.any() ? sizeof(FirstHitSum) + 7 * sizeof(float) : 0));
   validate_budget(s.samples, s.time_limit_seconds);
   if (s.max_depth < 0 || s.max_depth > limits::kMaxDepth) {
     throw InvalidInput("depth must be from 0 to " + std::to_string(limits::kMaxDepth) + ", got " +
@@ -274,6 +279,7 @@ RenderResult render(const Scene& scene, const RenderSettings& asked, RenderProgr
 RenderState state_of(const RenderResult& result) {
   RenderState state{result.pixel_samples.size()};
   state.pixels.sums = result.sums;
+  state.pixels.first_hits = result.first_hits;
   state.pixels.spreads = result.spreads;
   state.pixels.samples = result.pixel_samples;
   state.pixels.rays = result.pixel_rays;

@@ -81,6 +81,10 @@ void check_adaptive_options(const JobRequest& r, const std::string& output) {
                        " must be .exr to hold the spp and variance channels");
   }
   const RenderRequest& q = r.request;
+  if (q.passes.any() && format && !format->extra_channels) {
+    throw InvalidInput("--passes: output " + quote_value(output) + " must be .exr to hold the " +
+                       to_string(q.passes) + " channels beside the image");
+  }
   const char* adaptive = q.target_error > 0  ? "--target-error"
                          : q.image_error > 0 ? "--image-error"
                          : q.adaptive        ? "--adaptive"
@@ -126,7 +130,7 @@ RenderJob prepare_job(const JobRequest& r) {
   job.share = !r.sample_range.empty() || !r.part.empty();
   apply_share(r, job.output, job.settings);
   apply_rank_share(r, job.settings);
-  check_image_output(job.output, input_files(r), r.stats_channels);
+  check_image_output(job.output, input_files(r), r.stats_channels || r.request.passes.any());
   validate(job.scene, job.settings);
   return job;
 }
@@ -135,7 +139,7 @@ void write_job_result(const JobRequest& r, const RenderJob& job, const RenderRes
                       const Metadata& metadata) {
   if (!job.share) {
     write_image(job.output, result.film, metadata,
-                r.stats_channels ? statistics_channels(result) : std::vector<ExtraChannel>{},
+                image_channels(result, r.stats_channels, job.settings.passes),
                 frame_placement(job.settings));
     return;
   }
@@ -148,6 +152,7 @@ void write_job_result(const JobRequest& r, const RenderJob& job, const RenderRes
   part.metadata = metadata;
   part.sums = result.sums;  // copied: kept in the result, should the write fail
   part.spreads = result.spreads;
+  part.first_hits = result.first_hits;
   write_part(job.output, part);
 }
 

@@ -69,7 +69,8 @@ struct PixelRun {
 struct RunAccumulators {
   PixelSum* sums;
   PixelSpread* spreads;
-  std::uint64_t* rays;  // rays traced per pixel
+  std::uint64_t* rays;                // rays traced per pixel
+  FirstHitSum* first_hits = nullptr;  // what the passes average, where they are asked
 };
 
 // Adds the run's samples to its pixels. The camera rays go to the accelerator
@@ -144,6 +145,11 @@ template <typename Accel>
                                 hits[std::size_t(j)], settings.max_depth, settings.russian_roulette,
                                 *streams[std::size_t(k)], path_rays);
       add_sample(out.sums[o], out.spreads[o], value, index[std::size_t(k)]);
+      if (out.first_hits) {  // a sample not traced met nothing: it adds zeros
+        out.first_hits[o].add(
+            j < 0 ? FirstHit{}
+                  : first_hit(ctx.scene, rays_out[std::size_t(j)], hits[std::size_t(j)]));
+      }
       out.rays[o] += path_rays;
       total_rays += path_rays;
     }
@@ -204,7 +210,9 @@ std::uint64_t advance_pixels(const RenderContext<Accel>& ctx, std::size_t n,
     k += length;
     if (to <= from) continue;
     const PixelRun run{int(p % width), int(p / width), int(length), base + from, base + to};
-    rays += accumulate_run(ctx, run, {&pixels.sums[p], &pixels.spreads[p], &pixels.rays[p]});
+    FirstHitSum* first_hits = pixels.first_hits.empty() ? nullptr : &pixels.first_hits[p];
+    rays += accumulate_run(ctx, run,
+                           {&pixels.sums[p], &pixels.spreads[p], &pixels.rays[p], first_hits});
     std::fill_n(pixels.samples.begin() + std::ptrdiff_t(p), length, to);
     added += std::uint64_t(length) * (to - from);
   }
@@ -290,7 +298,8 @@ template <typename Accel>
 std::uint64_t render_tiles(const RenderContext<Accel>& ctx, std::uint32_t samples_per_pixel,
                            Film& film, RenderProgress* progress) {
   const RenderSettings& settings = ctx.settings;
-  PixelAccumulators pixels(std::size_t(settings.width) * std::size_t(settings.height));
+  PixelAccumulators pixels(std::size_t(settings.width) * std::size_t(settings.height),
+                           settings.passes.any());
   const std::uint32_t n = samples_per_pixel;
   const std::uint64_t rays = render_pass(ctx, n, pixels, progress);
   resolve(pixels.sums, n, film);

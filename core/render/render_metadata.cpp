@@ -61,6 +61,7 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
     metadata.emplace_back(key::kCrop, to_string(*s.crop));
     metadata.emplace_back(key::kFrame, std::to_string(s.width) + "x" + std::to_string(s.height));
   }
+  if (s.passes.any()) metadata.emplace_back(key::kPasses, to_string(s.passes));
   metadata.insert(metadata.end(), {
                                       {key::kDepth, std::int64_t(s.max_depth)},
                                       {key::kSeed, std::int64_t(s.seed)},

@@ -50,6 +50,8 @@ inline constexpr const char* kSceneFile = "scene_file";  // the file it was read
 // ("WIDTHxHEIGHT"); the image's own size is the region's.
 inline constexpr const char* kCrop = "crop";
 inline constexpr const char* kFrame = "frame";
+// The passes written beside the image (--passes), as it takes them: "albedo,normal,depth".
+inline constexpr const char* kPasses = "passes";
 
 }  // namespace rtiow::metadata_key
 

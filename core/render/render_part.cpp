@@ -38,8 +38,17 @@ const std::string kDigest = std::string(kMetadataPrefix) + "digest";
 constexpr std::array<const char*, 3> kSumGroups{"sum", "odd", "squares"};
 constexpr int kWordsPerGroup = kColorChannels * kWordsPerSum;
 
-int channel_count(std::size_t groups) {
-  return kColorChannels + int(groups) * kWordsPerGroup;
+// The passes' sums (core/film/first_hit_sum.h), in their order, as first_hit.<name>.<word>.
+constexpr std::array<const char*, FirstHitSum::kChannels> kFirstHitNames{
+    "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"};
+constexpr int kFirstHitWords = int(FirstHitSum::kChannels) * kWordsPerSum;
+
+std::string first_hit_channel(std::size_t c, int word) {
+  return std::string("first_hit.") + kFirstHitNames[c] + "." + std::to_string(word);
+}
+
+int channel_count(std::size_t groups, bool first_hits = false) {
+  return kColorChannels + int(groups) * kWordsPerGroup + (first_hits ? kFirstHitWords : 0);
 }
 
 // Group g of pixel p's exact sums.
@@ -120,6 +129,13 @@ void write_part(const std::string& path, const RenderPart& part) {
       }
     }
   }
+  const bool first_hits = !part.first_hits.empty();
+  for (std::size_t c = 0; first_hits && c < FirstHitSum::kChannels; ++c) {
+    for (int w = 0; w < kWordsPerSum; ++w) {
+      header.channel_names.push_back(first_hit_channel(c, w));
+      header.channel_types.push_back(PixelType::UInt32);
+    }
+  }
   auto& attributes = header.attributes;
   attributes.push_back({"compression", std::string("zip")});
   for (const auto& [key, value] : part.metadata) {
@@ -136,8 +152,9 @@ void write_part(const std::string& path, const RenderPart& part) {
   attributes.push_back({kPartJobSamples, std::to_string(part.job_samples)});
   attributes.push_back({kDigest, part.digest});
 
-  // Native layout: per pixel 3 floats then 12 words per group, all 4 bytes wide.
-  const auto channels = std::size_t(channel_count(groups));
+  // Native layout: per pixel 3 floats, 12 words per group, then the passes' 28 words, all 4
+  // bytes wide.
+  const auto channels = std::size_t(channel_count(groups, first_hits));
   std::vector<std::uint32_t> data(std::size_t(part.width) * std::size_t(part.height) * channels);
   for (std::size_t p = 0; p < part.sums.size(); ++p) {
     std::uint32_t* pixel = &data[p * channels];
@@ -151,6 +168,11 @@ void write_part(const std::string& path, const RenderPart& part) {
               std::uint32_t(bits >> (32 * w));
         }
       }
+    }
+    std::uint32_t* words = pixel + channel_count(groups);
+    for (std::size_t c = 0; first_hits && c < FirstHitSum::kChannels; ++c) {
+      const auto bits = static_cast<uint128>(part.first_hits[p].channel(c));
+      for (int w = 0; w < kWordsPerSum; ++w) *words++ = std::uint32_t(bits >> (32 * w));
     }
   }
 
@@ -169,13 +191,35 @@ namespace {
 // kept their spreads) or every group; nothing if the file is not a part file.
 using WordChannels = std::array<std::array<int, kWordsPerSum>, kColorChannels>;
 
-std::optional<std::vector<WordChannels>> find_sum_channels(const ImageHeader& header) {
+// Where the passes' sums are among the file's channels; empty in a part without them.
+struct SumChannels {
+  std::vector<WordChannels> groups;
+  std::vector<std::array<int, kWordsPerSum>> first_hits;
+};
+
+std::optional<SumChannels> find_sum_channels(const ImageHeader& header) {
   const std::vector<std::string>& names = header.channel_names;
-  const std::size_t groups = names.size() == std::size_t(channel_count(1))                   ? 1
-                             : names.size() == std::size_t(channel_count(kSumGroups.size())) ? 3
-                                                                                             : 0;
+  const bool first_hits =
+      std::find(names.begin(), names.end(), first_hit_channel(0, 0)) != names.end();
+  const auto count = [&](std::size_t groups) {
+    return std::size_t(channel_count(groups, first_hits));
+  };
+  const std::size_t groups = names.size() == count(1)                   ? 1
+                             : names.size() == count(kSumGroups.size()) ? 3
+                                                                        : 0;
   if (groups == 0 || header.string_attribute(kDigest).empty()) return {};
-  std::vector<WordChannels> channels(groups);
+  SumChannels found;
+  for (std::size_t c = 0; first_hits && c < FirstHitSum::kChannels; ++c) {
+    std::array<int, kWordsPerSum> words{};
+    for (int w = 0; w < kWordsPerSum; ++w) {
+      const auto it = std::find(names.begin(), names.end(), first_hit_channel(c, w));
+      if (it == names.end()) return {};
+      words[std::size_t(w)] = int(it - names.begin());
+    }
+    found.first_hits.push_back(words);
+  }
+  std::vector<WordChannels>& channels = found.groups;
+  channels.resize(groups);
   for (std::size_t g = 0; g < groups; ++g) {
     for (int c = 0; c < kColorChannels; ++c) {
       for (int w = 0; w < kWordsPerSum; ++w) {
@@ -187,7 +231,7 @@ std::optional<std::vector<WordChannels>> find_sum_channels(const ImageHeader& he
       }
     }
   }
-  return channels;
+  return found;
 }
 
 // The header decides what is allocated: its size and sample fields are checked first.
@@ -247,11 +291,12 @@ Metadata read_part_metadata(const ImageHeader& header) {
 
 // The exact sums (and spreads, where the file has them), every channel read as 32-bit words
 // whatever the file stores.
-void read_part_sums(ImageReader& in, const std::string& name,
-                    const std::vector<WordChannels>& channels, RenderPart& part) {
+void read_part_sums(ImageReader& in, const std::string& name, const SumChannels& found,
+                    RenderPart& part) {
   const ImageHeader& header = in.header();
+  const std::vector<WordChannels>& channels = found.groups;
   const std::size_t pixels = std::size_t(header.width) * std::size_t(header.height);
-  const auto stride = std::size_t(channel_count(channels.size()));
+  const auto stride = std::size_t(channel_count(channels.size(), !found.first_hits.empty()));
   std::vector<std::uint32_t> data(pixels * stride);
   std::string reason;
   if (!in.read_pixels(PixelType::UInt32, data.data(), reason)) {
@@ -259,15 +304,21 @@ void read_part_sums(ImageReader& in, const std::string& name,
   }
   part.sums.assign(pixels, PixelSum{});
   if (channels.size() > 1) part.spreads.assign(pixels, PixelSpread{});
+  if (!found.first_hits.empty()) part.first_hits.assign(pixels, FirstHitSum{});
+  const auto word128 = [](const std::uint32_t* pixel, const std::array<int, kWordsPerSum>& at) {
+    uint128 bits = 0;
+    for (int w = kWordsPerSum - 1; w >= 0; --w) bits = (bits << 32) | pixel[at[std::size_t(w)]];
+    return static_cast<int128>(bits);
+  };
   for (std::size_t p = 0; p < pixels; ++p) {
     const std::uint32_t* pixel = &data[p * stride];
+    for (std::size_t c = 0; c < found.first_hits.size(); ++c) {
+      part.first_hits[p].set_channel(c, word128(pixel, found.first_hits[c]));
+    }
     for (std::size_t g = 0; g < channels.size(); ++g) {
       PixelSum sum;
       for (std::size_t c = 0; c < kColorChannels; ++c) {
-        uint128 bits = 0;
-        for (int w = kWordsPerSum - 1; w >= 0; --w)
-          bits = (bits << 32) | pixel[channels[g][c][std::size_t(w)]];
-        sum.set_channel(int(c), static_cast<int128>(bits));
+        sum.set_channel(int(c), word128(pixel, channels[g][c]));
       }
       set_group_sum(part, p, g, sum);
     }
@@ -284,7 +335,7 @@ RenderPart read_part(const std::string& path) {
 
 RenderPart read_part(ImageReader& in, const std::string& path) {
   const std::string name = "part file " + quote_value(path);
-  const std::optional<std::vector<WordChannels>> channels = find_sum_channels(in.header());
+  const std::optional<SumChannels> channels = find_sum_channels(in.header());
   if (!channels) {
     throw InvalidInput(name + ": not a part file (render one with --sample-range or --part)");
   }
@@ -379,6 +430,45 @@ Metadata merged_metadata(const RenderPart& reference, const std::vector<const Re
   return merged;
 }
 
+// The passes the parts were rendered with (rtiow:passes, recorded by each) and the sums they
+// are the mean of, added: every part must hold them, or the merged passes would lack samples.
+void merge_first_hits(const RenderPart& reference, const std::vector<const RenderPart*>& parts,
+                      MergedRender& merged) {
+  const auto recorded = [](const RenderPart& part) {
+    for (const auto& [key, value] : part.metadata) {
+      if (key != metadata_key::kPasses) continue;
+      const auto* text = std::get_if<std::string>(&value);
+      try {
+        if (text) return parse_passes(*text);
+      } catch (const InvalidInput&) {
+      }
+      throw InvalidInput("part file " + quote_value(part.path) + ": " + kMetadataPrefix +
+                         metadata_key::kPasses + " is not a list of passes");
+    }
+    return FirstHitPasses{};
+  };
+  merged.passes = recorded(reference);
+  for (const RenderPart* p : parts) {
+    if (recorded(*p) != merged.passes) {
+      throw InvalidInput("merge: " + p->path + " was rendered with --passes " +
+                         to_string(recorded(*p)) + " and " + reference.path + " with --passes " +
+                         to_string(merged.passes) + ": render every part with the same passes");
+    }
+    if (merged.passes.any() && p->first_hits.empty()) {
+      throw InvalidInput("part file " + quote_value(p->path) + ": records passes " +
+                         to_string(merged.passes) + " but holds no sums of them");
+    }
+  }
+  if (!merged.passes.any()) return;
+  merged.first_hits = reference.first_hits;
+  for (const RenderPart* p : parts) {
+    if (p == &reference) continue;
+    for (std::size_t i = 0; i < merged.first_hits.size(); ++i) {
+      merged.first_hits[i] += p->first_hits[i];
+    }
+  }
+}
+
 }  // namespace
 
 MergedRender merge_parts(const std::vector<RenderPart>& input) {
@@ -408,6 +498,7 @@ MergedRender merge_parts(const std::vector<RenderPart>& input) {
       for (std::size_t i = 0; i < merged.spreads.size(); ++i) merged.spreads[i] += p->spreads[i];
     }
   }
+  merge_first_hits(reference, parts, merged);
   merged.film = Film(reference.width, reference.height);
   resolve(merged.sums, merged.samples, merged.film);
   merged.metadata = merged_metadata(reference, parts, merged.samples);
@@ -419,6 +510,7 @@ RenderResult merged_result(const MergedRender& merged, SamplerKind sampler, int 
   r.film = merged.film;
   r.sums = merged.sums;
   r.spreads = merged.spreads;
+  r.first_hits = merged.first_hits;
   r.sampler = sampler;
   r.replicates = replicates;
   complete_from_shares(merged.samples, r);

@@ -5,13 +5,16 @@
 // The file is an OpenEXR image: R, G, B hold the share's own mean (so it can be looked at),
 // and 32-bit unsigned channels {sum,odd,squares}.{R,G,B}.{0..3} hold the 128-bit sums of the
 // samples and of the spread the variances need (core/film/pixel_variance.h; a part written
-// before parts kept spreads has sum.* alone, and merges without variances). Metadata names
+// before parts kept spreads has sum.* alone, and merges without variances); a part rendered
+// with --passes adds first_hit.{albedo.R,...,Z}.{0..3}, the 128-bit signed sums the passes are
+// the mean of (core/film/first_hit_sum.h). Metadata names
 // the samples held and a digest of the scene and settings, which merging checks.
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "core/film/first_hit_sum.h"
 #include "core/film/pixel_variance.h"
 #include "core/film/sample_sum.h"
 #include "core/io/image_output.h"
@@ -28,7 +31,8 @@ struct RenderPart {
   std::string digest;             // scene + settings that change pixels
   Metadata metadata;              // everything else the part recorded (scene, seed, rays...)
   std::vector<PixelSum> sums;
-  std::vector<PixelSpread> spreads;  // empty in a part written without them
+  std::vector<PixelSpread> spreads;     // empty in a part written without them
+  std::vector<FirstHitSum> first_hits;  // empty in a part rendered without passes
 };
 
 // What must match for two shares to belong to one render: the scene, the image size, the
@@ -53,7 +57,9 @@ struct MergedRender {
   std::uint64_t samples = 0;
   Metadata metadata;  // the parts' common metadata, with spp and rays_traced totalled
   std::vector<PixelSum> sums;
-  std::vector<PixelSpread> spreads;  // empty unless every part had its spread
+  std::vector<PixelSpread> spreads;     // empty unless every part had its spread
+  std::vector<FirstHitSum> first_hits;  // empty unless every part had them
+  FirstHitPasses passes;                // the passes the parts were rendered with
 };
 
 // The merged render as one render's result (samples from index 0, drawn by `sampler`), for
@@ -61,7 +67,8 @@ struct MergedRender {
 RenderResult merged_result(const MergedRender& merged, SamplerKind sampler, int replicates);
 
 // Checks that the parts belong to one render (same digest, size and job), that they neither
-// overlap nor leave a gap from sample 0 to the job's last, and adds them. Throws InvalidInput
+// overlap nor leave a gap from sample 0 to the job's last, and adds them; with the passes they
+// recorded (rtiow:passes) when every part holds their sums. Throws InvalidInput
 // naming the files at fault.
 MergedRender merge_parts(const std::vector<RenderPart>& parts);
 

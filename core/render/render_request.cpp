@@ -114,6 +114,7 @@ ResolvedRender resolve(Scene scene, const RenderRequest& r) {
   s.sampler = r.sampler;
   s.estimate_error = r.estimate_error;
   s.russian_roulette = r.russian_roulette;
+  s.passes = r.passes;
   validate(s);
   return {std::move(scene), s};
 }

@@ -44,6 +44,7 @@ struct RenderRequest {
   // --stats-channels: keep what an estimate of each pixel's error needs (RenderSettings).
   bool estimate_error = false;
   bool russian_roulette = RenderSettings{}.russian_roulette;  // --roulette
+  FirstHitPasses passes;  // --passes: albedo, normal, depth beside the image (.exr)
   int min_samples = kDefaultLeastSamples;
 };
 

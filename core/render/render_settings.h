@@ -12,8 +12,10 @@
 #include <vector>
 
 #include "core/film/film.h"
+#include "core/film/first_hit_sum.h"
 #include "core/film/pixel_variance.h"
 #include "core/film/sample_sum.h"
+#include "core/render/first_hit_passes.h"
 #include "core/render/sample_budget.h"
 #include "core/sampling/sampler.h"
 
@@ -64,6 +66,9 @@ struct RenderSettings {
   // for 1% more squared error. Off, every path runs to max_depth as in the book's program: the
   // book's own estimator, for comparisons with it ray for ray. The expected image is the same.
   bool russian_roulette = true;
+  // The first hit's albedo, normal and depth, each the mean over the pixel's samples
+  // (core/render/first_hit_passes.h): kept as exact sums beside the image's when any is asked.
+  FirstHitPasses passes;
 };
 
 // RenderSettings::russian_roulette as --roulette and the provenance spell it.
@@ -145,6 +150,7 @@ struct RenderResult {
   std::vector<PixelSpread> spreads;          // for each pixel's variance
   std::vector<std::uint32_t> pixel_samples;  // each pixel's sample count
   std::vector<std::uint64_t> pixel_rays;     // the rays each pixel's samples traced
+  std::vector<FirstHitSum> first_hits;       // with passes asked: what the passes are the mean of
   std::vector<std::uint32_t> targets;        // adaptive: the round's targets (a state's)
   bool last_round = false;                   // adaptive: the round under way is the last
   std::uint64_t first_sample = 0;            // each pixel's samples start at this index

@@ -28,7 +28,8 @@ struct RenderState {
   double estimated_image_error = 0.0;
   std::uint64_t pixels_above_target = 0;
 
-  explicit RenderState(std::size_t pixel_count) : pixels(pixel_count) {}
+  explicit RenderState(std::size_t pixel_count, bool keep_first_hits = false)
+      : pixels(pixel_count, keep_first_hits) {}
 };
 
 // Why a state is saved: on the way, or because the render ended, stopped by a request (to be

@@ -74,6 +74,14 @@ std::optional<ImageEstimate> read_statistics_image(
   return image;
 }
 
+std::vector<ExtraChannel> image_channels(const RenderResult& result, bool statistics,
+                                         const FirstHitPasses& passes) {
+  std::vector<ExtraChannel> channels;
+  if (statistics) channels = statistics_channels(result);
+  for (ExtraChannel& pass : pass_channels(result, passes)) channels.push_back(std::move(pass));
+  return channels;
+}
+
 double mean_samples(const RenderResult& result) {
   double total = 0;
   for (const std::uint32_t n : result.pixel_samples) total += n;

@@ -22,6 +22,11 @@ ImageEstimate to_estimate(const RenderResult& result);
 // "spp" and "variance.R/G/B": the channels --stats-channels adds to an EXR.
 std::vector<ExtraChannel> statistics_channels(const RenderResult& result);
 
+// Every channel an image of the result carries beyond R, G, B: the statistics channels (where
+// `statistics`), then the passes asked.
+std::vector<ExtraChannel> image_channels(const RenderResult& result, bool statistics,
+                                         const FirstHitPasses& passes);
+
 double mean_samples(const RenderResult& result);
 
 // Reads back an image written with statistics_channels(): the film and each pixel's variance

@@ -36,24 +36,32 @@ namespace {
 using rtiow::CheckpointIdentity;
 using rtiow::RenderSettings;
 
-// The request the fuzzed checkpoints are read for: a 5x3 cover, uniform or adaptive by a byte.
-RenderSettings request(bool adaptive) {
+// The request the fuzzed checkpoints are read for: a 5x3 cover, uniform or adaptive, with the
+// passes or without, by bits of a byte.
+RenderSettings request(bool adaptive, bool passes) {
   RenderSettings s;
   s.width = 5, s.height = 3, s.max_depth = 8;
   if (adaptive) s.samples = rtiow::PixelErrorTarget{0.05, 64, 4};
+  if (passes) s.passes = {true, true, true};
   return s;
 }
 
-CheckpointIdentity identity(bool adaptive) {
-  return {"0.3.0", "fuzz-scene",
-          "5x3",   "8",
-          "1",     "sobol",
-          "0",     adaptive ? "--target-error 0.05 --min-spp 4 --spp 64" : "uniform"};
+CheckpointIdentity identity(bool adaptive, bool passes) {
+  return {"0.3.0",
+          "fuzz-scene",
+          "5x3",
+          "8",
+          "1",
+          "sobol",
+          "0",
+          adaptive ? "--target-error 0.05 --min-spp 4 --spp 64" : "uniform",
+          passes ? "albedo, normal and depth kept" : "none"};
 }
 
 void check_state(const rtiow::RenderState& state, const RenderSettings& s) {
   const std::size_t pixels = std::size_t(s.width) * std::size_t(s.height);
   if (state.pixels.samples.size() != pixels || state.pixels.sums.size() != pixels) __builtin_trap();
+  if (state.pixels.first_hits.size() != (s.passes.any() ? pixels : 0)) __builtin_trap();
   for (std::size_t p = 0; p < pixels; ++p) {
     if (state.pixels.samples[p] > 64 && rtiow::is_adaptive(s)) __builtin_trap();
     if (!state.targets.empty() && state.targets[p] > 64) __builtin_trap();
@@ -81,7 +89,7 @@ const std::string& private_checkpoint_path() {
 
 void fuzz_checkpoint(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return;
-  const bool adaptive = data[0] & 1, raw = data[0] & 2;
+  const bool adaptive = data[0] & 1, raw = data[0] & 2, passes = data[0] & 4;
   ++data, --size;
   std::string bytes(reinterpret_cast<const char*>(data), size);
   if (!raw) {
@@ -96,10 +104,10 @@ void fuzz_checkpoint(const std::uint8_t* data, std::size_t size) {
   const bool written = ::write(fd, bytes.data(), bytes.size()) == ssize_t(bytes.size());
   ::close(fd);
   if (!written) return;
-  const RenderSettings settings = request(adaptive);
+  const RenderSettings settings = request(adaptive, passes);
   try {
     const std::optional<rtiow::RenderState> state =
-        rtiow::read_checkpoint(path, identity(adaptive), settings);
+        rtiow::read_checkpoint(path, identity(adaptive, passes), settings);
     if (state) check_state(*state, settings);
     rtiow::read_checkpoint_summary(path);
   } catch (const rtiow::InvalidInput&) {
