@@ -715,7 +715,8 @@ TEST(Cli, APreviewShowsTheRenderAsItGoesAndTheFinishedFileIsTheSame) {
   fs::create_directories(dir);
   const fs::path watched = dir / "watched.exr";
   BackgroundRender r({"render", "-q", "--scene", "cover", "--width", "160", "--spp", "1000000",
-                      "--checkpoint", "0", "--preview", "0.1", "-o", watched.string()});
+                      "--checkpoint", "0", "--preview", "0.1", "--passes", "depth", "-o",
+                      watched.string()});
   ASSERT_TRUE(r.wait_until_rendering());
   std::string how_far;
   for (int i = 0; i < 1000 && how_far.empty(); ++i) {  // within 20 s
@@ -726,21 +727,25 @@ TEST(Cli, APreviewShowsTheRenderAsItGoesAndTheFinishedFileIsTheSame) {
     ASSERT_TRUE(in) << "a preview is a whole image";
     how_far = in->spec().get_string_attribute("rtiow:preview");
     EXPECT_EQ(in->spec().width, 160);
+    EXPECT_GE(in->spec().channelindex("Z"), 0) << "a preview holds the passes";
   }
   EXPECT_NE(how_far.find(" of 1000000 spp after "), std::string::npos) << how_far;
   r.signal(SIGTERM);
   EXPECT_EQ(r.wait(60.0), 128 + SIGTERM) << r.stderr_text();
   EXPECT_EQ(rtiow::test::names_in(dir), std::vector<std::string>{"watched.exr"});
 
-  // A render of several passes, previewed at every pass, and the same render unwatched.
-  const std::string job = "render -q --scene cover --width 200 --spp 400 --reproducible -o ";
+  // A render of several passes, previewed at every pass, and the same render unwatched (with
+  // the albedo, normal and depth passes, which the previews hold too).
+  const std::string job =
+      "render -q --scene cover --width 200 --spp 400 --reproducible --passes "
+      "albedo,normal,depth -o ";
   const CommandResult w =
-      run_rtiow(job + (dir / "w.png").string() + " --preview 0.01 --checkpoint 0.01");
+      run_rtiow(job + (dir / "w.exr").string() + " --preview 0.01 --checkpoint 0.01");
   ASSERT_EQ(w.exit_code, 0) << w.stderr_text;
-  ASSERT_EQ(run_rtiow(job + (dir / "plain.png").string()).exit_code, 0);
-  EXPECT_TRUE(slurp(dir / "w.png") == slurp(dir / "plain.png")) << "the watched file differs";
+  ASSERT_EQ(run_rtiow(job + (dir / "plain.exr").string()).exit_code, 0);
+  EXPECT_TRUE(slurp(dir / "w.exr") == slurp(dir / "plain.exr")) << "the watched file differs";
   EXPECT_EQ(rtiow::test::names_in(dir),
-            (std::vector<std::string>{"plain.png", "w.png", "watched.exr"}));
+            (std::vector<std::string>{"plain.exr", "w.exr", "watched.exr"}));
   // A share of a render is no image to watch.
   const CommandResult part = run_rtiow("render -q --width 16 --spp 4 --part 0/2 --preview 1 -o " +
                                        (dir / "p.exr").string());
