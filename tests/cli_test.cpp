@@ -1578,7 +1578,8 @@ TEST(Cli, LikeRefusesWhatItCannotRenderAgain) {
                                                         {"rtiow:camera", "--lookfrom nan,1,1"},
                                                         {"rtiow:camera", "--lookfrom 1,2"},
                                                         {"rtiow:crop", "0,0,5,5"},
-                                                        {"rtiow:frame", "16x9"}}) {
+                                                        {"rtiow:frame", "16x9"},
+                                                        {"rtiow:passes", "albedo,sparkle"}}) {
     SCOPED_TRACE(key + "=" + value);
     const fs::path edited = output_path("like-hostile.png");
     OIIO::ImageBuf buffer(base.string());

@@ -150,7 +150,7 @@ std::string png_claiming(std::uint32_t width, std::uint32_t height) {
 
 fs::path fixtures() {
   // Named by version: a build tree keeps the fixtures of an older suite under another name.
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-2";
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-3";
   if (fs::exists(dir / "complete")) return dir;
   const fs::path work =
       fs::path(RTIOW_TEST_OUTPUT_DIR) / ("hostile-fixtures." + std::to_string(getpid()));
@@ -188,6 +188,8 @@ fs::path fixtures() {
   crafted("no-job.exr", [](auto& s) { s.erase_attribute("rtiow:part_job_samples"); });
   crafted("negative-samples.exr", [](auto& s) { s.attribute("rtiow:part_samples", "-2"); });
   crafted("older-version.exr", [](auto& s) { s.attribute("rtiow:version", "0.0.1"); });
+  crafted("passes-garbage.exr", [](auto& s) { s.attribute("rtiow:passes", "albedo,sparkle"); });
+  crafted("passes-without-sums.exr", [](auto& s) { s.attribute("rtiow:passes", "depth"); });
   const std::string part = slurp(work / "part0.exr");
   write_file(work / "truncated.exr", part.substr(0, part.size() / 2));
   // Headers that claim far more pixels than their files hold: a part of 8192x8192 (10 GB of
@@ -688,6 +690,10 @@ std::vector<Case> part_cases() {
       {"MergeOverflowingRange", 2, "not a share of it",
        merge({"overflowing-range.exr", "part1.exr"})},
       {"MergeHugeJob", 2, "not a share of it", merge({"huge-job.exr", "part1.exr"})},
+      {"MergePassesNotAList", 2, "rtiow:passes is not a list of passes",
+       merge({"passes-garbage.exr", "part1.exr"})},
+      {"MergePassesWithoutTheirSums", 2, "records passes depth but holds no sums of them",
+       merge({"passes-without-sums.exr", "part1.exr"})},
       {"MergeWithoutJobField", 2, "header field rtiow:part_job_samples",
        merge({"no-job.exr", "part1.exr"})},
       {"MergeDirectory", 2, "is a directory", merge({"adir.png"})},
