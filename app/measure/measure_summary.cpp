@@ -39,6 +39,16 @@ ordered warnings_of(const std::vector<std::string>& candidates) {
   return out;
 }
 
+// What every measurement's summary starts with: the shared head, its exit code, its time and
+// the files it wrote.
+ordered measurement_head(const char* command, const MeasureFiles& files, double seconds) {
+  ordered j = summary_head(command);
+  j["exit_code"] = 0;
+  j["seconds"] = seconds;
+  j["files"] = files_of(files);
+  return j;
+}
+
 double rate(const json& results, const char* run) {
   return results["cover"][run]["mrays_per_second"].get<double>();
 }
@@ -46,10 +56,7 @@ double rate(const json& results, const char* run) {
 }  // namespace
 
 std::string bench_summary_json(const json& results, const MeasureFiles& files, double seconds) {
-  ordered j = summary_head("bench");
-  j["exit_code"] = 0;
-  j["seconds"] = seconds;
-  j["files"] = files_of(files);
+  ordered j = measurement_head("bench", files, seconds);
   j["threads"] = results["threads"];
   j["repeat"] = results["repeat"];
   const json& c = results["cover"];
@@ -82,10 +89,7 @@ std::string bench_summary_json(const json& results, const MeasureFiles& files, d
 }
 
 std::string accuracy_summary_json(const json& results, const MeasureFiles& files, double seconds) {
-  ordered j = summary_head("accuracy");
-  j["exit_code"] = 0;
-  j["seconds"] = seconds;
-  j["files"] = files_of(files);
+  ordered j = measurement_head("accuracy", files, seconds);
   j["scene"] = results["scene"];
   j["width"] = results["width"];
   j["height"] = results["height"];

@@ -65,10 +65,6 @@ class Packet {
   std::string bytes_;
 };
 
-std::string socket_error(int error) {
-  return system_error_text(error);
-}
-
 // A connected socket to `address` within kConnectMilliseconds, or -1 with `why` set.
 int connect_to(const DisplayAddress& address, std::string& why) {
   addrinfo hints{};
@@ -86,7 +82,7 @@ int connect_to(const DisplayAddress& address, std::string& why) {
     const int fd =
         ::socket(a->ai_family, a->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC, a->ai_protocol);
     if (fd < 0) {
-      why = socket_error(errno);
+      why = system_error_text(errno);
       continue;
     }
     int error = ::connect(fd, a->ai_addr, a->ai_addrlen) == 0 ? 0 : errno;
@@ -101,7 +97,7 @@ int connect_to(const DisplayAddress& address, std::string& why) {
       }
     }
     if (error != 0) {
-      why = "cannot connect: " + socket_error(error);
+      why = "cannot connect: " + system_error_text(error);
       ::close(fd);
       continue;
     }
@@ -183,7 +179,7 @@ bool TevDisplay::send_packet(const std::string& packet) {
     if (n <= 0) {
       fail(n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)
                ? "the viewer took no pixels for " + std::to_string(kSendSeconds) + " s"
-               : "the connection ended: " + socket_error(n < 0 ? errno : EPIPE));
+               : "the connection ended: " + system_error_text(n < 0 ? errno : EPIPE));
       return false;
     }
     sent += std::size_t(n);
