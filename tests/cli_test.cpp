@@ -1062,7 +1062,9 @@ class TevReader {
 struct ShownImage {
   std::string name;
   int width = 0, height = 0, updates = 0;
+  std::vector<std::string> channels;
   std::vector<float> rgb;
+  std::vector<std::vector<float>> extra;  // the channels after R, G, B, one float a pixel
   std::vector<std::pair<int, int>> update_places;
   std::string problem;  // "" when every packet was as tev expects
 };
@@ -1076,29 +1078,47 @@ ShownImage replay_tev(const std::string& bytes) {
       shown.name = in.text();
       shown.width = in.integer<std::int32_t>(), shown.height = in.integer<std::int32_t>();
       const int channels = in.integer<std::int32_t>();
-      std::string names;
-      for (int c = 0; c < channels; ++c) names += in.text();
-      if (channels != 3 || names != "RGB") shown.problem = "channels " + names;
-      shown.rgb.assign(std::size_t(shown.width) * std::size_t(shown.height) * 3, -1.0f);
+      for (int c = 0; c < channels; ++c) shown.channels.push_back(in.text());
+      if (channels < 3 || shown.channels[0] != "R" || shown.channels[1] != "G" ||
+          shown.channels[2] != "B") {
+        shown.problem = "an image whose first channels are not R, G, B";
+        return shown;
+      }
+      const std::size_t pixels = std::size_t(shown.width) * std::size_t(shown.height);
+      shown.rgb.assign(pixels * 3, -1.0f);
+      shown.extra.assign(std::size_t(channels - 3), std::vector<float>(pixels, -1.0f));
     } else if (in.type() == 6) {  // UpdateImageV3
       in.integer<std::uint8_t>();
       if (in.text() != shown.name) shown.problem = "an update of another image";
       const int channels = in.integer<std::int32_t>();
-      for (int c = 0; c < channels; ++c) in.text();
+      std::vector<std::string> names;
+      for (int c = 0; c < channels; ++c) names.push_back(in.text());
       const int x = in.integer<std::int32_t>(), y = in.integer<std::int32_t>();
       const int w = in.integer<std::int32_t>(), h = in.integer<std::int32_t>();
-      std::int64_t offsets[3], strides[3];
+      std::vector<std::int64_t> offsets(std::size_t(std::max(channels, 0)));
+      std::vector<std::int64_t> strides(offsets.size());
       for (auto& o : offsets) o = in.integer<std::int64_t>();
       for (auto& s : strides) s = in.integer<std::int64_t>();
-      if (channels != 3 || offsets[1] != 1 || strides[0] != 3 || x < 0 || y < 0 ||
-          x + w > shown.width || y + h > shown.height) {
-        shown.problem = "an update outside the image or not RGB interleaved";
+      bool interleaved = names == shown.channels;
+      for (std::size_t c = 0; interleaved && c < offsets.size(); ++c) {
+        interleaved = offsets[c] == std::int64_t(c) && strides[c] == channels;
+      }
+      if (!interleaved || x < 0 || y < 0 || x + w > shown.width || y + h > shown.height) {
+        shown.problem = "an update outside the image, or not of its channels interleaved";
         return shown;
       }
       for (int row = 0; row < h; ++row) {
-        for (int k = 0; k < w * 3; ++k) {
-          shown.rgb[(std::size_t(y + row) * std::size_t(shown.width) + std::size_t(x)) * 3 +
-                    std::size_t(k)] = in.number();
+        for (int col = 0; col < w; ++col) {
+          const std::size_t p =
+              std::size_t(y + row) * std::size_t(shown.width) + std::size_t(x + col);
+          for (int c = 0; c < channels; ++c) {
+            const float v = in.number();
+            if (c < 3) {
+              shown.rgb[p * 3 + std::size_t(c)] = v;
+            } else {
+              shown.extra[std::size_t(c - 3)][p] = v;
+            }
+          }
         }
       }
       ++shown.updates;
@@ -1121,7 +1141,7 @@ TEST(Cli, DisplayShowsTheRenderInTevAsItGoes) {
     ASSERT_GT(tev.port(), 0);
     const CommandResult r = run_rtiow(
         "render -q --scene cover --width 48 --spp 64 --reproducible --preview 0.001 "
-        "--display 127.0.0.1:" +
+        "--passes normal,depth --display 127.0.0.1:" +
         std::to_string(tev.port()) + " -o " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
     EXPECT_EQ(r.stderr_text, "");
@@ -1133,6 +1153,11 @@ TEST(Cli, DisplayShowsTheRenderInTevAsItGoes) {
     EXPECT_GE(shown.updates, 1);
     int width = 0, height = 0;
     EXPECT_EQ(shown.rgb, exr_pixels(out, width, height)) << "tev shows other pixels than the file";
+    // The passes as more channels, their values the file's.
+    ASSERT_EQ(shown.channels, (std::vector<std::string>{"R", "G", "B", "N.X", "N.Y", "N.Z", "Z"}));
+    for (std::size_t c = 0; c < 4; ++c) {
+      EXPECT_EQ(shown.extra[c], exr_channel(out, shown.channels[c + 3])) << shown.channels[c + 3];
+    }
   }
   {
     FakeTev tev;

@@ -24,6 +24,7 @@
 #include "core/limits/error.h"
 #include "core/parallel/cancellation.h"
 #include "core/parallel/thread_count.h"
+#include "core/render/first_hit_passes.h"
 #include "core/render/render_job.h"
 #include "core/render/render_metadata.h"
 #include "core/render/render_outcome.h"
@@ -238,7 +239,8 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   if (display_address) {
     display = std::make_unique<TevDisplay>(
         *display_address, std::filesystem::path(job.output).filename().string(),
-        film_width(job.settings), film_height(job.settings), frame_placement(job.settings));
+        film_width(job.settings), film_height(job.settings), frame_placement(job.settings),
+        pass_channel_names(job.settings.passes));
   }
   // --preview: the output replaced at the checkpoints' safe points between passes (and
   // --display shown there, every second unless --preview says otherwise).
@@ -265,7 +267,7 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
     return interrupted_outside_render(kBeforeRender);
   }
   if (mpi.distributed() && !gather_ranks(mpi, job, result, o.stats_channels)) return 0;
-  if (display) display->show(result.film);
+  if (display) display->show(result.film, pass_channels(result, job.settings.passes));
   write_or_keep(o, request, job, result, checkpoint.get());
   if (checkpoint) checkpoint->warn_where_kept();  // even when quiet
   int code = 0;

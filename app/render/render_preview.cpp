@@ -9,6 +9,7 @@
 #include "core/film/sample_sum.h"
 #include "core/io/image_output.h"
 #include "core/limits/error.h"
+#include "core/render/first_hit_passes.h"
 #include "core/render/render_metadata.h"
 
 namespace rtiow {
@@ -31,9 +32,11 @@ void RenderPreview::write(const RenderState& state) {
       so_far.film.at(int(p % std::size_t(film_width(s))), int(p / std::size_t(film_width(s)))) =
           Color(0.0f, 0.0f, 0.0f);
   }
-  if (display_) display_->show(so_far.film);
-  if (!to_file_) return;
   so_far.pixel_samples = samples;
+  so_far.first_hits = state.pixels.first_hits;
+  const std::vector<ExtraChannel> passes = pass_channels(so_far, s.passes);
+  if (display_) display_->show(so_far.film, passes);
+  if (!to_file_) return;
   so_far.rays_traced = state.rays_traced;
   so_far.render_seconds = state.render_seconds;
   so_far.estimated_image_error = state.estimated_image_error;
@@ -49,9 +52,7 @@ void RenderPreview::write(const RenderState& state) {
                                                     " spp after " + seconds +
                                                     " s; the render goes on");
   try {
-    so_far.first_hits = state.pixels.first_hits;
-    write_image(job_.output, so_far.film, metadata, pass_channels(so_far, s.passes),
-                frame_placement(s));
+    write_image(job_.output, so_far.film, metadata, passes, frame_placement(s));
   } catch (const std::exception& e) {
     if (!warned_) {
       std::fprintf(stderr, "rtiow: warning: no preview: %s; the render goes on\n",

@@ -145,8 +145,13 @@ DisplayAddress parse_display_address(const std::string& text) {
 }
 
 TevDisplay::TevDisplay(const DisplayAddress& address, std::string name, int film_width,
-                       int film_height, const FramePlacement& placement)
-    : where_(address.host + ":" + address.port), name_(std::move(name)), placement_(placement) {
+                       int film_height, const FramePlacement& placement,
+                       std::vector<std::string> extra)
+    : where_(address.host + ":" + address.port),
+      name_(std::move(name)),
+      placement_(placement),
+      channels_{"R", "G", "B"} {
+  channels_.insert(channels_.end(), extra.begin(), extra.end());
   std::string why;
   socket_ = connect_to(address, why);
   if (socket_ < 0) {
@@ -157,7 +162,8 @@ TevDisplay::TevDisplay(const DisplayAddress& address, std::string name, int film
   const int height = placement.whole() ? film_height : placement.frame_height;
   Packet create(kCreateImage);
   create.flag(false).text(name_).integer(std::int32_t(width)).integer(std::int32_t(height));
-  create.integer(std::int32_t(3)).text("R").text("G").text("B");
+  create.integer(std::int32_t(channels_.size()));
+  for (const std::string& channel : channels_) create.text(channel);
   send_packet(create.done());
 }
 
@@ -187,23 +193,29 @@ bool TevDisplay::send_packet(const std::string& packet) {
   return true;
 }
 
-void TevDisplay::show(const Film& film) {
+void TevDisplay::show(const Film& film, const std::vector<ExtraChannel>& extra) {
   if (socket_ < 0 || film.width() < 1) return;
-  // In strips of rows, the channels interleaved (R, G, B at offsets 0, 1, 2, stride 3).
-  const std::size_t row_floats = std::size_t(film.width()) * 3;
+  // The channels created, every time: an update of fewer would leave tev's others stale.
+  if (extra.size() + 3 != channels_.size()) return;
+  // In strips of rows, the channels interleaved (channel c at offset c, stride their count).
+  const std::size_t count = channels_.size();
+  const std::size_t row_floats = std::size_t(film.width()) * count;
   const int rows = int(std::max<std::size_t>(1, kPacketFloats / row_floats));
   for (int y0 = 0; y0 < film.height(); y0 += rows) {
     const int strip = std::min(rows, film.height() - y0);
     Packet update(kUpdateImageV3);
-    update.flag(false).text(name_).integer(std::int32_t(3)).text("R").text("G").text("B");
+    update.flag(false).text(name_).integer(std::int32_t(count));
+    for (const std::string& channel : channels_) update.text(channel);
     update.integer(std::int32_t(placement_.x)).integer(std::int32_t(placement_.y + y0));
     update.integer(std::int32_t(film.width())).integer(std::int32_t(strip));
-    for (std::int64_t offset : {0, 1, 2}) update.integer(offset);
-    for (int c = 0; c < 3; ++c) update.integer(std::int64_t(3));
+    for (std::size_t c = 0; c < count; ++c) update.integer(std::int64_t(c));
+    for (std::size_t c = 0; c < count; ++c) update.integer(std::int64_t(count));
     for (int y = y0; y < y0 + strip; ++y) {
       for (int x = 0; x < film.width(); ++x) {
         const Color& c = film.at(x, y);
         update.number(c.x).number(c.y).number(c.z);
+        const std::size_t p = std::size_t(y) * std::size_t(film.width()) + std::size_t(x);
+        for (const ExtraChannel& channel : extra) update.number(channel.values[p]);
       }
     }
     if (!send_packet(update.done())) return;

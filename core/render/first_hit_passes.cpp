@@ -72,6 +72,15 @@ FirstHitPasses parse_passes(const std::string& list) {
   return passes;
 }
 
+std::vector<std::string> pass_channel_names(const FirstHitPasses& passes) {
+  std::vector<std::string> names;
+  for (const PassInfo& pass : pass_table()) {
+    if (passes.*pass.asked)
+      names.insert(names.end(), pass.channel_names.begin(), pass.channel_names.end());
+  }
+  return names;
+}
+
 std::vector<ExtraChannel> pass_channels(const RenderResult& result, const FirstHitPasses& passes) {
   std::vector<ExtraChannel> channels;
   if (!passes.any()) return channels;

@@ -29,6 +29,9 @@ FirstHitPasses parse_passes(const std::string& list);
 // The names --passes takes, for help texts: "albedo, normal, depth".
 std::string pass_names();
 
+// The names of the channels of the passes asked, in the order pass_channels() gives them.
+std::vector<std::string> pass_channel_names(const FirstHitPasses& passes);
+
 struct RenderResult;  // core/render/render_settings.h
 
 // The channels of the passes asked, from the result's first-hit sums and sample counts.
