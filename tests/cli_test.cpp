@@ -970,20 +970,26 @@ TEST(Cli, PassesAreWrittenBesideTheImageAndCombineLikeIt) {
 
 // The viewer's end of --display: a tev that accepts one connection on 127.0.0.1 and keeps
 // every byte it is sent, until the sender closes (or a minute passes).
+// A TCP socket bound to a free port of 127.0.0.1, listening when `listen` is asked; 0 for the
+// port when that fails.
+int bound_loopback_socket(bool listen, int& port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t length = sizeof address;
+  const bool bound = ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0 &&
+                     (!listen || ::listen(fd, 1) == 0) &&
+                     ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) == 0;
+  port = bound ? ntohs(address.sin_port) : 0;
+  return fd;
+}
+
 class FakeTev {
  public:
   FakeTev() {
-    listening_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    socklen_t length = sizeof address;
-    if (::bind(listening_, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 ||
-        ::listen(listening_, 1) != 0 ||
-        ::getsockname(listening_, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
-      return;
-    }
-    port_ = ntohs(address.sin_port);
+    listening_ = bound_loopback_socket(/*listen=*/true, port_);
+    if (port_ == 0) return;
     reader_ = std::thread([this] {
       pollfd ready{listening_, POLLIN, 0};
       if (::poll(&ready, 1, 60000) <= 0) return;
@@ -1174,17 +1180,9 @@ TEST(Cli, DisplayShowsTheRenderInTevAsItGoes) {
   }
   // Nobody listening: the render is whole, with one warning.
   int port = 0;
-  {  // a port that was free a moment ago, and is again once this closes
-    const int probe = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    socklen_t length = sizeof address;
-    ASSERT_EQ(::bind(probe, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
-    ASSERT_EQ(::getsockname(probe, reinterpret_cast<sockaddr*>(&address), &length), 0);
-    port = ntohs(address.sin_port);
-    ::close(probe);
-  }
+  // A port that was free a moment ago, and is again once the probe closes.
+  ::close(bound_loopback_socket(/*listen=*/false, port));
+  ASSERT_GT(port, 0);
   const fs::path alone = output_path("displayed-alone.png");
   CommandResult r = run_rtiow("render -q --scene cover --width 16 --spp 2 --display 127.0.0.1:" +
                               std::to_string(port) + " -o " + alone.string());
