@@ -70,6 +70,14 @@ fs::path output_path(const std::string& name) {
   return p;
 }
 
+// A directory of the test's outputs, `name` under the output directory, made empty.
+fs::path empty_output_dir(const std::string& name) {
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
 int count_lines(const std::string& s) {
   return int(std::count(s.begin(), s.end(), '\n'));
 }
@@ -252,10 +260,7 @@ std::string timing_form(const std::string& line) {
 std::pair<int, int> check_render_examples(const fs::path& path) {
   const std::string docs = slurp(path);
   const bool update = std::getenv("RTIOW_UPDATE_DOCS") != nullptr;
-  const fs::path dir =
-      fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + "-" + path.stem().string() + "-dir");
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = empty_output_dir(test_name() + "-" + path.stem().string() + "-dir");
   const std::string prompt = "$ build/bin/rtiow render ";
   std::vector<std::string> lines;
   {
@@ -710,9 +715,7 @@ TEST(Cli, AdaptiveAndTimedRendersShowProgressInALog) {
 // image whose metadata says how far the render is; the finished file is the one a render
 // without --preview writes, byte for byte, and nothing else is left.
 TEST(Cli, APreviewShowsTheRenderAsItGoesAndTheFinishedFileIsTheSame) {
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + "-dir");
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = empty_output_dir(test_name() + "-dir");
   const fs::path watched = dir / "watched.exr";
   BackgroundRender r({"render", "-q", "--scene", "cover", "--width", "160", "--spp", "1000000",
                       "--checkpoint", "0", "--preview", "0.1", "--passes", "depth", "-o",
@@ -790,9 +793,7 @@ std::vector<float> region_of(const std::vector<float>& rgb, int width, int x0, i
 // a kept checkpoint, and again with --like; a region outside the image and an adaptive crop
 // are refused before any work.
 TEST(Cli, ACropRendersTheWholeImagesPixelsInEveryWayARenderIsMade) {
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "crop";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = empty_output_dir("crop");
   const auto at = [&](const std::string& name) { return (dir / name).string(); };
   const std::string base = "render -q --scene cover --width 64 --spp 6 --reproducible ";
   const std::string crop = " --crop 10,5,40,27";
@@ -881,9 +882,7 @@ std::vector<float> exr_channel(const fs::path& path, const std::string& name) {
 // was; merged from parts, resumed from a checkpoint and repeated with --like to the same bytes
 // as one render; refused where no channel fits, and a checkpoint without them is not resumed.
 TEST(Cli, PassesAreWrittenBesideTheImageAndCombineLikeIt) {
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "passes";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = empty_output_dir("passes");
   const auto at = [&](const std::string& name) { return (dir / name).string(); };
   const std::string base = "render -q --scene cover --width 64 --reproducible ";
   const std::string passes = " --passes albedo,normal,depth";
@@ -1722,9 +1721,7 @@ TEST(Cli, QuickRunsTakeTheirOwnSettingsButTheOptionsGiven) {
 // bench and accuracy --summary-json: the shared head, and headline figures that are the ones
 // the full figures hold; a summary path that cannot be written is refused before the work.
 TEST(Cli, MeasurementsWriteSummariesInTheSharedSchema) {
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "measure-summaries";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = empty_output_dir("measure-summaries");
   const fs::path bench_summary = dir / "bench-summary.json";
   CommandResult r = run_rtiow("bench --quick --max-spheres 100 --out " + (dir / "b").string() +
                               " --summary-json " + bench_summary.string());
