@@ -28,9 +28,9 @@ struct MergeOptions {
 // The spp and variance channels of the merged render, as one render's --stats-channels.
 std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
                                             const std::vector<RenderPart>& parts) {
-  if (merged.spreads.empty()) {
+  if (!merged.sums.keeps(SumGroup::Odd)) {
     for (const RenderPart& p : parts) {
-      if (p.spreads.empty()) {
+      if (!p.sums.keeps(SumGroup::Odd)) {
         throw InvalidInput("--stats-channels: part file " + quote_value(p.path, kWholePath) +
                            " holds no spreads (an older rtiow wrote it): render it again");
       }

@@ -62,12 +62,11 @@ MpiSession::~MpiSession() {
   if (initialized_) MPI_Finalize();
 }
 
-void MpiSession::reduce_sums(std::vector<PixelSum>& sums, std::vector<PixelSpread>* spreads,
-                             std::vector<FirstHitSum>* first_hits) const {
+void MpiSession::reduce_sums(PixelSums& sums) const {
   if (!distributed()) return;
-  reduce_exact(rank_, sums);
-  if (spreads) reduce_exact(rank_, *spreads);
-  if (first_hits) reduce_exact(rank_, *first_hits);
+  sums.for_each_vector([&](auto& group) {
+    if (!group.empty()) reduce_exact(rank_, group);
+  });
 }
 
 std::uint64_t MpiSession::reduce_sum(std::uint64_t value) const {
@@ -93,8 +92,7 @@ void MpiSession::abort(int code) const {
 
 MpiSession::MpiSession(int&, char**&) {}
 MpiSession::~MpiSession() = default;
-void MpiSession::reduce_sums(std::vector<PixelSum>&, std::vector<PixelSpread>*,
-                             std::vector<FirstHitSum>*) const {}
+void MpiSession::reduce_sums(PixelSums&) const {}
 std::uint64_t MpiSession::reduce_sum(std::uint64_t value) const {
   return value;
 }

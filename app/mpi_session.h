@@ -5,14 +5,13 @@
 //
 // Samples rather than tiles: every rank then traces the same pixels, so the cover's costly
 // glass and cheap sky are shared evenly without any scheduling, and the only message is one
-// reduction of the sums at the end (48 bytes per pixel from each rank).
+// reduction of the sums at the end (48 bytes per pixel from each rank; 144 with the spreads
+// for --stats-channels, 112 more with --passes).
 
 #include <cstdint>
 #include <vector>
 
-#include "core/film/first_hit_sum.h"
-#include "core/film/pixel_variance.h"
-#include "core/film/sample_sum.h"
+#include "core/film/pixel_sums.h"
 
 namespace rtiow {
 
@@ -29,10 +28,9 @@ class MpiSession {
   int size() const { return size_; }
   bool distributed() const { return size_ > 1; }
 
-  // Adds every rank's sums, and spreads and the passes' sums if given, into rank 0's (the
-  // others' are left as they were).
-  void reduce_sums(std::vector<PixelSum>& sums, std::vector<PixelSpread>* spreads,
-                   std::vector<FirstHitSum>* first_hits = nullptr) const;
+  // Adds every rank's sums, every group they keep, into rank 0's (the others' are left as they
+  // were).
+  void reduce_sums(PixelSums& sums) const;
   // Sum and maximum over ranks, delivered on rank 0.
   std::uint64_t reduce_sum(std::uint64_t value) const;
   double reduce_max(double value) const;

@@ -47,8 +47,8 @@ void expect_same_render(const RenderResult& a, const RenderResult& b, const std:
   EXPECT_EQ(a.estimated_image_error, b.estimated_image_error) << what;
   EXPECT_EQ(a.pixels_above_target, b.pixels_above_target) << what;
   bool spreads_equal = true;
-  for (std::size_t p = 0; p < a.spreads.size(); ++p) {
-    const PixelSpread &x = a.spreads[p], &y = b.spreads[p];
+  for (std::size_t p = 0; p < a.sums.spreads.size(); ++p) {
+    const PixelSpread &x = a.sums.spreads[p], &y = b.sums.spreads[p];
     spreads_equal = spreads_equal && x == y;
   }
   EXPECT_TRUE(spreads_equal) << what << ": the spreads (variances) differ";
@@ -158,8 +158,8 @@ class CheckpointFile : public ::testing::Test {
     EXPECT_EQ(read->last_round, state.last_round);
     EXPECT_EQ(read->rays_traced, state.rays_traced);
     EXPECT_EQ(read->render_seconds, state.render_seconds);
-    for (std::size_t p = 0; p < state.pixels.spreads.size(); ++p) {
-      ASSERT_TRUE(read->pixels.spreads[p] == state.pixels.spreads[p]);
+    for (std::size_t p = 0; p < state.pixels.sums.spreads.size(); ++p) {
+      ASSERT_TRUE(read->pixels.sums.spreads[p] == state.pixels.sums.spreads[p]);
     }
   }
 
@@ -285,7 +285,7 @@ TEST_F(CheckpointFile, ReadsAVersion2CheckpointToTheSameState) {
   };
   const PixelAccumulators& p = state.pixels;
   for (std::size_t i = 0; i < p.samples.size(); ++i) {
-    put_sum(p.sums[i]), put_sum(p.spreads[i].squares), put_sum(p.spreads[i].odd);
+    put_sum(p.sums.color[i]), put_sum(p.sums.spreads[i].squares), put_sum(p.sums.spreads[i].odd);
     put(p.samples[i]), put(p.rays[i]);
     if (!state.targets.empty()) put(state.targets[i]);
   }

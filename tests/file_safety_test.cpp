@@ -377,11 +377,20 @@ TEST_F(CraftedCheckpoint, EveryFieldOutsideTheRequestsLimitsIsRefused) {
       "rays that do not add up", [](State& s) { s.rays_traced += 1; }, "rays_traced");
   refused(
       "a sum no samples reach",
-      [](State& s) { s.pixels.sums[1].set_channel(0, rtiow::int128(1) << 100); },
+      [](State& s) { s.pixels.sums.color[1].set_channel(0, rtiow::int128(1) << 100); },
       "sums no samples can add up to");
   refused(
-      "a negative sum", [](State& s) { s.pixels.spreads[1].odd.set_channel(2, -1); },
+      "a negative sum", [](State& s) { s.pixels.sums.spreads[1].odd.set_channel(2, -1); },
       "sums no samples can add up to");
+  refused(
+      "a replicate's sum above its pixel's",
+      [](State& s) {
+        s.pixels.sums.spreads[1].odd.set_channel(0, s.pixels.sums.color[1].channel(0) + 1);
+      },
+      "odd.R is more than sum.R");
+  refused(
+      "squares too small for their sum",
+      [](State& s) { s.pixels.sums.spreads[1].squares.set_channel(1, 0); }, "squares.G is less");
   refused(
       "an image error that is not a number",
       [](State& s) { s.estimated_image_error = std::nan(""); }, "estimated_image_error");

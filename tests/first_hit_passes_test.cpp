@@ -55,7 +55,7 @@ struct PassValues {
 };
 
 PassValues values_at(const RenderResult& r, std::size_t p) {
-  const FirstHitSum& sum = r.first_hits[p];
+  const FirstHitSum& sum = r.sums.first_hits[p];
   const std::uint64_t n = r.pixel_samples[p];
   return {{sum.mean(0, n), sum.mean(1, n), sum.mean(2, n)},
           {sum.mean(3, n), sum.mean(4, n), sum.mean(5, n)},
@@ -177,20 +177,21 @@ TEST(FirstHitPasses, AreTheSameBitsHoweverTheRenderIsMadeAndLeaveTheImageAlone) 
   RenderSettings s = small(40, 24, 6);
   s.sampler = SamplerKind::Sobol;
   const RenderResult whole = render(scene, s);
-  ASSERT_EQ(whole.first_hits.size(), std::size_t(40 * 24));
+  ASSERT_EQ(whole.sums.first_hits.size(), std::size_t(40 * 24));
   RenderSettings plain = s;
   plain.passes = {};
   const RenderResult without = render(scene, plain);
   EXPECT_TRUE(test::bit_identical(whole.film, without.film));
-  EXPECT_TRUE(without.first_hits.empty());
-  EXPECT_EQ(whole.sums, without.sums);
+  EXPECT_TRUE(without.sums.first_hits.empty());
+  EXPECT_EQ(whole.sums.color, without.sums.color);
+  EXPECT_EQ(whole.sums.spreads, without.sums.spreads);
 
   for (const int threads : {1, 2}) {
     for (const AccelKind accel : {AccelKind::Embree, AccelKind::Naive}) {
       RenderSettings other = s;
       other.threads = threads;
       other.accel = accel;
-      EXPECT_EQ(render(scene, other).first_hits, whole.first_hits)
+      EXPECT_EQ(render(scene, other).sums.first_hits, whole.sums.first_hits)
           << threads << " threads, " << to_string(accel);
     }
   }
@@ -199,25 +200,25 @@ TEST(FirstHitPasses, AreTheSameBitsHoweverTheRenderIsMadeAndLeaveTheImageAlone) 
   first.samples = FixedSamples{4};
   second.first_sample = 4;
   second.samples = FixedSamples{2};
-  std::vector<FirstHitSum> added = render(scene, first).first_hits;
-  const std::vector<FirstHitSum> rest = render(scene, second).first_hits;
+  std::vector<FirstHitSum> added = render(scene, first).sums.first_hits;
+  const std::vector<FirstHitSum> rest = render(scene, second).sums.first_hits;
   for (std::size_t p = 0; p < added.size(); ++p) added[p] += rest[p];
-  EXPECT_EQ(added, whole.first_hits);
+  EXPECT_EQ(added, whole.sums.first_hits);
   // A crop: the whole render's sums in its region.
   RenderSettings cropped = s;
   cropped.crop = PixelRegion{7, 3, 29, 20};
   const RenderResult crop = render(scene, cropped);
   for (int y = 3; y < 20; ++y) {
     for (int x = 7; x < 29; ++x) {
-      EXPECT_EQ(crop.first_hits[std::size_t((y - 3) * 22 + (x - 7))],
-                whole.first_hits[std::size_t(y * 40 + x)]);
+      EXPECT_EQ(crop.sums.first_hits[std::size_t((y - 3) * 22 + (x - 7))],
+                whole.sums.first_hits[std::size_t(y * 40 + x)]);
     }
   }
   // An adaptive render keeps them too, each pixel averaged over its own count.
   RenderSettings adaptive = s;
   adaptive.samples = PixelErrorTarget{0.2, 64};
   const RenderResult a = render(scene, adaptive);
-  ASSERT_EQ(a.first_hits.size(), a.pixel_samples.size());
+  ASSERT_EQ(a.sums.first_hits.size(), a.pixel_samples.size());
   const std::vector<ExtraChannel> channels = pass_channels(a, kAll);
   ASSERT_EQ(channels.size(), 7u);
   for (const ExtraChannel& c : channels) {

@@ -150,7 +150,7 @@ std::string png_claiming(std::uint32_t width, std::uint32_t height) {
 
 fs::path fixtures() {
   // Named by version: a build tree keeps the fixtures of an older suite under another name.
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-3";
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-4";
   if (fs::exists(dir / "complete")) return dir;
   const fs::path work =
       fs::path(RTIOW_TEST_OUTPUT_DIR) / ("hostile-fixtures." + std::to_string(getpid()));
@@ -166,15 +166,26 @@ fs::path fixtures() {
   render("--part 1/2 -o part1.exr");
   render("--seed 7 --part 1/2 -o other-render.exr");
   render("-o plain.exr");
-  // Part files whose header lies, written field by field.
+  render("--part 0/2 --passes albedo,normal,depth -o passes0.exr");
+  // Part files whose header or sums lie, written field by field and word by word: `edit`
+  // changes the header, `words` pixel 0's words (by channel name) of the part `from`.
+  using Words = std::function<void(std::function<std::uint32_t&(const std::string&)>)>;
   const auto crafted = [&](const std::string& name,
-                           const std::function<void(OIIO::ImageSpec&)>& edit) {
-    auto in = OIIO::ImageInput::open((work / "part0.exr").string());
+                           const std::function<void(OIIO::ImageSpec&)>& edit,
+                           const std::string& from = "part0.exr", const Words& words = {}) {
+    auto in = OIIO::ImageInput::open((work / from).string());
     ASSERT_TRUE(in);
     OIIO::ImageSpec spec = in->spec();
     std::vector<std::uint32_t> data(std::size_t(spec.image_pixels()) * std::size_t(spec.nchannels));
     ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT, data.data()));
     edit(spec);
+    if (words) {
+      words([&](const std::string& channel) -> std::uint32_t& {
+        const int at = spec.channelindex(channel);
+        EXPECT_GE(at, 0) << "test bug: no channel " << channel;
+        return data[std::size_t(std::max(at, 0))];
+      });
+    }
     spec.channelformats.assign(std::size_t(spec.nchannels), OIIO::TypeDesc::UINT);
     auto out = OIIO::ImageOutput::create((work / name).string());
     ASSERT_TRUE(out && out->open((work / name).string(), spec) &&
@@ -190,6 +201,29 @@ fs::path fixtures() {
   crafted("older-version.exr", [](auto& s) { s.attribute("rtiow:version", "0.0.1"); });
   crafted("passes-garbage.exr", [](auto& s) { s.attribute("rtiow:passes", "albedo,sparkle"); });
   crafted("passes-without-sums.exr", [](auto& s) { s.attribute("rtiow:passes", "depth"); });
+  // Sums no samples can add up to, one word each (a checkpoint refuses the same).
+  const auto same = [](OIIO::ImageSpec&) {};
+  crafted("sum-word.exr", same, "part0.exr", [](auto word) { word("sum.R.1") = 0x7fffffffu; });
+  crafted("square-words.exr", same, "part0.exr", [](auto word) {
+    for (const char* w : {"squares.G.0", "squares.G.1", "squares.G.2", "squares.G.3"}) {
+      word(w) = 0x7fffffffu;
+    }
+  });
+  crafted("odd-word.exr", same, "part0.exr", [](auto word) { word("odd.B.2") = 1; });
+  crafted("odd-above-sum.exr", same, "part0.exr", [](auto word) {
+    for (const char* w : {".0", ".1", ".2", ".3"})
+      word(std::string("odd.G") + w) = word(std::string("sum.G") + w);
+    word("odd.G.0") += 1;  // the sum's low word is far from 2^32 - 1 for a pixel of about 1
+  });
+  crafted("count-word.exr", [](auto& s) { s.attribute("rtiow:part_samples", "1"); });
+  crafted("first-hit-word.exr", same, "passes0.exr",
+          [](auto word) { word("first_hit.albedo.R.1") = 5; });
+  crafted("normal-words.exr", same, "passes0.exr", [](auto word) {
+    for (const char* axis : {"X", "Y", "Z"}) {  // each axis within its bound, together too long
+      const std::string c = std::string("first_hit.N.") + axis;
+      word(c + ".0") = 0, word(c + ".1") = 2, word(c + ".2") = 0, word(c + ".3") = 0;
+    }
+  });
   const std::string part = slurp(work / "part0.exr");
   write_file(work / "truncated.exr", part.substr(0, part.size() / 2));
   // Headers that claim far more pixels than their files hold: a part of 8192x8192 (10 GB of
@@ -694,6 +728,22 @@ std::vector<Case> part_cases() {
        merge({"passes-garbage.exr", "part1.exr"})},
       {"MergePassesWithoutTheirSums", 2, "records passes depth but holds no sums of them",
        merge({"passes-without-sums.exr", "part1.exr"})},
+      // Each crafted sum is refused by the checks a checkpoint's get, naming the pixel and
+      // the channel (core/film/sum_validation.h).
+      {"MergeCraftedSum", 2, "pixel (0, 0) has sums no samples can add up to: squares.R is less",
+       merge({"sum-word.exr", "part1.exr"})},
+      {"MergeCraftedSquares", 2, "squares.G is beyond what 2 samples can add up to",
+       merge({"square-words.exr", "part1.exr"})},
+      {"MergeCraftedReplicateSum", 2, "odd.B is beyond what 1 sample of odd index",
+       merge({"odd-word.exr", "part1.exr"})},
+      {"MergeReplicateAboveItsSum", 2, "odd.G is more than sum.G",
+       merge({"odd-above-sum.exr", "part1.exr"})},
+      {"MergeCraftedCount", 2, "beyond what 0 samples of odd index",
+       merge({"count-word.exr", "part1.exr"})},
+      {"MergeCraftedFirstHitSum", 2, "first_hit.albedo.R is beyond what 2 samples",
+       merge({"first-hit-word.exr", "part1.exr"})},
+      {"MergeCraftedNormals", 2, "first_hit.N is longer than 2 samples of unit normals",
+       merge({"normal-words.exr", "part1.exr"})},
       {"MergeWithoutJobField", 2, "header field rtiow:part_job_samples",
        merge({"no-job.exr", "part1.exr"})},
       {"MergeDirectory", 2, "is a directory", merge({"adir.png"})},

@@ -193,7 +193,6 @@ TEST(Render, TargetErrorStopsEveryPixelAtItsTarget) {
   const RenderResult r = render(scene, s);
   PixelAccumulators pixels(r.pixel_samples.size());
   pixels.sums = r.sums;
-  pixels.spreads = r.spreads;
   pixels.samples = r.pixel_samples;
   const std::vector<double> judged = neighbourhood_relative_variance(s, pixels, Pooling::Median);
   const double target_variance = target.error * target.error;
@@ -227,17 +226,17 @@ TEST(Render, SharesOfTheSamplesAddUpToTheWholeRender) {
   RenderSettings whole = tiny(scene);
   whole.samples = FixedSamples{9};
   const RenderResult all = render(scene, whole);
-  std::vector<PixelSum> sums(all.sums.size());
+  std::vector<PixelSum> sums(all.sums.size());  // the colour's
   std::uint64_t rays = 0;
   for (auto [first, count] : {std::pair{0, 2}, std::pair{2, 5}, std::pair{7, 2}}) {
     RenderSettings share = whole;
     share.first_sample = std::uint64_t(first);
     share.samples = FixedSamples{count};
     const RenderResult part = render(scene, share);
-    for (std::size_t i = 0; i < sums.size(); ++i) sums[i] += part.sums[i];
+    for (std::size_t i = 0; i < sums.size(); ++i) sums[i] += part.sums.color[i];
     rays += part.rays_traced;
   }
-  EXPECT_TRUE(sums == all.sums);
+  EXPECT_TRUE(sums == all.sums.color);
   EXPECT_EQ(rays, all.rays_traced);
   Film merged(whole.width, whole.height);
   for (int y = 0; y < whole.height; ++y) {
@@ -267,8 +266,8 @@ TEST(Render, PacketsOfSeveralPixelsGiveEachPixelItsOwnSamples) {
       std::uint64_t pixel_rays = 0;
       rays += accumulate_run(ctx, PixelRun{x, y, 1, 0, 3}, {&sum, &spread, &pixel_rays});
       const std::size_t p = std::size_t(y * settings.width + x);
-      ASSERT_TRUE(sum == whole.sums[p]) << "pixel " << x << "," << y;
-      ASSERT_TRUE(spread == whole.spreads[p]) << "pixel " << x << "," << y;
+      ASSERT_TRUE(sum == whole.sums.color[p]) << "pixel " << x << "," << y;
+      ASSERT_TRUE(spread == whole.sums.spreads[p]) << "pixel " << x << "," << y;
     }
   }
   EXPECT_EQ(rays, whole.rays_traced);
@@ -291,8 +290,8 @@ TEST(Render, FinerTilesForManyThreadsGiveTheSameImage) {
   const RenderResult many = render(scene, settings);
   ASSERT_EQ(one.sums.size(), many.sums.size());
   for (std::size_t p = 0; p < one.sums.size(); ++p) {
-    ASSERT_TRUE(one.sums[p] == many.sums[p]) << "pixel " << p;
-    ASSERT_TRUE(one.spreads[p] == many.spreads[p]) << "pixel " << p;
+    ASSERT_TRUE(one.sums.color[p] == many.sums.color[p]) << "pixel " << p;
+    ASSERT_TRUE(one.sums.spreads[p] == many.sums.spreads[p]) << "pixel " << p;
   }
   EXPECT_EQ(one.rays_traced, many.rays_traced);
 }

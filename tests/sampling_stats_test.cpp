@@ -237,7 +237,8 @@ TEST(ImageError, AgreesInTheMeanAndDeliversTheErrorAskedFor) {
       const RenderResult r = render(cover(), s);
       ImageEstimate bounded = to_estimate(r);
       for (std::size_t p = 0; p < bounded.variance.size(); ++p) {
-        bounded.variance[p] = variance_of_mean(r.sums[p], r.spreads[p], r.pixel_samples[p]);
+        bounded.variance[p] =
+            variance_of_mean(r.sums.color[p], r.sums.spreads[p], r.pixel_samples[p]);
       }
       const ImageError e = measure_error(bounded, reference());
       const double delivered = std::sqrt(measure_error(to_estimate(r), reference()).rel_mse);

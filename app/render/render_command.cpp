@@ -52,14 +52,17 @@ RenderResult render_with_progress(const RenderOptions& o, const RenderJob& job,
   return render(job.scene, job.settings, &progress, checkpointing);
 }
 
-// Under MPI, rank 0 adds every rank's exact sums (and, for the variances, `spreads`) into the
-// image of one process with all the samples; false on the other ranks, which are done.
-bool gather_ranks(const MpiSession& mpi, RenderJob& job, RenderResult& result, bool spreads) {
+// Under MPI, rank 0 adds every rank's exact sums into the image of one process with all the
+// samples; false on the other ranks, which are done. The spreads travel only where the file
+// holds them (the statistics channels; a part is refused under mpirun): they triple what a
+// rank sends.
+bool gather_ranks(const MpiSession& mpi, RenderJob& job, RenderResult& result,
+                  bool stats_channels) {
   const std::uint64_t done = mpi.reduce_sum(std::uint64_t(result.samples_completed));
   result.rays_traced = mpi.reduce_sum(result.rays_traced);
   result.render_seconds = mpi.reduce_max(result.render_seconds);
-  mpi.reduce_sums(result.sums, spreads ? &result.spreads : nullptr,
-                  job.settings.passes.any() ? &result.first_hits : nullptr);
+  if (!stats_channels) result.sums.spreads.clear();
+  mpi.reduce_sums(result.sums);
   if (mpi.rank() != 0) return false;
   result.stopped = done < job.samples_asked;
   complete_from_shares(done, result);

@@ -26,14 +26,14 @@ void RenderPreview::write(const RenderState& state) {
   const auto& samples = state.pixels.samples;
   RenderResult so_far;
   so_far.film = Film(film_width(s), film_height(s));
-  resolve(state.pixels.sums, samples, so_far.film);
+  resolve(state.pixels.sums.color, samples, so_far.film);
   for (std::size_t p = 0; p < samples.size(); ++p) {  // not reached yet (an adaptive first round)
     if (samples[p] == 0)
       so_far.film.at(int(p % std::size_t(film_width(s))), int(p / std::size_t(film_width(s)))) =
           Color(0.0f, 0.0f, 0.0f);
   }
   so_far.pixel_samples = samples;
-  so_far.first_hits = state.pixels.first_hits;
+  so_far.sums.first_hits = state.pixels.sums.first_hits;
   const std::vector<ExtraChannel> passes = pass_channels(so_far, s.passes);
   if (display_) display_->show(so_far.film, passes);
   if (!to_file_) return;

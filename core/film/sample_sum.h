@@ -91,10 +91,4 @@ inline void resolve(const std::vector<PixelSum>& sums, const std::vector<std::ui
   }
 }
 
-// Adds `count` sums from `from` into `into`, pixel by pixel: how shares of a render combine,
-// in a merge of part files and in the MPI reduction alike. Exact, so the order never matters.
-inline void add_sums(PixelSum* into, const PixelSum* from, std::size_t count) {
-  for (std::size_t i = 0; i < count; ++i) into[i] += from[i];
-}
-
 }  // namespace rtiow

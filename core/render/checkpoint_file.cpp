@@ -12,9 +12,11 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 #include <variant>
 #include <vector>
 
+#include "core/film/sum_validation.h"
 #include "core/io/atomic_file.h"
 #include "core/io/checksum.h"
 #include "core/io/file_bytes.h"
@@ -58,15 +60,14 @@ void put_signed(std::vector<char>& out, std::int64_t v) {
   put_varint(out, (std::uint64_t(v) << 1) ^ std::uint64_t(v >> 63));
 }
 
-void put_sum(std::vector<char>& out, const PixelSum& sum) {
-  for (int c = 0; c < 3; ++c) put_varint(out, uint128(sum.channel(c)));
-}
-
-// The passes' sums, signed: zigzagged over 128 bits.
-void put_first_hits(std::vector<char>& out, const FirstHitSum& sum) {
-  for (std::size_t c = 0; c < FirstHitSum::kChannels; ++c) {
-    const int128 v = sum.channel(c);
-    put_varint(out, (uint128(v) << 1) ^ uint128(v >> 127));
+// A pixel's sums, group by group in the declaration's order (core/film/sum_channels.h): each
+// channel a varint, a signed group's zigzagged over 128 bits.
+void put_sums(std::vector<char>& out, const PixelSumsRef& sums) {
+  for (const SumGroupDeclaration& d : kSumGroups) {
+    for (std::size_t c = 0; sums.has(d.group) && c < d.channels; ++c) {
+      const int128 v = sums.channel(d.group, c);
+      put_varint(out, d.is_signed ? (uint128(v) << 1) ^ uint128(v >> 127) : uint128(v));
+    }
   }
 }
 
@@ -120,7 +121,6 @@ bool write_state(int fd, const CheckpointIdentity& identity, const RenderState& 
   const PixelAccumulators& p = state.pixels;
   const bool targets = !state.targets.empty();
   std::vector<char> chunk;
-  const bool first_hits = !p.first_hits.empty();
   chunk.reserve(kChunkBytes + kMaxBytesPerPixel + kMaxPassBytesPerPixel);
   std::uint32_t previous_samples = 0;
   for (std::size_t i = 0; i < p.samples.size(); ++i) {
@@ -128,10 +128,7 @@ bool write_state(int fd, const CheckpointIdentity& identity, const RenderState& 
     previous_samples = p.samples[i];
     put_varint(chunk, p.rays[i]);
     if (targets) put_signed(chunk, std::int64_t(state.targets[i]) - std::int64_t(p.samples[i]));
-    put_sum(chunk, p.sums[i]);
-    put_sum(chunk, p.spreads[i].squares);
-    put_sum(chunk, p.spreads[i].odd);
-    if (first_hits) put_first_hits(chunk, p.first_hits[i]);
+    put_sums(chunk, p.sums.at(i));
     if (chunk.size() >= kChunkBytes || i + 1 == p.samples.size()) {
       if (!write_summed(fd, chunk.data(), chunk.size(), checksum, reason)) return false;
       chunk.clear();
@@ -324,39 +321,19 @@ class RecordReader {
   std::size_t at_ = 0, end_ = 0, summed_ = 0;
 };
 
-PixelSum read_sum(RecordReader& in, bool fixed_records) {
-  PixelSum sum;
-  for (int c = 0; c < 3; ++c) {
-    if (fixed_records) {
-      const auto low = in.fixed<std::uint64_t>(), high = in.fixed<std::uint64_t>();
-      sum.set_channel(c, int128((uint128(high) << 64) | low));
-    } else {
-      sum.set_channel(c, int128(in.varint()));
+// A pixel's sums, group by group in the declaration's order, as put_sums wrote them; version
+// 2's fixed records hold the colour's three groups as 16 bytes a channel.
+void read_sums(RecordReader& in, bool fixed_records, const PixelSumsOut& sums) {
+  for (const SumGroupDeclaration& d : kSumGroups) {
+    for (std::size_t c = 0; sums.has(d.group) && c < d.channels; ++c) {
+      if (fixed_records) {
+        const auto low = in.fixed<std::uint64_t>(), high = in.fixed<std::uint64_t>();
+        sums.set(d.group, c, int128((uint128(high) << 64) | low));
+      } else {
+        sums.set(d.group, c, d.is_signed ? in.signed_varint128() : int128(in.varint()));
+      }
     }
   }
-  return sum;
-}
-
-// The passes' sums of a pixel, each channel within what `samples` samples can add up to:
-// albedos in [0, 1] and unit normals (a rounding above 1 allowed), depths from 0 to the most
-// a value may be.
-bool first_hits_within(const FirstHitSum& sum, std::uint64_t samples) {
-  const int128 unit = int128(samples) * int128(2 * PixelSum::kScale);
-  const int128 far = int128(samples) * int128(FirstHitSum::kMaxValue * PixelSum::kScale);
-  for (std::size_t c = 0; c < FirstHitSum::kChannels; ++c) {
-    const int128 v = sum.channel(c);
-    const bool normal = c >= 3 && c < 6;
-    if (v < (normal ? -unit : 0) || v > (c == 6 ? far : unit)) return false;
-  }
-  return true;
-}
-
-// Whether every channel of `sum` lies in [0, samples * per_sample].
-bool within(const PixelSum& sum, std::uint64_t samples, uint128 per_sample) {
-  for (int c = 0; c < 3; ++c) {
-    if (sum.channel(c) < 0 || uint128(sum.channel(c)) > uint128(samples) * per_sample) return false;
-  }
-  return true;
 }
 
 }  // namespace
@@ -512,9 +489,8 @@ std::optional<RenderState> read_checkpoint(const std::string& path,
   // Each pixel's record, checked as it is read: a count and a target within the cap, one
   // count for every pixel of a uniform render, rays no more than its samples can trace, sums
   // within what its samples can add up to.
-  constexpr uint128 kMostSum = uint128(PixelSum::kMaxSample * PixelSum::kScale);
-  constexpr uint128 kMostSquare = kMostSum * uint128(PixelSum::kMaxSample);
   const auto depth = std::uint64_t(std::max(settings.max_depth, 0));
+  const std::uint64_t first = settings.first_sample;  // every pixel's samples start here
   RecordReader in(fd, checksum, path);
   PixelAccumulators& p = state.pixels;
   std::uint64_t rays_sum = 0, least = most, most_seen = 0;
@@ -526,10 +502,7 @@ std::optional<RenderState> read_checkpoint(const std::string& path,
     std::int64_t samples = 0, target = 0;
     std::uint64_t rays = 0;
     if (header.fixed_records) {
-      p.sums[i] = read_sum(in, true);
-      const PixelSum squares = read_sum(in, true);
-      for (int c = 0; c < 3; ++c) p.spreads[i].squares.set_channel(c, squares.channel(c));
-      p.spreads[i].odd = read_sum(in, true);
+      read_sums(in, true, p.sums.at(i));
       samples = in.fixed<std::uint32_t>();
       rays = in.fixed<std::uint64_t>();
       if (targets) target = in.fixed<std::uint32_t>();
@@ -546,15 +519,7 @@ std::optional<RenderState> read_checkpoint(const std::string& path,
         const std::int64_t beyond = in.signed_varint();
         target = bounded(beyond) ? samples + beyond : -1;
       }
-      p.sums[i] = read_sum(in, false);
-      const PixelSum squares = read_sum(in, false);
-      for (int c = 0; c < 3; ++c) p.spreads[i].squares.set_channel(c, squares.channel(c));
-      p.spreads[i].odd = read_sum(in, false);
-      if (first_hits) {
-        for (std::size_t c = 0; c < FirstHitSum::kChannels; ++c) {
-          p.first_hits[i].set_channel(c, in.signed_varint128());
-        }
-      }
+      read_sums(in, false, p.sums.at(i));
     }
     previous = samples;
     if (samples < 0 || std::uint64_t(samples) > most) {
@@ -570,13 +535,8 @@ std::optional<RenderState> read_checkpoint(const std::string& path,
     if (uint128(rays) > uint128(n) * depth) {
       throw bad_pixel("has more rays than its samples can trace at depth " + std::to_string(depth));
     }
-    if (!within(p.sums[i], n, kMostSum) || !within(p.spreads[i].odd, n, kMostSum) ||
-        !within(p.spreads[i].squares, n, kMostSquare)) {
-      throw bad_pixel("has sums no samples can add up to");
-    }
-    if (first_hits && !first_hits_within(p.first_hits[i], n)) {
-      throw bad_pixel("has pass sums no samples can add up to");
-    }
+    const std::string impossible = impossible_sums(std::as_const(p.sums).at(i), first, n);
+    if (!impossible.empty()) throw bad_pixel("has sums no samples can add up to: " + impossible);
     p.samples[i] = std::uint32_t(n);
     p.rays[i] = rays;
     if (targets) state.targets[i] = std::uint32_t(target);

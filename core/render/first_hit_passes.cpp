@@ -84,17 +84,17 @@ std::vector<std::string> pass_channel_names(const FirstHitPasses& passes) {
 std::vector<ExtraChannel> pass_channels(const RenderResult& result, const FirstHitPasses& passes) {
   std::vector<ExtraChannel> channels;
   if (!passes.any()) return channels;
-  if (result.first_hits.size() != result.pixel_samples.size()) {
+  if (result.sums.first_hits.size() != result.pixel_samples.size()) {
     throw std::invalid_argument("a render without first-hit sums has no passes to write");
   }
   for (const PassInfo& pass : pass_table()) {
     if (!(passes.*pass.asked)) continue;
     for (std::size_t i = 0; i < pass.channel_names.size(); ++i) {
       ExtraChannel channel{pass.channel_names[i], {}};
-      channel.values.reserve(result.first_hits.size());
-      for (std::size_t p = 0; p < result.first_hits.size(); ++p) {
+      channel.values.reserve(result.sums.first_hits.size());
+      for (std::size_t p = 0; p < result.sums.first_hits.size(); ++p) {
         channel.values.push_back(
-            result.first_hits[p].mean(pass.first_channel + i, result.pixel_samples[p]));
+            result.sums.first_hits[p].mean(pass.first_channel + i, result.pixel_samples[p]));
       }
       channels.push_back(std::move(channel));
     }

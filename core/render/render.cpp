@@ -87,9 +87,9 @@ void validate_budget(const SampleBudget& budget, double time_limit_seconds) {
 void check_resumable(const RenderState& state, const RenderSettings& settings) {
   const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
   const PixelAccumulators& p = state.pixels;
-  if (p.sums.size() != pixels || p.spreads.size() != pixels || p.samples.size() != pixels ||
+  if (p.sums.size() != pixels || p.sums.spreads.size() != pixels || p.samples.size() != pixels ||
       p.rays.size() != pixels || (!state.targets.empty() && state.targets.size() != pixels) ||
-      p.first_hits.size() != (settings.passes.any() ? pixels : 0)) {
+      p.sums.first_hits.size() != (settings.passes.any() ? pixels : 0)) {
     throw InvalidInput("the state to resume is not of a " + std::to_string(settings.width) + "x" +
                        std::to_string(settings.height) + " image" +
                        (settings.passes.any() ? " with passes" : " without passes"));
@@ -173,12 +173,10 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   journal.save(result, result.stopped ? SaveReason::Stopped : SaveReason::Finished);
   PixelAccumulators& pixels = state.pixels;
   result.film = Film(settings.width, settings.height);
-  resolve(pixels.sums, pixels.samples, result.film);
+  resolve(pixels.sums.color, pixels.samples, result.film);
   result.sums = std::move(pixels.sums);
-  result.spreads = std::move(pixels.spreads);
   result.pixel_samples = std::move(pixels.samples);
   result.pixel_rays = std::move(pixels.rays);
-  result.first_hits = std::move(pixels.first_hits);
   result.targets = std::move(state.targets);
   result.last_round = state.last_round;
   result.first_sample = settings.first_sample;
@@ -279,8 +277,6 @@ RenderResult render(const Scene& scene, const RenderSettings& asked, RenderProgr
 RenderState state_of(const RenderResult& result) {
   RenderState state{result.pixel_samples.size()};
   state.pixels.sums = result.sums;
-  state.pixels.first_hits = result.first_hits;
-  state.pixels.spreads = result.spreads;
   state.pixels.samples = result.pixel_samples;
   state.pixels.rays = result.pixel_rays;
   state.targets = result.targets;

@@ -151,8 +151,6 @@ void write_job_result(const JobRequest& r, const RenderJob& job, const RenderRes
   part.digest = render_digest(job.scene, job.settings);
   part.metadata = metadata;
   part.sums = result.sums;  // copied: kept in the result, should the write fail
-  part.spreads = result.spreads;
-  part.first_hits = result.first_hits;
   write_part(job.output, part);
 }
 

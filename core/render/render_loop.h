@@ -210,9 +210,9 @@ std::uint64_t advance_pixels(const RenderContext<Accel>& ctx, std::size_t n,
     k += length;
     if (to <= from) continue;
     const PixelRun run{int(p % width), int(p / width), int(length), base + from, base + to};
-    FirstHitSum* first_hits = pixels.first_hits.empty() ? nullptr : &pixels.first_hits[p];
-    rays += accumulate_run(ctx, run,
-                           {&pixels.sums[p], &pixels.spreads[p], &pixels.rays[p], first_hits});
+    FirstHitSum* first_hits = pixels.sums.first_hits.empty() ? nullptr : &pixels.sums.first_hits[p];
+    rays += accumulate_run(
+        ctx, run, {&pixels.sums.color[p], &pixels.sums.spreads[p], &pixels.rays[p], first_hits});
     std::fill_n(pixels.samples.begin() + std::ptrdiff_t(p), length, to);
     added += std::uint64_t(length) * (to - from);
   }
@@ -302,7 +302,7 @@ std::uint64_t render_tiles(const RenderContext<Accel>& ctx, std::uint32_t sample
                            settings.passes.any());
   const std::uint32_t n = samples_per_pixel;
   const std::uint64_t rays = render_pass(ctx, n, pixels, progress);
-  resolve(pixels.sums, n, film);
+  resolve(pixels.sums.color, n, film);
   return rays;
 }
 

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string_view>
 
+#include "core/film/sum_validation.h"
 #include "core/io/atomic_file.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
@@ -33,33 +34,11 @@ const std::string kPartFirstSample = kPartFieldPrefix + "first_sample";
 const std::string kPartSamples = kPartFieldPrefix + "samples";
 const std::string kPartJobSamples = kPartFieldPrefix + "job_samples";
 const std::string kDigest = std::string(kMetadataPrefix) + "digest";
-// The exact sums a part holds per pixel, in this order: the samples' (always), and the
-// spread's (the odd samples' and the squares') that the variances need.
-constexpr std::array<const char*, 3> kSumGroups{"sum", "odd", "squares"};
-constexpr int kWordsPerGroup = kColorChannels * kWordsPerSum;
 
-// The passes' sums (core/film/first_hit_sum.h), in their order, as first_hit.<name>.<word>.
-constexpr std::array<const char*, FirstHitSum::kChannels> kFirstHitNames{
-    "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"};
-constexpr int kFirstHitWords = int(FirstHitSum::kChannels) * kWordsPerSum;
-
-std::string first_hit_channel(std::size_t c, int word) {
-  return std::string("first_hit.") + kFirstHitNames[c] + "." + std::to_string(word);
-}
-
-int channel_count(std::size_t groups, bool first_hits = false) {
-  return kColorChannels + int(groups) * kWordsPerGroup + (first_hits ? kFirstHitWords : 0);
-}
-
-// Group g of pixel p's exact sums.
-const PixelSum& group_sum(const RenderPart& part, std::size_t p, std::size_t g) {
-  if (g == 0) return part.sums[p];
-  return g == 1 ? part.spreads[p].odd : part.spreads[p].squares;
-}
-
-void set_group_sum(RenderPart& part, std::size_t p, std::size_t g, const PixelSum& sum) {
-  PixelSum& into = g == 0 ? part.sums[p] : g == 1 ? part.spreads[p].odd : part.spreads[p].squares;
-  for (int c = 0; c < kColorChannels; ++c) into.set_channel(c, sum.channel(c));
+// The file channel of word w (low first) of channel c of a group of sums
+// (core/film/sum_channels.h): "sum.R.0", "first_hit.albedo.R.3".
+std::string word_channel(const SumGroupDeclaration& d, std::size_t c, int w) {
+  return std::string(d.name) + "." + std::string(d.channel_names[c]) + "." + std::to_string(w);
 }
 
 std::string hex(std::uint64_t v) {
@@ -119,21 +98,12 @@ void write_part(const std::string& path, const RenderPart& part) {
     header.channel_names.emplace_back(c);
     header.channel_types.push_back(PixelType::Float);
   }
-  const std::size_t groups = part.spreads.empty() ? 1 : kSumGroups.size();
-  for (std::size_t g = 0; g < groups; ++g) {
-    for (const char* c : {"R", "G", "B"}) {
+  for (const SumGroupDeclaration& d : kSumGroups) {
+    for (std::size_t c = 0; part.sums.keeps(d.group) && c < d.channels; ++c) {
       for (int w = 0; w < kWordsPerSum; ++w) {
-        header.channel_names.push_back(std::string(kSumGroups[g]) + "." + c + "." +
-                                       std::to_string(w));
+        header.channel_names.push_back(word_channel(d, c, w));
         header.channel_types.push_back(PixelType::UInt32);
       }
-    }
-  }
-  const bool first_hits = !part.first_hits.empty();
-  for (std::size_t c = 0; first_hits && c < FirstHitSum::kChannels; ++c) {
-    for (int w = 0; w < kWordsPerSum; ++w) {
-      header.channel_names.push_back(first_hit_channel(c, w));
-      header.channel_types.push_back(PixelType::UInt32);
     }
   }
   auto& attributes = header.attributes;
@@ -152,27 +122,21 @@ void write_part(const std::string& path, const RenderPart& part) {
   attributes.push_back({kPartJobSamples, std::to_string(part.job_samples)});
   attributes.push_back({kDigest, part.digest});
 
-  // Native layout: per pixel 3 floats, 12 words per group, then the passes' 28 words, all 4
-  // bytes wide.
-  const auto channels = std::size_t(channel_count(groups, first_hits));
+  // Native layout: per pixel 3 floats, then the words of every channel of every group kept,
+  // all 4 bytes wide.
+  const std::size_t channels = header.channel_names.size();
   std::vector<std::uint32_t> data(std::size_t(part.width) * std::size_t(part.height) * channels);
   for (std::size_t p = 0; p < part.sums.size(); ++p) {
     std::uint32_t* pixel = &data[p * channels];
-    const Color mean = part.sums[p].mean(part.samples);
+    const Color mean = part.sums.color[p].mean(part.samples);
     std::memcpy(pixel, &mean, sizeof mean);
-    for (std::size_t g = 0; g < groups; ++g) {
-      for (int c = 0; c < kColorChannels; ++c) {
-        const auto bits = static_cast<uint128>(group_sum(part, p, g).channel(c));
-        for (int w = 0; w < kWordsPerSum; ++w) {
-          pixel[kColorChannels + int(g) * kWordsPerGroup + c * kWordsPerSum + w] =
-              std::uint32_t(bits >> (32 * w));
-        }
+    std::uint32_t* words = pixel + kColorChannels;
+    const PixelSumsRef sums = part.sums.at(p);
+    for (const SumGroupDeclaration& d : kSumGroups) {
+      for (std::size_t c = 0; sums.has(d.group) && c < d.channels; ++c) {
+        const auto bits = static_cast<uint128>(sums.channel(d.group, c));
+        for (int w = 0; w < kWordsPerSum; ++w) *words++ = std::uint32_t(bits >> (32 * w));
       }
-    }
-    std::uint32_t* words = pixel + channel_count(groups);
-    for (std::size_t c = 0; first_hits && c < FirstHitSum::kChannels; ++c) {
-      const auto bits = static_cast<uint128>(part.first_hits[p].channel(c));
-      for (int w = 0; w < kWordsPerSum; ++w) *words++ = std::uint32_t(bits >> (32 * w));
     }
   }
 
@@ -186,50 +150,40 @@ void write_part(const std::string& path, const RenderPart& part) {
 
 namespace {
 
-// Where each 32-bit word of each colour's sum of each group is among the file's channels
-// (EXR stores channels sorted by name): the samples' sums alone (a part written before parts
-// kept their spreads) or every group; nothing if the file is not a part file.
-using WordChannels = std::array<std::array<int, kWordsPerSum>, kColorChannels>;
-
-// Where the passes' sums are among the file's channels; empty in a part without them.
+// Where each 32-bit word of each channel of each group of sums is among the file's channels
+// (EXR stores channels sorted by name), for the groups the part keeps: the samples' sums
+// always; the spread's two groups, or neither (a part written before parts kept them); the
+// passes' with --passes. Nothing if the file is not a part file.
 struct SumChannels {
-  std::vector<WordChannels> groups;
-  std::vector<std::array<int, kWordsPerSum>> first_hits;
+  std::array<bool, kSumGroups.size()> kept{};
+  std::array<std::vector<std::array<int, kWordsPerSum>>, kSumGroups.size()> words;
+  std::size_t stride = kColorChannels;  // channels per pixel
 };
 
 std::optional<SumChannels> find_sum_channels(const ImageHeader& header) {
   const std::vector<std::string>& names = header.channel_names;
-  const bool first_hits =
-      std::find(names.begin(), names.end(), first_hit_channel(0, 0)) != names.end();
-  const auto count = [&](std::size_t groups) {
-    return std::size_t(channel_count(groups, first_hits));
+  const auto index_of = [&](const std::string& name) {
+    const auto it = std::find(names.begin(), names.end(), name);
+    return it == names.end() ? -1 : int(it - names.begin());
   };
-  const std::size_t groups = names.size() == count(1)                   ? 1
-                             : names.size() == count(kSumGroups.size()) ? 3
-                                                                        : 0;
-  if (groups == 0 || header.string_attribute(kDigest).empty()) return {};
   SumChannels found;
-  for (std::size_t c = 0; first_hits && c < FirstHitSum::kChannels; ++c) {
-    std::array<int, kWordsPerSum> words{};
-    for (int w = 0; w < kWordsPerSum; ++w) {
-      const auto it = std::find(names.begin(), names.end(), first_hit_channel(c, w));
-      if (it == names.end()) return {};
-      words[std::size_t(w)] = int(it - names.begin());
-    }
-    found.first_hits.push_back(words);
-  }
-  std::vector<WordChannels>& channels = found.groups;
-  channels.resize(groups);
-  for (std::size_t g = 0; g < groups; ++g) {
-    for (int c = 0; c < kColorChannels; ++c) {
+  for (std::size_t g = 0; g < kSumGroups.size(); ++g) {
+    const SumGroupDeclaration& d = kSumGroups[g];
+    found.kept[g] = index_of(word_channel(d, 0, 0)) >= 0;
+    for (std::size_t c = 0; found.kept[g] && c < d.channels; ++c) {
+      std::array<int, kWordsPerSum> at{};
       for (int w = 0; w < kWordsPerSum; ++w) {
-        const std::string channel =
-            std::string(kSumGroups[g]) + "." + "RGB"[c] + "." + std::to_string(w);
-        const auto it = std::find(names.begin(), names.end(), channel);
-        if (it == names.end()) return {};
-        channels[g][std::size_t(c)][std::size_t(w)] = int(it - names.begin());
+        at[std::size_t(w)] = index_of(word_channel(d, c, w));
+        if (at[std::size_t(w)] < 0) return {};
       }
+      found.words[g].push_back(at);
+      found.stride += kWordsPerSum;
     }
+  }
+  const auto kept = [&](SumGroup g) { return found.kept[std::size_t(g)]; };
+  if (!kept(SumGroup::Samples) || kept(SumGroup::Odd) != kept(SumGroup::Squares) ||
+      names.size() != found.stride || header.string_attribute(kDigest).empty()) {
+    return {};
   }
   return found;
 }
@@ -289,38 +243,36 @@ Metadata read_part_metadata(const ImageHeader& header) {
   return metadata;
 }
 
-// The exact sums (and spreads, where the file has them), every channel read as 32-bit words
-// whatever the file stores.
+// The exact sums of every group the file keeps, every channel read as 32-bit words whatever
+// the file stores, each pixel's checked as a checkpoint's are (core/film/sum_validation.h).
 void read_part_sums(ImageReader& in, const std::string& name, const SumChannels& found,
                     RenderPart& part) {
   const ImageHeader& header = in.header();
-  const std::vector<WordChannels>& channels = found.groups;
   const std::size_t pixels = std::size_t(header.width) * std::size_t(header.height);
-  const auto stride = std::size_t(channel_count(channels.size(), !found.first_hits.empty()));
-  std::vector<std::uint32_t> data(pixels * stride);
+  std::vector<std::uint32_t> data(pixels * found.stride);
   std::string reason;
   if (!in.read_pixels(PixelType::UInt32, data.data(), reason)) {
     throw InvalidInput(name + ": cannot read its pixels: " + one_line(reason, 200));
   }
-  part.sums.assign(pixels, PixelSum{});
-  if (channels.size() > 1) part.spreads.assign(pixels, PixelSpread{});
-  if (!found.first_hits.empty()) part.first_hits.assign(pixels, FirstHitSum{});
-  const auto word128 = [](const std::uint32_t* pixel, const std::array<int, kWordsPerSum>& at) {
-    uint128 bits = 0;
-    for (int w = kWordsPerSum - 1; w >= 0; --w) bits = (bits << 32) | pixel[at[std::size_t(w)]];
-    return static_cast<int128>(bits);
-  };
+  const auto kept = [&](SumGroup g) { return found.kept[std::size_t(g)]; };
+  part.sums = PixelSums(pixels, kept(SumGroup::Odd), kept(SumGroup::FirstHit));
   for (std::size_t p = 0; p < pixels; ++p) {
-    const std::uint32_t* pixel = &data[p * stride];
-    for (std::size_t c = 0; c < found.first_hits.size(); ++c) {
-      part.first_hits[p].set_channel(c, word128(pixel, found.first_hits[c]));
-    }
-    for (std::size_t g = 0; g < channels.size(); ++g) {
-      PixelSum sum;
-      for (std::size_t c = 0; c < kColorChannels; ++c) {
-        sum.set_channel(int(c), word128(pixel, channels[g][c]));
+    const std::uint32_t* pixel = &data[p * found.stride];
+    const PixelSumsOut out = part.sums.at(p);
+    for (std::size_t g = 0; g < kSumGroups.size(); ++g) {
+      for (std::size_t c = 0; c < found.words[g].size(); ++c) {
+        uint128 bits = 0;
+        for (int w = kWordsPerSum - 1; w >= 0; --w) {
+          bits = (bits << 32) | pixel[found.words[g][c][std::size_t(w)]];
+        }
+        out.set(kSumGroups[g].group, c, static_cast<int128>(bits));
       }
-      set_group_sum(part, p, g, sum);
+    }
+    const std::string impossible = impossible_sums(out.ref(), part.first_sample, part.samples);
+    if (!impossible.empty()) {
+      throw InvalidInput(name + ": pixel (" + std::to_string(p % std::size_t(header.width)) + ", " +
+                         std::to_string(p / std::size_t(header.width)) +
+                         ") has sums no samples can add up to: " + impossible);
     }
   }
 }
@@ -430,10 +382,10 @@ Metadata merged_metadata(const RenderPart& reference, const std::vector<const Re
   return merged;
 }
 
-// The passes the parts were rendered with (rtiow:passes, recorded by each) and the sums they
-// are the mean of, added: every part must hold them, or the merged passes would lack samples.
-void merge_first_hits(const RenderPart& reference, const std::vector<const RenderPart*>& parts,
-                      MergedRender& merged) {
+// The passes the parts were rendered with (rtiow:passes, recorded by each): every part must
+// hold their sums, or the merged passes would lack samples.
+void check_passes(const RenderPart& reference, const std::vector<const RenderPart*>& parts,
+                  MergedRender& merged) {
   const auto recorded = [](const RenderPart& part) {
     for (const auto& [key, value] : part.metadata) {
       if (key != metadata_key::kPasses) continue;
@@ -454,17 +406,9 @@ void merge_first_hits(const RenderPart& reference, const std::vector<const Rende
                          to_string(recorded(*p)) + " and " + reference.path + " with --passes " +
                          to_string(merged.passes) + ": render every part with the same passes");
     }
-    if (merged.passes.any() && p->first_hits.empty()) {
+    if (merged.passes.any() && !p->sums.keeps(SumGroup::FirstHit)) {
       throw InvalidInput("part file " + quote_value(p->path) + ": records passes " +
                          to_string(merged.passes) + " but holds no sums of them");
-    }
-  }
-  if (!merged.passes.any()) return;
-  merged.first_hits = reference.first_hits;
-  for (const RenderPart* p : parts) {
-    if (p == &reference) continue;
-    for (std::size_t i = 0; i < merged.first_hits.size(); ++i) {
-      merged.first_hits[i] += p->first_hits[i];
     }
   }
 }
@@ -484,23 +428,20 @@ MergedRender merge_parts(const std::vector<RenderPart>& input) {
   const RenderPart& reference = input.front();
   MergedRender merged;
   merged.samples = reference.job_samples;
+  check_passes(reference, parts, merged);
+  // The groups every part keeps, added: the variances need every part's spread (a part written
+  // before parts kept them has none), the passes their sums as recorded.
   merged.sums = reference.sums;
+  if (!std::all_of(parts.begin(), parts.end(),
+                   [](const RenderPart* p) { return p->sums.keeps(SumGroup::Odd); })) {
+    merged.sums.spreads.clear();
+  }
+  if (!merged.passes.any()) merged.sums.first_hits.clear();
   for (const RenderPart* p : parts) {
-    if (p != &reference) add_sums(merged.sums.data(), p->sums.data(), merged.sums.size());
+    if (p != &reference) merged.sums += p->sums;
   }
-  // The variances need every part's spread; a part written before parts kept them has none.
-  const bool spreads = std::all_of(parts.begin(), parts.end(),
-                                   [](const RenderPart* p) { return !p->spreads.empty(); });
-  if (spreads) {
-    merged.spreads = reference.spreads;
-    for (const RenderPart* p : parts) {
-      if (p == &reference) continue;
-      for (std::size_t i = 0; i < merged.spreads.size(); ++i) merged.spreads[i] += p->spreads[i];
-    }
-  }
-  merge_first_hits(reference, parts, merged);
   merged.film = Film(reference.width, reference.height);
-  resolve(merged.sums, merged.samples, merged.film);
+  resolve(merged.sums.color, merged.samples, merged.film);
   merged.metadata = merged_metadata(reference, parts, merged.samples);
   return merged;
 }
@@ -509,8 +450,6 @@ RenderResult merged_result(const MergedRender& merged, SamplerKind sampler, int 
   RenderResult r;
   r.film = merged.film;
   r.sums = merged.sums;
-  r.spreads = merged.spreads;
-  r.first_hits = merged.first_hits;
   r.sampler = sampler;
   r.replicates = replicates;
   complete_from_shares(merged.samples, r);

@@ -14,9 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/film/first_hit_sum.h"
-#include "core/film/pixel_variance.h"
-#include "core/film/sample_sum.h"
+#include "core/film/pixel_sums.h"
 #include "core/io/image_output.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
@@ -30,9 +28,8 @@ struct RenderPart {
   std::uint64_t job_samples = 0;  // the whole job's samples per pixel, so a missing share shows
   std::string digest;             // scene + settings that change pixels
   Metadata metadata;              // everything else the part recorded (scene, seed, rays...)
-  std::vector<PixelSum> sums;
-  std::vector<PixelSpread> spreads;     // empty in a part written without them
-  std::vector<FirstHitSum> first_hits;  // empty in a part rendered without passes
+  // Spreads empty in a part written without them, first hits in one rendered without passes.
+  PixelSums sums;
 };
 
 // What must match for two shares to belong to one render: the scene, the image size, the
@@ -56,10 +53,9 @@ struct MergedRender {
   Film film;
   std::uint64_t samples = 0;
   Metadata metadata;  // the parts' common metadata, with spp and rays_traced totalled
-  std::vector<PixelSum> sums;
-  std::vector<PixelSpread> spreads;     // empty unless every part had its spread
-  std::vector<FirstHitSum> first_hits;  // empty unless every part had them
-  FirstHitPasses passes;                // the passes the parts were rendered with
+  // Spreads empty unless every part had its spread; first hits unless every part had them.
+  PixelSums sums;
+  FirstHitPasses passes;  // the passes the parts were rendered with
 };
 
 // The merged render as one render's result (samples from index 0, drawn by `sampler`), for

@@ -12,9 +12,7 @@
 #include <vector>
 
 #include "core/film/film.h"
-#include "core/film/first_hit_sum.h"
-#include "core/film/pixel_variance.h"
-#include "core/film/sample_sum.h"
+#include "core/film/pixel_sums.h"
 #include "core/render/first_hit_passes.h"
 #include "core/render/sample_budget.h"
 #include "core/sampling/sampler.h"
@@ -145,15 +143,15 @@ struct RenderProgress {
 };
 
 struct RenderResult {
-  Film film;                                 // the mean of the samples completed
-  std::vector<PixelSum> sums;                // their exact sums, for merging shares of a render
-  std::vector<PixelSpread> spreads;          // for each pixel's variance
-  std::vector<std::uint32_t> pixel_samples;  // each pixel's sample count
-  std::vector<std::uint64_t> pixel_rays;     // the rays each pixel's samples traced
-  std::vector<FirstHitSum> first_hits;       // with passes asked: what the passes are the mean of
-  std::vector<std::uint32_t> targets;        // adaptive: the round's targets (a state's)
-  bool last_round = false;                   // adaptive: the round under way is the last
-  std::uint64_t first_sample = 0;            // each pixel's samples start at this index
+  Film film;  // the mean of the samples completed
+  // Their exact sums, for merging shares of a render: the colour's, the spreads for each
+  // pixel's variance, and with passes asked what the passes are the mean of.
+  PixelSums sums;
+  std::vector<std::uint32_t> pixel_samples;        // each pixel's sample count
+  std::vector<std::uint64_t> pixel_rays;           // the rays each pixel's samples traced
+  std::vector<std::uint32_t> targets;              // adaptive: the round's targets (a state's)
+  bool last_round = false;                         // adaptive: the round under way is the last
+  std::uint64_t first_sample = 0;                  // each pixel's samples start at this index
   SamplerKind sampler = SamplerKind::Independent;  // what drew them
   int replicates = kReplicates;                    // in how many independent sequences
   int samples_completed = 0;    // per pixel (the most any pixel took when adaptive)

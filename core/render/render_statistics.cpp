@@ -18,8 +18,9 @@ std::vector<Vec3d> pixel_mean_variances(const RenderResult& result) {
         "no estimate of the error of a render drawn from one sequence: render it with "
         "estimate_error (--stats-channels) to keep two replicates");
   }
-  return honest_variances(result.film.width(), result.film.height(), result.sums, result.spreads,
-                          result.pixel_samples, result.first_sample, result.sampler);
+  return honest_variances(result.film.width(), result.film.height(), result.sums.color,
+                          result.sums.spreads, result.pixel_samples, result.first_sample,
+                          result.sampler);
 }
 
 ImageEstimate to_estimate(const RenderResult& result) {

@@ -81,13 +81,14 @@ std::vector<double> neighbourhood_relative_variance(const RenderSettings& settin
   // a budget only weighs pixels against one another).
   const std::vector<Vec3d> ratio =
       replicates(settings) > 1
-          ? replicate_ratios(settings.width, settings.height, pixels.sums, pixels.spreads,
-                             pixels.samples, settings.first_sample, settings.sampler)
+          ? replicate_ratios(settings.width, settings.height, pixels.sums.color,
+                             pixels.sums.spreads, pixels.samples, settings.first_sample,
+                             settings.sampler)
           : std::vector<Vec3d>(pixels.samples.size(), Vec3d(1, 1, 1));
   std::vector<double> own(pixels.samples.size());
   for_each_pixel(own.size(), [&](std::size_t p) {
-    own[p] =
-        relative_sample_variance(pixels.sums[p], pixels.spreads[p], pixels.samples[p], ratio[p]);
+    own[p] = relative_sample_variance(pixels.sums.color[p], pixels.sums.spreads[p],
+                                      pixels.samples[p], ratio[p]);
   });
   return pooling == Pooling::Median ? neighbourhood_median(settings.width, settings.height, own)
                                     : neighbourhood_mean(settings.width, settings.height, own);

@@ -84,7 +84,7 @@ void complete_from_shares(std::uint64_t samples, RenderResult& result) {
   result.first_sample = 0;
   result.samples_completed = int(samples);
   result.pixel_samples.assign(result.sums.size(), std::uint32_t(samples));
-  resolve(result.sums, samples, result.film);
+  resolve(result.sums.color, samples, result.film);
 }
 
 }  // namespace rtiow

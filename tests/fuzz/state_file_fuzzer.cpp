@@ -61,7 +61,7 @@ CheckpointIdentity identity(bool adaptive, bool passes) {
 void check_state(const rtiow::RenderState& state, const RenderSettings& s) {
   const std::size_t pixels = std::size_t(s.width) * std::size_t(s.height);
   if (state.pixels.samples.size() != pixels || state.pixels.sums.size() != pixels) __builtin_trap();
-  if (state.pixels.first_hits.size() != (s.passes.any() ? pixels : 0)) __builtin_trap();
+  if (state.pixels.sums.first_hits.size() != (s.passes.any() ? pixels : 0)) __builtin_trap();
   for (std::size_t p = 0; p < pixels; ++p) {
     if (state.pixels.samples[p] > 64 && rtiow::is_adaptive(s)) __builtin_trap();
     if (!state.targets.empty() && state.targets[p] > 64) __builtin_trap();
