@@ -4,8 +4,11 @@
 // the image `rtiow render` gives for the same options.
 
 #include "core/io/image_output.h"         // write_image
+#include "core/render/checkpoint_file.h"  // write_checkpoint, read_checkpoint: --resume
 #include "core/render/render.h"           // RenderSettings, render, validate
+#include "core/render/part_merge.h"       // merge_part_files: rtiow merge
 #include "core/render/render_metadata.h"  // render_metadata: what --like reads back
+#include "core/render/render_part.h"      // make_part, write_part, read_part, merge_parts
 #include "core/render/render_request.h"   // RenderRequest, resolve: what the command line does
 #include "core/scene/builtin_scenes.h"    // make_builtin_scene
 #include "core/scene/scene.h"             // Scene, CameraSettings, Background

@@ -77,6 +77,21 @@ if(code EQUAL 0 OR NOT err MATCHES "rtiow::image_io" OR EXISTS ${WORK_DIR}/three
 endif()
 run(${WORK_DIR}/build/spheres_any_format ${WORK_DIR}/three.exr)
 
+# A render stopped and resumed from its checkpoint, and one in two part files merged, through
+# the library alone (examples/render_farm): the program checks both against one render of all
+# the samples, bit for bit, and fails otherwise.
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/render_farm -B ${WORK_DIR}/farm-build
+    -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/farm-build)
+execute_process(COMMAND ${WORK_DIR}/farm-build/render_farm ${WORK_DIR} RESULT_VARIABLE code
+                OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(REGEX MATCHALL "identical to one render" identical "${out}")
+list(LENGTH identical identical_count)
+if(NOT code EQUAL 0 OR NOT identical_count EQUAL 2 OR NOT EXISTS ${WORK_DIR}/merged.exr)
+  message(FATAL_ERROR "the render farm example (${code}):\n${out}${err}")
+endif()
+message(STATUS "${out}")
+
 # Only the public API is installed: the headers core/rtiow.h includes, under include/rtiow,
 # including one another as "rtiow/..." and needing nothing the package does not find.
 file(GLOB_RECURSE headers RELATIVE ${prefix}/include ${prefix}/include/*)

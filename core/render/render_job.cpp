@@ -143,15 +143,8 @@ void write_job_result(const JobRequest& r, const RenderJob& job, const RenderRes
                 frame_placement(job.settings));
     return;
   }
-  RenderPart part;
-  part.width = film_width(job.settings), part.height = film_height(job.settings);
-  part.first_sample = job.settings.first_sample;
-  part.samples = std::uint64_t(result.samples_completed);
-  part.job_samples = job.samples_asked;
-  part.digest = render_digest(job.scene, job.settings);
-  part.metadata = metadata;
-  part.sums = result.sums;  // copied: kept in the result, should the write fail
-  write_part(job.output, part);
+  // The sums are copied: kept in the result, should the write fail.
+  write_part(job.output, make_part(job.scene, job.settings, job.samples_asked, result, metadata));
 }
 
 }  // namespace rtiow

@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 #include <string_view>
+#include <utility>
 
 #include "core/film/sum_validation.h"
 #include "core/io/atomic_file.h"
@@ -16,6 +17,7 @@
 #include "core/io/image_file.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/render/render.h"
 #include "core/render/render_metadata.h"
 #include "core/render/sample_share.h"
 #include "core/sampling/rng.h"
@@ -87,6 +89,26 @@ std::string render_digest(const Scene& scene, const RenderSettings& settings) {
   std::uint64_t h = 0x6a09e667f3bcc908ull;
   for (unsigned char c : text) h = hash_combine(h, c);
   return hex(h);
+}
+
+RenderPart make_part(const Scene& scene, const RenderSettings& share, std::uint64_t job_samples,
+                     const RenderResult& result, Metadata metadata) {
+  const RenderSettings s = with_scene_image(scene, share);  // as the render took them
+  if (result.film.width() != film_width(s) || result.film.height() != film_height(s) ||
+      result.sums.size() != std::size_t(result.film.width()) * std::size_t(result.film.height())) {
+    throw InvalidInput("make_part: the result is not of the share's " +
+                       std::to_string(film_width(s)) + "x" + std::to_string(film_height(s)) +
+                       " film");
+  }
+  RenderPart part;
+  part.width = film_width(s), part.height = film_height(s);
+  part.first_sample = s.first_sample;
+  part.samples = std::uint64_t(result.samples_completed);
+  part.job_samples = job_samples;
+  part.digest = render_digest(scene, s);
+  part.metadata = std::move(metadata);
+  part.sums = result.sums;
+  return part;
 }
 
 void write_part(const std::string& path, const RenderPart& part) {

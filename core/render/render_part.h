@@ -36,6 +36,12 @@ struct RenderPart {
 // depth and the seed (not the thread count or the accelerator: they do not change pixels).
 std::string render_digest(const Scene& scene, const RenderSettings& settings);
 
+// A share's result as a part file keeps it: `share` the settings it was rendered with (its
+// first sample and count), `job_samples` the whole job's samples per pixel, `metadata` what the
+// render records (render_metadata.h). The sums are copied: the result keeps them.
+RenderPart make_part(const Scene& scene, const RenderSettings& share, std::uint64_t job_samples,
+                     const RenderResult& result, Metadata metadata);
+
 // Writes a share atomically. `path` must end in .exr.
 void write_part(const std::string& path, const RenderPart& part);
 

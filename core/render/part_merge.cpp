@@ -1,0 +1,73 @@
+#include "core/render/part_merge.h"
+
+#include <utility>
+
+#include "core/limits/error.h"
+#include "core/render/render_metadata.h"
+#include "core/render/render_part.h"
+#include "core/render/render_statistics.h"
+#include "core/sampling/sampler.h"
+
+namespace rtiow {
+namespace {
+
+// The spp and variance channels of the merged render, as one render's --stats-channels.
+std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
+                                            const std::vector<RenderPart>& parts) {
+  if (!merged.sums.keeps(SumGroup::Odd)) {
+    for (const RenderPart& p : parts) {
+      if (!p.sums.keeps(SumGroup::Odd)) {
+        throw InvalidInput("--stats-channels: part file " + quote_value(p.path, kWholePath) +
+                           " holds no spreads (an older rtiow wrote it): render it again");
+      }
+    }
+  }
+  std::string sampler;
+  std::int64_t replicates = kReplicates;  // an older rtiow's parts always had two
+  for (const auto& [key, value] : merged.metadata) {
+    if (const auto* text = std::get_if<std::string>(&value); key == metadata_key::kSampler && text)
+      sampler = *text;
+    if (const auto* n = std::get_if<std::int64_t>(&value); key == metadata_key::kReplicates && n)
+      replicates = *n;
+  }
+  if (replicates != kReplicates && sampler != to_string(SamplerKind::Independent)) {
+    throw InvalidInput(
+        "--stats-channels: the parts were rendered from one sequence, which keeps no estimate of "
+        "the error: render them with --stats-channels");
+  }
+  try {
+    return statistics_channels(merged_result(merged, parse_sampler(sampler), int(replicates)));
+  } catch (const InvalidInput& e) {
+    throw InvalidInput("--stats-channels: the parts' sampler: " + std::string(e.what()));
+  }
+}
+
+}  // namespace
+
+MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeRequest& request) {
+  std::vector<RenderPart> parts;
+  for (const std::string& path : paths) parts.push_back(read_part(path));
+  MergedRender merged = merge_parts(parts);
+  MergedImage image;
+  if (request.statistics) image.channels = merged_statistics(merged, parts);
+  image.passes = merged.passes;
+  image.passes_kept = merged.passes.any() && request.extra_channels;
+  if (image.passes_kept) {
+    const RenderResult whole = merged_result(merged, SamplerKind::Independent, kReplicates);
+    for (ExtraChannel& c : pass_channels(whole, merged.passes))
+      image.channels.push_back(std::move(c));
+  }
+  image.metadata = std::move(merged.metadata);
+  image.placement = recorded_placement(image.metadata, "part " + quote_value(paths.front()),
+                                       merged.film.width(), merged.film.height());
+  if (!image.passes_kept) {
+    std::erase_if(image.metadata,
+                  [](const auto& entry) { return entry.first == metadata_key::kPasses; });
+  }
+  image.film = std::move(merged.film);
+  image.samples = merged.samples;
+  image.parts = parts.size();
+  return image;
+}
+
+}  // namespace rtiow

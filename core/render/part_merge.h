@@ -1,0 +1,40 @@
+#pragma once
+// Merging part files into the image one render of all their samples gives, as a library call:
+// `rtiow merge` is this and a write. The parts are read and checked (core/render/render_part.h:
+// one render, tiling the job, every pixel's sums possible), added, and given the channels the
+// output can hold: the statistics a single render's --stats-channels writes, and the passes
+// the parts were rendered with.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/film/film.h"
+#include "core/io/image_output.h"
+#include "core/render/first_hit_passes.h"
+
+namespace rtiow {
+
+struct MergeRequest {
+  bool statistics = false;     // the spp and variance channels (--stats-channels)
+  bool extra_channels = true;  // the output holds channels beyond R, G, B (EXR)
+};
+
+struct MergedImage {
+  Film film;
+  Metadata metadata;                   // the parts' common metadata, spp and rays totalled
+  std::vector<ExtraChannel> channels;  // statistics where asked, then the passes kept
+  FramePlacement placement;            // where a crop's parts lie in the frame
+  std::uint64_t samples = 0;           // per pixel, the whole job's
+  std::size_t parts = 0;
+  FirstHitPasses passes;     // the passes the parts hold
+  bool passes_kept = false;  // false: the output cannot hold them (they are left out)
+};
+
+// Reads the part files at `paths` and merges them. Throws InvalidInput naming the file and
+// what is wrong: not a part, parts of different renders, overlapping or missing samples, sums
+// no samples can add up to, statistics asked of parts that keep no spreads (or were rendered
+// from one sequence).
+MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeRequest& request);
+
+}  // namespace rtiow
