@@ -42,11 +42,15 @@ std::string render_summary_json(const RenderJob& job, const RenderResult& result
   j["mrays_per_second"] = seconds > 0 ? double(result.rays_traced) / seconds * 1e-6 : 0.0;
   // The error-driven modes: the goal asked and where the render ended.
   if (const auto* image = std::get_if<ImageErrorTarget>(&s.samples)) {
-    j["error"] = {
-        {"kind", "image"}, {"asked", image->error}, {"estimated", result.estimated_image_error}};
+    j["error"] = {{"kind", "image"},
+                  {"asked", image->error},
+                  {"estimated", result.estimated_image_error},
+                  {"reached", error_target_reached(s, result)}};
   } else if (const auto* pixel = std::get_if<PixelErrorTarget>(&s.samples)) {
-    j["error"] = {
-        {"kind", "pixel"}, {"asked", pixel->error}, {"pixels_above", result.pixels_above_target}};
+    j["error"] = {{"kind", "pixel"},
+                  {"asked", pixel->error},
+                  {"pixels_above", result.pixels_above_target},
+                  {"reached", error_target_reached(s, result)}};
   } else {
     j["error"] = nullptr;
   }

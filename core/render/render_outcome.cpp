@@ -9,21 +9,25 @@
 namespace rtiow {
 namespace {
 
-// The adaptive goal and, for an error-driven render that stopped at its cap, how far it got.
-std::string adaptive_goal(const RenderSettings& s, const RenderResult& r) {
+// The adaptive goal and, for an error-driven render that ended short of it (at its cap, its
+// time limit or a stop), how far it got: `most` the most samples a pixel took.
+std::string adaptive_goal(const RenderSettings& s, const RenderResult& r, std::uint32_t most) {
   char goal[128] = "adaptive";
   if (const auto* t = std::get_if<PixelErrorTarget>(&s.samples)) {
     if (r.pixels_above_target > 0) {
-      std::snprintf(goal, sizeof goal, "target error %g not reached by %llu pixels at %d spp",
-                    t->error, static_cast<unsigned long long>(r.pixels_above_target), t->most);
+      std::snprintf(goal, sizeof goal, "target error %g not reached by %llu pixels at %u spp",
+                    t->error, static_cast<unsigned long long>(r.pixels_above_target), most);
     } else {
       std::snprintf(goal, sizeof goal, "target error %g", t->error);
     }
   }
   if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) {
-    if (r.estimated_image_error > i->error && !r.stopped && !r.time_limited) {
-      std::snprintf(goal, sizeof goal, "image error %g not reached: %.3g at %d spp", i->error,
-                    r.estimated_image_error, i->most);
+    if (!error_target_reached(s, r) && r.estimated_image_error == 0.0) {
+      std::snprintf(goal, sizeof goal, "image error %g not reached: no estimate yet at %u spp",
+                    i->error, most);
+    } else if (!error_target_reached(s, r)) {
+      std::snprintf(goal, sizeof goal, "image error %g not reached: %.3g at %u spp", i->error,
+                    r.estimated_image_error, most);
     } else {
       std::snprintf(goal, sizeof goal, "image error %g", i->error);
     }
@@ -45,6 +49,17 @@ std::string what_was_asked(const SampleBudget& b) {
 
 }  // namespace
 
+bool error_target_reached(const RenderSettings& s, const RenderResult& r) {
+  if (std::holds_alternative<PixelErrorTarget>(s.samples)) return r.pixels_above_target == 0;
+  if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) {
+    // Judged once a round is done: a render stopped before its first judgement has no estimate
+    // (0, which a finished render of a constant image also reports).
+    const bool unjudged = (r.stopped || r.time_limited) && r.estimated_image_error == 0.0;
+    return !unjudged && r.estimated_image_error <= i->error;
+  }
+  return true;
+}
+
 RenderOutcome describe_outcome(const RenderSettings& s, const RenderResult& r) {
   RenderOutcome o;
   char text[192];
@@ -52,7 +67,7 @@ RenderOutcome describe_outcome(const RenderSettings& s, const RenderResult& r) {
     const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
     o.least = *least, o.most = *most, o.mean = mean_samples(r);
     std::snprintf(text, sizeof text, "%u-%u spp (mean %.1f, %s)", o.least, o.most, o.mean,
-                  adaptive_goal(s, r).c_str());
+                  adaptive_goal(s, r, o.most).c_str());
   } else {
     o.least = o.most = std::uint32_t(r.samples_completed), o.mean = r.samples_completed;
     std::snprintf(text, sizeof text, "%d spp", r.samples_completed);

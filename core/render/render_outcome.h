@@ -26,4 +26,8 @@ struct RenderOutcome {
 
 RenderOutcome describe_outcome(const RenderSettings& settings, const RenderResult& result);
 
+// Whether an error-driven render reached its target (--image-error: the estimate at or below
+// it; --target-error: no pixel above it); true for the other modes, which have none.
+bool error_target_reached(const RenderSettings& settings, const RenderResult& result);
+
 }  // namespace rtiow
