@@ -1,6 +1,6 @@
 # The gallery of docs/: `cmake --build build --target gallery` renders every picture again,
 # with --reproducible, so each file is a pure function of its command and the test
-# Docs.TheGalleryIsWhatThisBuildRenders (tests/cli_test.cpp) re-renders each with
+# Docs.TheGalleryIsWhatThisBuildRenders (tests/cli_outputs_test.cpp) re-renders each with
 # `rtiow render --like` and fails when the program has drifted from its pictures.
 set(RTIOW_GALLERY_DIR ${PROJECT_SOURCE_DIR}/docs/gallery)
 set(gallery_commands)

@@ -22,6 +22,7 @@
 #include "core/render/render.h"
 #include "core/render/render_statistics.h"
 #include "core/scene/scene.h"
+#include "tests/launch.h"
 
 namespace rtiow {
 namespace {
@@ -51,11 +52,16 @@ Moments book_program(std::uint64_t seed, const char* metal, int spp = kSpp,
                      const char* binary = BOOK_MOMENTS_BINARY, int depth = 50) {
   const std::string out = std::string(RTIOW_TEST_OUTPUT_DIR) + "/book-" + metal + "-" +
                           std::to_string(seed) + ".moments";
-  const std::string command = std::string(binary) + " " + std::to_string(kWidth) + " " +
-                              std::to_string(kHeight) + " " + std::to_string(spp) + " " +
-                              std::to_string(seed) + " " + metal + " " + out + " " +
-                              std::to_string(depth);
-  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  rtiow::test::Launch command;
+  command.argv = {binary,
+                  std::to_string(kWidth),
+                  std::to_string(kHeight),
+                  std::to_string(spp),
+                  std::to_string(seed),
+                  metal,
+                  out,
+                  std::to_string(depth)};
+  EXPECT_EQ(rtiow::test::launch(command), 0) << binary;
   std::vector<double> records(std::size_t(kWidth * kHeight * 6));
   std::ifstream in(out, std::ios::binary);
   in.read(reinterpret_cast<char*>(records.data()), std::streamsize(records.size() * 8));

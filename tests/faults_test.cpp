@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "tests/background_render.h"
+#include "tests/launch.h"
 #include "tests/test_files.h"
 
 namespace {
@@ -39,19 +40,31 @@ struct CommandResult {
   std::string stderr_text;
 };
 
+using rtiow::test::launch;
+using rtiow::test::Launch;
+using rtiow::test::words;
+
 CommandResult run_rtiow(const std::vector<std::string>& args) {
   const fs::path err = fs::path(RTIOW_TEST_OUTPUT_DIR) / (current_test_name() + ".run.stderr");
-  std::string command = RTIOW_BINARY;
-  for (const std::string& a : args) command += " '" + a + "'";
-  command += " 2> " + err.string();
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(err)};
+  Launch command;
+  command.argv = args;
+  command.argv.insert(command.argv.begin(), RTIOW_BINARY);
+  command.stderr_path = err.string();
+  return {launch(command), slurp(err)};
+}
+
+// chattr with `args` (its complaints dropped): whether it succeeded.
+bool chattr(const std::vector<std::string>& args) {
+  Launch command;
+  command.argv = {"chattr"};
+  command.argv.insert(command.argv.end(), args.begin(), args.end());
+  return launch(command) == 0;
 }
 
 fs::path fresh_dir() {
   const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / (current_test_name() + ".dir");
   // A run killed while a file was immutable (ImmutableTargetKeepsTheRender) left it so.
-  if (fs::exists(dir)) std::system(("chattr -R -i '" + dir.string() + "' 2>/dev/null").c_str());
+  if (fs::exists(dir)) chattr({"-R", "-i", dir.string()});
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -62,14 +75,14 @@ fs::path fresh_dir() {
 class ImmutableFile {
  public:
   explicit ImmutableFile(const fs::path& path) : path_(path) {
-    applied_ = std::system(("chattr +i '" + path_.string() + "' 2>/dev/null").c_str()) == 0;
+    applied_ = chattr({"+i", path_.string()});
   }
   ~ImmutableFile() { release(); }
   ImmutableFile(const ImmutableFile&) = delete;
   ImmutableFile& operator=(const ImmutableFile&) = delete;
   bool applied() const { return applied_; }
   void release() {
-    if (applied_) std::system(("chattr -i '" + path_.string() + "'").c_str());
+    if (applied_) chattr({"-i", path_.string()});
     applied_ = false;
   }
 
@@ -81,12 +94,6 @@ class ImmutableFile {
 std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
   args.insert(args.end(), more.begin(), more.end());
   return args;
-}
-
-// Runs a shell command line (for redirections the test needs); returns the exit code.
-int shell(const std::string& line) {
-  const int status = std::system(line.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // After a render whose final write failed: the same request with --resume writes the file an
@@ -404,8 +411,13 @@ TEST(Faults, ClosedStandardDescriptorsBreakNothing) {
   const fs::path dir = fresh_dir();
   const std::string args = " render --width 80 --spp 4 --reproducible -o ";
   const fs::path open = dir / "open.png", closed = dir / "closed.png";
-  ASSERT_EQ(shell(std::string(RTIOW_BINARY) + args + open.string() + " 2>/dev/null"), 0);
-  EXPECT_EQ(shell(std::string(RTIOW_BINARY) + args + closed.string() + " <&- >&- 2>&-"), 0);
+  Launch opened;
+  opened.argv = words(std::string(RTIOW_BINARY) + args + open.string());
+  ASSERT_EQ(launch(opened), 0);
+  Launch closing = opened;
+  closing.argv = words(std::string(RTIOW_BINARY) + args + closed.string());
+  closing.stdin_path = closing.stdout_path = closing.stderr_path = "";  // closed
+  EXPECT_EQ(launch(closing), 0);
   EXPECT_TRUE(fs::exists(closed)) << "no image written with stdin, stdout and stderr closed";
   EXPECT_TRUE(slurp(open) == slurp(closed)) << "the image differs with the descriptors closed";
 }
@@ -421,21 +433,29 @@ TEST(Faults, LostStandardOutputIsAnError) {
                             "--out " +
                             (dir / "bench").string();
   const std::string image = (dir / "i.png").string();
-  ASSERT_EQ(shell(rtiow + " render -q --width 40 --spp 2 -o " + image), 0);
-  for (const std::string& command :
-       {bench + " >/dev/full", bench + " >&-",
-        rtiow + " diff " + image + " " + image + " >/dev/full", rtiow + " render --list-scenes >&-",
-        rtiow + " scene cover >/dev/full"}) {
-    const int code = shell(command + " 2>" + err);
-    EXPECT_EQ(code, 1) << command;
+  Launch first;
+  first.argv = words(rtiow + " render -q --width 40 --spp 2 -o " + image);
+  ASSERT_EQ(launch(first), 0);
+  const std::string full = "/dev/full", closed;  // closed: no path
+  for (const auto& [line, out] : {std::pair{bench, full}, std::pair{bench, closed},
+                                  std::pair{rtiow + " diff " + image + " " + image, full},
+                                  std::pair{rtiow + " render --list-scenes", closed},
+                                  std::pair{rtiow + " scene cover", full}}) {
+    Launch command;
+    command.argv = words(line);
+    command.stdout_path = out, command.stderr_path = err;
+    const std::string shown = line + (out.empty() ? " >&-" : " >" + out);
+    EXPECT_EQ(launch(command), 1) << shown;
     const std::string text = slurp(err);
     EXPECT_NE(text.find("rtiow: error: cannot write to standard output"), std::string::npos)
-        << command << ": " << text;
+        << shown << ": " << text;
   }
   // A closed pipe: the reader leaves after 10 bytes of a scene file of many kilobytes.
-  EXPECT_EQ(shell("bash -c 'set -o pipefail; " + rtiow + " scene cover 2>" + err +
-                  " | head -c 10 >/dev/null'"),
-            1);
+  Launch piped;
+  piped.argv = words(rtiow + " scene cover");
+  piped.stdout_reader_bytes = 10;
+  piped.stderr_path = err;
+  EXPECT_EQ(launch(piped), 1);
   EXPECT_NE(slurp(err).find("cannot write to standard output"), std::string::npos) << slurp(err);
 }
 
@@ -461,11 +481,12 @@ TEST(Faults, MemoryLimitsAtEveryStageEndInOneLineAndKeepWhatWasRendered) {
   for (int megabytes = 80; megabytes <= 1200; megabytes += 40) {
     const fs::path out = dir / ("limit" + std::to_string(megabytes) + ".png");
     const fs::path err = dir / "stderr.txt";
-    std::string line =
-        "prlimit --as=" + std::to_string(megabytes * 1024 * 1024) + " " + RTIOW_BINARY;
-    for (const std::string& a : request) line += " '" + a + "'";
-    line += " -q -o '" + out.string() + "' 2> '" + err.string() + "'";
-    const int code = shell(line);
+    Launch line;
+    line.argv = {"prlimit", "--as=" + std::to_string(megabytes * 1024 * 1024), RTIOW_BINARY};
+    line.argv.insert(line.argv.end(), request.begin(), request.end());
+    line.argv.insert(line.argv.end(), {"-q", "-o", out.string()});
+    line.stderr_path = err.string();
+    const int code = launch(line);
     const std::string text = slurp(err);
     const std::string where = std::to_string(megabytes) + " MB: " + text;
     for (const auto& entry : fs::directory_iterator(dir)) {

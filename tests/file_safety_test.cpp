@@ -27,6 +27,7 @@
 #include "core/render/render_state.h"
 #include "core/scene/builtin_scenes.h"
 #include "tests/background_render.h"
+#include "tests/launch.h"
 #include "tests/test_files.h"
 
 namespace {
@@ -49,15 +50,16 @@ struct CommandResult {
 // Runs rtiow with a time limit (a FIFO that hangs it fails the test rather than the suite).
 CommandResult run_rtiow(const std::vector<std::string>& args, double timeout_seconds = 60) {
   const fs::path err = fs::path(RTIOW_TEST_OUTPUT_DIR) / (current_test_name() + ".run.stderr");
-  std::string command =
-      "timeout -s KILL " + std::to_string(int(timeout_seconds)) + " " + std::string(RTIOW_BINARY);
-  for (const std::string& a : args) command += " '" + a + "'";
-  command += " < /dev/null 2> " + err.string();
+  rtiow::test::Launch command;
+  command.argv = args;
+  command.argv.insert(command.argv.begin(), RTIOW_BINARY);
+  command.stderr_path = err.string();
+  command.timeout_seconds = timeout_seconds;
   const auto start = std::chrono::steady_clock::now();
-  const int status = std::system(command.c_str());
+  const int code = rtiow::test::launch(command);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(err), seconds};
+  return {code, slurp(err), seconds};
 }
 
 fs::path fresh_dir() {

@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -13,7 +16,9 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "tests/launch.h"
 #include "tests/test_files.h"
 
 namespace {
@@ -30,12 +35,37 @@ fs::path output(const std::string& name) {
   return p;
 }
 
-// Runs a shell command; returns its exit code, stderr in `err`.
-int run(const std::string& command, std::string* err = nullptr) {
+// Runs a command line (split at spaces, no shell): its exit code, stderr in `err`, stdout to
+// `stdout_path`.
+int run(const std::string& command, std::string* err = nullptr,
+        const std::string& stdout_path = "/dev/null", double timeout_seconds = 300) {
   const fs::path err_path = output("stderr.txt");
-  const int status = std::system((command + " 2> " + err_path.string()).c_str());
+  rtiow::test::Launch launch;
+  launch.argv = rtiow::test::words(command);
+  launch.stdout_path = stdout_path, launch.stderr_path = err_path.string();
+  launch.timeout_seconds = timeout_seconds;
+  const int code = rtiow::test::launch(launch);
   if (err) *err = slurp(err_path);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return code;
+}
+
+// The process, other than this one, whose command line begins with `words`; the newest if
+// several (0 if none).
+pid_t process_running(const std::vector<std::string>& words) {
+  pid_t found = 0;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const auto pid = pid_t(std::stol(name));
+    if (pid == getpid()) continue;
+    std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+    std::vector<std::string> args;
+    for (std::string arg; std::getline(in, arg, '\0');) args.push_back(arg);
+    if (args.size() >= words.size() && std::equal(words.begin(), words.end(), args.begin())) {
+      found = std::max(found, pid);
+    }
+  }
+  return found;
 }
 
 std::string mpirun(int ranks) {
@@ -88,7 +118,7 @@ TEST(Mpi, BadInputIsReportedOnce) {
     EXPECT_EQ(occurrences(err, "rtiow: error"), 1u) << args << "\n" << err;
   }
   const fs::path help = output("help.txt");
-  EXPECT_EQ(run(mpirun(2) + kRender + " --help > " + help.string()), 0);
+  EXPECT_EQ(run(mpirun(2) + kRender + " --help", nullptr, help.string()), 0);
   EXPECT_EQ(occurrences(slurp(help), "Usage: rtiow render"), 1u) << slurp(help);
 }
 
@@ -107,28 +137,22 @@ TEST(Mpi, ACropIsTheSingleProcessCrop) {
 
 TEST(Mpi, ARankThatDiesEndsTheRun) {
   const fs::path out = output("killed.png");
-  const std::string command = mpirun(2) + std::string(RTIOW_BINARY) +
-                              " render --scene cover --width 200 --spp 100000 --seed 9042001 "
-                              "--threads 1 -q -o " +
-                              out.string() + " 2>/dev/null";
+  const std::string rank =
+      std::string(RTIOW_BINARY) + " render --scene cover --width 200 --spp 100000 --seed 9042001";
   const auto start = std::chrono::steady_clock::now();
-  std::thread killer([] {
+  std::thread killer([&] {
     std::this_thread::sleep_for(std::chrono::seconds(2));
-    // Only the ranks' command lines start with the binary (not mpirun's, timeout's or this
-    // shell's), and only theirs hold this seed (not another test's render, running beside this
-    // one under ctest -j); the [1] keeps the pattern from matching itself.
-    const std::string pattern = "^" + std::string(RTIOW_BINARY) +
-                                " render --scene cover --width 200 --spp 100000 " +
-                                "--seed 904200[1]";
-    std::system(("kill -9 $(pgrep -f '" + pattern + "' | tail -1)").c_str());
+    // Only the ranks' command lines start with the binary (not mpirun's), and only theirs hold
+    // this seed (not another test's render, running beside this one under ctest -j).
+    if (const pid_t pid = process_running(rtiow::test::words(rank))) kill(pid, SIGKILL);
   });
-  const int status = std::system(("timeout 60 " + command).c_str());
+  const int code =
+      run(mpirun(2) + rank + " --threads 1 -q -o " + out.string(), nullptr, "/dev/null", 60);
   killer.join();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0);
-  EXPECT_NE(WEXITSTATUS(status), 124) << "mpirun hung until the timeout";
-  EXPECT_LT(seconds, 30.0);
+  EXPECT_NE(code, 0);  // mpirun's own 137 for a rank killed: the launcher's limit is 60 s
+  EXPECT_LT(seconds, 30.0) << "mpirun hung after a rank died";
   EXPECT_FALSE(fs::exists(out));
 }
 
