@@ -237,11 +237,11 @@ TEST(Cli, ErrorTargetsMissedAtTheCapAreReported) {
   EXPECT_GT(in->spec().get_int_attribute("rtiow:pixels_above_target"), 0);
   in.reset();
   // Ended by its time limit far from the target: not reached, on the line and in the summary,
-  // with the estimate it got to and the samples it took (not the cap's).
+  // with the estimate it got to (or none, on a machine too loaded to judge a round in time) and
+  // the samples it took, not the cap's.
   const fs::path summary = output_path("capped.json");
   const CommandResult timed = run_rtiow(
-      "render --scene cover --width 160 --spp 4096 --image-error 0.0005 --time-limit 1 "
-      "-o " +
+      "render --scene cover --width 64 --spp 4096 --image-error 0.0005 --time-limit 1 -o " +
       out.string() + " --summary-json " + summary.string());
   ASSERT_EQ(timed.exit_code, 0) << timed.stderr_text;
   EXPECT_NE(timed.stderr_text.find("image error 0.0005 not reached: "), std::string::npos)
@@ -249,7 +249,12 @@ TEST(Cli, ErrorTargetsMissedAtTheCapAreReported) {
   EXPECT_EQ(timed.stderr_text.find("at 4096 spp"), std::string::npos) << timed.stderr_text;
   const auto j = nlohmann::json::parse(slurp(summary));
   EXPECT_EQ(j["error"]["reached"], false);
-  EXPECT_GT(j["error"]["estimated"].get<double>(), 0.0005);
+  const double estimated = j["error"]["estimated"].get<double>();
+  if (estimated == 0.0) {
+    EXPECT_NE(timed.stderr_text.find("no estimate yet"), std::string::npos) << timed.stderr_text;
+  } else {
+    EXPECT_GT(estimated, 0.0005);
+  }
   // Reached: no such words.
   const CommandResult reached =
       run_rtiow("render --scene cover --width 32 --spp 4096 --image-error 0.1 -o " + out.string());
