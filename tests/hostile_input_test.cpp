@@ -122,7 +122,7 @@ std::string png_claiming(std::uint32_t width, std::uint32_t height) {
 
 fs::path fixtures() {
   // Named by version: a build tree keeps the fixtures of an older suite under another name.
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-4";
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-5";
   if (fs::exists(dir / "complete")) return dir;
   const fs::path work =
       fs::path(RTIOW_TEST_OUTPUT_DIR) / ("hostile-fixtures." + std::to_string(getpid()));
@@ -140,6 +140,8 @@ fs::path fixtures() {
   render("--seed 7 --part 1/2 -o other-render.exr");
   render("-o plain.exr");
   render("--part 0/2 --passes albedo,normal,depth -o passes0.exr");
+  render("--part 0/2 --stats-channels -o stats0.exr");
+  render("--part 1/2 --stats-channels -o stats1.exr");
   // Part files whose header or sums lie, written field by field and word by word: `edit`
   // changes the header, `words` pixel 0's words (by channel name) of the part `from`.
   using Words = std::function<void(std::function<std::uint32_t&(const std::string&)>)>;
@@ -189,6 +191,8 @@ fs::path fixtures() {
     word("odd.G.0") += 1;  // the sum's low word is far from 2^32 - 1 for a pixel of about 1
   });
   crafted("count-word.exr", [](auto& s) { s.attribute("rtiow:part_samples", "1"); });
+  crafted(
+      "replicates-seven.exr", [](auto& s) { s.attribute("rtiow:replicates", "7"); }, "stats0.exr");
   crafted("first-hit-word.exr", same, "passes0.exr",
           [](auto word) { word("first_hit.albedo.R.1") = 5; });
   crafted("normal-words.exr", same, "passes0.exr", [](auto word) {

@@ -30,6 +30,12 @@ std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
     if (const auto* n = std::get_if<std::int64_t>(&value); key == metadata_key::kReplicates && n)
       replicates = *n;
   }
+  if (replicates != 1 && replicates != kReplicates) {
+    throw InvalidInput("--stats-channels: the parts record " + std::string(kMetadataPrefix) +
+                       metadata_key::kReplicates + " " + std::to_string(replicates) +
+                       ": a render draws one sequence or " + std::to_string(kReplicates) +
+                       " replicates");
+  }
   if (replicates != kReplicates && sampler != to_string(SamplerKind::Independent)) {
     throw InvalidInput(
         "--stats-channels: the parts were rendered from one sequence, which keeps no estimate of "
