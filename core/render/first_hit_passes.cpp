@@ -42,8 +42,11 @@ std::string to_string(const FirstHitPasses& passes) {
 
 std::string pass_names() {
   std::string text;
-  for (const PassInfo& pass : pass_table())
-    text += (text.empty() ? "" : ", ") + std::string(pass.name);
+  // Appended piece by piece: GCC 12 under LTO took `"" + std::string` for an overflow.
+  for (const PassInfo& pass : pass_table()) {
+    if (!text.empty()) text += ", ";
+    text += pass.name;
+  }
   return text;
 }
 
