@@ -68,11 +68,6 @@ inline constexpr std::array<SumGroupDeclaration, 4> kSumGroups{{
      kFirstHitRanges.data(), true},
 }};
 
-// The declaration of `group`.
-constexpr const SumGroupDeclaration& declaration(SumGroup group) {
-  return kSumGroups[std::size_t(group)];
-}
-
 // One pixel's sums as the table sees them: its group sums, the spread and first hits where
 // the pixel keeps them (null where it does not: a part written before spreads, a render
 // without passes).
