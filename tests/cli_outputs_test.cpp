@@ -78,6 +78,72 @@ TEST(Cli, TheLibraryAndTheCommandLineGiveOneRequestTheSameImage) {
   }
 }
 
+// A library render with RenderSettings{} takes every setting a scene file makes, as `rtiow
+// render FILE` does (issue 70: it rendered a file's "depth": 12 at 50). Each case changes one
+// field of a small file; the library's image equals the command's, and differs from the base
+// file's, so the field reached both.
+TEST(Cli, TheLibrarysDefaultsAreTheSceneFilesInEveryField) {
+  const auto scene_file = [](const std::string& image, const std::string& camera,
+                             const std::string& sky, const std::string& red) {
+    return R"({"version": 1, "name": "fields", "image": )" + image + R"(, "camera": )" + camera +
+           R"(, "background": )" + sky + R"(, "materials": {
+             "ground": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]},
+             "red": {"type": "lambertian", "albedo": )" +
+           red + R"(},
+             "steel": {"type": "metal", "albedo": [0.8, 0.8, 0.8], "fuzz": 0.2}},
+           "spheres": [{"center": [0, -100.5, -1], "radius": 100, "material": "ground"},
+                       {"center": [0, 0, -1], "radius": 0.5, "material": "red"},
+                       {"center": [1, 0, -1], "radius": 0.5, "material": "steel"}]})";
+  };
+  const std::string image = R"({"width": 24, "aspect_ratio": 2, "spp": 3, "depth": 6})";
+  const std::string camera = R"({"lookfrom": [0, 0.5, 1.5], "lookat": [0, 0, -1], "vfov": 50})";
+  const std::string sky = R"({"horizon": [1, 1, 1], "zenith": [0.3, 0.5, 1]})";
+  const std::string red = "[0.7, 0.2, 0.2]";
+  struct Case {
+    std::string field, text;
+  };
+  const std::vector<Case> cases = {
+      {"base", scene_file(image, camera, sky, red)},
+      {"size", scene_file(R"({"width": 20, "aspect_ratio": 1.25, "spp": 3, "depth": 6})", camera,
+                          sky, red)},
+      {"spp",
+       scene_file(R"({"width": 24, "aspect_ratio": 2, "spp": 5, "depth": 6})", camera, sky, red)},
+      {"depth",
+       scene_file(R"({"width": 24, "aspect_ratio": 2, "spp": 3, "depth": 2})", camera, sky, red)},
+      {"camera", scene_file(image, R"({"lookfrom": [0.5, 1, 2], "lookat": [0, 0, -1], "vfov": 35,
+                                       "aperture": 0.1, "focus_distance": 3})",
+                            sky, red)},
+      {"sky", scene_file(image, camera,
+                         R"({"horizon": [0.9, 0.6, 0.4], "zenith": [0.1, 0.1, 0.4]})", red)},
+      {"materials", scene_file(image, camera, sky, "[0.2, 0.7, 0.2]")},
+  };
+  std::vector<float> base;
+  for (const Case& c : cases) {
+    const fs::path file = output_path(c.field + ".json");
+    std::ofstream(file) << c.text;
+    const fs::path out = output_path(c.field + ".exr");
+    const CommandResult r = run_rtiow("render -q " + file.string() + " -o " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << c.field << ": " << r.stderr_text;
+    int width = 0, height = 0;
+    const std::vector<float> cli = exr_pixels(out, width, height);
+
+    const rtiow::RenderResult library =
+        rtiow::render(rtiow::load_scene_file(file.string()), rtiow::RenderSettings{});
+    ASSERT_EQ(library.film.width(), width) << c.field;
+    ASSERT_EQ(library.film.height(), height) << c.field;
+    ASSERT_EQ(cli.size(), library.film.pixels().size() * 3) << c.field;
+    EXPECT_EQ(std::memcmp(cli.data(), library.film.pixels().data(), cli.size() * sizeof(float)), 0)
+        << c.field << ": the library's RenderSettings{} and rtiow render differ";
+    if (c.field == "base") {
+      base = cli;
+      EXPECT_EQ(width, 24);
+      EXPECT_EQ(height, 12);
+    } else {
+      EXPECT_NE(cli, base) << c.field << " changed nothing: the case does not test the field";
+    }
+  }
+}
+
 // bench-point times the render command's own loop: with the command's sampler and roulette it
 // traces exactly the rays `render --seed 0` traces, and each option reaches the loop.
 TEST(Cli, BenchPointTracesTheRenderCommandsRays) {

@@ -58,7 +58,7 @@ TEST(SampleBudget, ResolveSaysWhichMeaningTheCountHas) {
 
 TEST(SampleBudget, EachMeaningHasItsOwnChecks) {
   RenderSettings s;
-  s.width = 8, s.height = 8;
+  s.width = 8, s.height = 8, s.max_depth = 8;  // settings as render() has them: resolved
   s.samples = FixedSamples{0};
   EXPECT_NE(refusal(s).find("spp must be > 0"), std::string::npos) << refusal(s);
   s.samples = UntilTimeLimit{};

@@ -253,6 +253,7 @@ RenderSettings with_scene_image(const Scene& scene, RenderSettings settings) {
   if (auto* fixed = std::get_if<FixedSamples>(&settings.samples); fixed && fixed->per_pixel == 0) {
     fixed->per_pixel = image.samples_per_pixel;
   }
+  if (settings.max_depth == kSceneDepth) settings.max_depth = image.max_depth;
   return settings;
 }
 

@@ -25,7 +25,7 @@ RenderState state_of(const RenderResult& result);
 // depend on how samples were grouped into passes. With `checkpointing`, the render starts
 // from a saved state and saves its own as it goes: continued, it gives the same bits.
 //
-// What `settings` leave to the scene (a side or the count of 0) is taken from its image
+// What `settings` leave to the scene (a side or the count of 0, the depth) is taken from its image
 // settings first (with_scene_image).
 RenderResult render(const Scene& scene, const RenderSettings& settings,
                     RenderProgress* progress = nullptr,
@@ -33,7 +33,8 @@ RenderResult render(const Scene& scene, const RenderSettings& settings,
 
 // `settings` with what they leave to the scene filled in from its ImageSettings: width and
 // height 0 (one of them 0: it follows the other and the aspect ratio), a FixedSamples count
-// of 0.
+// of 0, a max_depth of kSceneDepth. A library render so takes every setting a scene file
+// makes, as `rtiow render FILE` does.
 RenderSettings with_scene_image(const Scene& scene, RenderSettings settings);
 
 // Starts oneTBB now rather than at the render's first pass. oneTBB dlopens its allocator on

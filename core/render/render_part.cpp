@@ -220,6 +220,7 @@ void read_part_header(const ImageHeader& header, const std::string& name, Render
   }
   RenderSettings size;  // only the size is checked here
   size.width = header.width, size.height = header.height, size.samples = FixedSamples{1};
+  size.max_depth = 0;
   try {
     validate(size);  // pixel count and memory
   } catch (const InvalidInput& e) {

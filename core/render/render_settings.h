@@ -35,6 +35,10 @@ std::string to_string(const PixelRegion& region);
 std::string to_string(AccelKind kind);
 AccelKind parse_accel(const std::string& name);  // throws InvalidInput
 
+// RenderSettings::max_depth that is the scene's (ImageSettings::max_depth): 0 is a depth, so
+// "the scene's" needs a value of its own.
+inline constexpr int kSceneDepth = -1;
+
 struct RenderSettings {
   // 0: the scene's image (ImageSettings), as a scene file and the command line take it: the
   // side not given follows from the other and the scene's aspect ratio.
@@ -48,7 +52,7 @@ struct RenderSettings {
   // count of 0 is the scene's samples_per_pixel...
   SampleBudget samples = FixedSamples{0};
   std::uint64_t first_sample = 0;  // ...starting at this sample index (a share of a render)
-  int max_depth = 50;
+  int max_depth = kSceneDepth;     // the most rays a path takes; kSceneDepth: the scene's
   std::uint64_t seed = 1;
   int threads = 0;                  // 0: all cores
   double time_limit_seconds = 0.0;  // > 0: stop after the pass that reaches this much time
