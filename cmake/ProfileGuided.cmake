@@ -1,7 +1,9 @@
 # Profile-guided and link-time optimisation (GCC): before the renderer is compiled, an
-# instrumented copy of rtiow is built in build/pgo/build and renders a few small jobs
-# (cmake/ProfileTraining.cmake); rtiow_core, the renderer, is then compiled with that profile
-# (the program around it is command-line code), and the rtiow program links it with -flto. The
+# instrumented copy of rtiow_core, the renderer, is built in build/pgo/build with a small
+# program that renders a few jobs through it (cmake/profile_training.cpp); rtiow_core is then
+# compiled with that profile, and the rtiow program links it with -flto. Only the core is
+# compiled twice, the second time being what a profile is for: the command line around it,
+# whose profile nothing would use, and the image backend are compiled once. The
 # core's objects are fat, so the tests and library users link them as ordinary objects.
 # Neither changes a pixel (floating-point semantics are untouched: the same -ffp-contract=off,
 # no fast-math); together they make the render loop about 6% faster (docs/performance.md). A
@@ -30,8 +32,7 @@ elseif(RTIOW_PGO AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU"
   cmake_host_system_information(RESULT rtiow_pgo_jobs QUERY NUMBER_OF_LOGICAL_CORES)
   file(GLOB_RECURSE rtiow_pgo_sources CONFIGURE_DEPENDS
        ${PROJECT_SOURCE_DIR}/core/*.cpp ${PROJECT_SOURCE_DIR}/core/*.h
-       ${PROJECT_SOURCE_DIR}/materials/*.h ${PROJECT_SOURCE_DIR}/app/*.cpp
-       ${PROJECT_SOURCE_DIR}/app/*.h)
+       ${PROJECT_SOURCE_DIR}/materials/*.h)
   add_custom_command(
     OUTPUT ${RTIOW_PGO_STAMP}
     COMMAND ${CMAKE_COMMAND} -E rm -rf ${RTIOW_PGO_DIR}/data
@@ -41,11 +42,10 @@ elseif(RTIOW_PGO AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU"
             -DRTIOW_BUILD_TESTS=OFF -DRTIOW_PGO_GENERATE=${RTIOW_PGO_DIR}/data
     # Its own make, not a part of the outer one's job slots (so none of make's warnings).
     COMMAND ${CMAKE_COMMAND} -E env --unset=MAKEFLAGS --unset=MFLAGS
-            ${CMAKE_COMMAND} --build ${RTIOW_PGO_DIR}/build --target rtiow -j ${rtiow_pgo_jobs}
-    COMMAND ${CMAKE_COMMAND} -DRTIOW=${RTIOW_PGO_DIR}/build/bin/rtiow -DWORK_DIR=${RTIOW_PGO_DIR}
-            -P ${PROJECT_SOURCE_DIR}/cmake/ProfileTraining.cmake
+            ${CMAKE_COMMAND} --build ${RTIOW_PGO_DIR}/build --target rtiow_profile_training -j ${rtiow_pgo_jobs}
+    COMMAND ${RTIOW_PGO_DIR}/build/bin/rtiow_profile_training ${RTIOW_PGO_DIR}
     COMMAND ${CMAKE_COMMAND} -E touch ${RTIOW_PGO_STAMP}
-    DEPENDS ${rtiow_pgo_sources} ${PROJECT_SOURCE_DIR}/cmake/ProfileTraining.cmake
+    DEPENDS ${rtiow_pgo_sources} ${PROJECT_SOURCE_DIR}/cmake/profile_training.cpp
     COMMENT "Profiling an instrumented rtiow for profile-guided optimisation (-DRTIOW_PGO=OFF skips)"
     VERBATIM)
   add_custom_target(rtiow_profile DEPENDS ${RTIOW_PGO_STAMP})

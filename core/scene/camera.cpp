@@ -16,7 +16,7 @@
 namespace rtiow {
 namespace {
 
-std::string number(double value) {
+std::string message_number(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%g", value);
   return buffer;
@@ -32,7 +32,8 @@ void require_bounded(const Vec3d& v, const char* name) {
     const double c = v[std::size_t(i)];
     require(std::isfinite(c) && std::abs(c) <= limits::kMaxCoordinate,
             std::string(name) + "[" + std::to_string(i) + "] must be finite and within +-" +
-                number(limits::kMaxCoordinate) + " (the range rtiow traces), got " + number(c));
+                message_number(limits::kMaxCoordinate) + " (the range rtiow traces), got " +
+                message_number(c));
   }
 }
 
@@ -49,15 +50,16 @@ void validate(const CameraSettings& s) {
   require(vup_len > 0.0, "vup is the zero vector");
   require(length(cross(normalize(view), s.vup / vup_len)) > 1e-9,
           "vup is parallel to the view direction (lookat - lookfrom)");
-  require(std::isfinite(s.vfov_degrees) && s.vfov_degrees > 0.0 && s.vfov_degrees < 180.0,
-          "vfov must lie strictly between 0 and 180 degrees, got " + number(s.vfov_degrees));
+  require(
+      std::isfinite(s.vfov_degrees) && s.vfov_degrees > 0.0 && s.vfov_degrees < 180.0,
+      "vfov must lie strictly between 0 and 180 degrees, got " + message_number(s.vfov_degrees));
   require(std::isfinite(s.aperture) && s.aperture >= 0.0 && s.aperture <= limits::kMaxCoordinate,
-          "aperture must be from 0 to " + number(limits::kMaxCoordinate) + ", got " +
-              number(s.aperture));
+          "aperture must be from 0 to " + message_number(limits::kMaxCoordinate) + ", got " +
+              message_number(s.aperture));
   const double focus = focus_distance_of(s);
   require(std::isfinite(focus) && focus >= kMinFocusDistance && focus <= limits::kMaxCoordinate,
-          "focus distance must be from " + number(kMinFocusDistance) + " to " +
-              number(limits::kMaxCoordinate) + ", got " + number(focus));
+          "focus distance must be from " + message_number(kMinFocusDistance) + " to " +
+              message_number(limits::kMaxCoordinate) + ", got " + message_number(focus));
 }
 
 double focus_distance_of(const CameraSettings& s) {
@@ -70,8 +72,9 @@ void validate(const CameraSettings& s, int image_width, int image_height) {
   // far away can still produce rays Embree refuses, so bound the rays themselves.
   const Camera camera(s, image_width, image_height);
   require(camera.max_ray_component() <= limits::kMaxRayComponent,
-          "its rays reach " + number(camera.max_ray_component()) + ", beyond the limit of " +
-              number(limits::kMaxRayComponent) + " (narrow vfov, focus distance or aspect ratio)");
+          "its rays reach " + message_number(camera.max_ray_component()) +
+              ", beyond the limit of " + message_number(limits::kMaxRayComponent) +
+              " (narrow vfov, focus distance or aspect ratio)");
 }
 
 Camera::Camera(const CameraSettings& s, int image_width, int image_height) {

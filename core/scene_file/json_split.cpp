@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/scene_file/json_byte_masks.h"
+#include "core/scene_file/json_whitespace.h"
 
 namespace rtiow {
 namespace {
@@ -22,10 +23,6 @@ constexpr ByteSet byte_set(std::string_view bytes) {
 // The bytes that end a stretch the scan skips: inside a string, and inside a split container.
 constexpr ByteSet kStringStops = byte_set("\"\\");
 constexpr ByteSet kContainerStops = byte_set("\"{}[],");
-
-bool is_space(char c) {
-  return c == ' ' || c == '\n' || c == '\r' || c == '\t';
-}
 
 std::size_t skip_until(const char* data, std::size_t i, std::size_t to, const ByteSet& stops) {
   while (i < to && !stops[static_cast<unsigned char>(data[i])]) ++i;
@@ -118,7 +115,7 @@ void JsonSplitter::end_run(const std::string& window, std::size_t end, bool last
   std::size_t members = run_commas_ + 1;
   const std::string_view text = std::string_view(window).substr(run_start_, end - run_start_);
   if (last && container_.first == 0 && run_commas_ == 0 &&
-      std::all_of(text.begin(), text.end(), is_space)) {
+      std::all_of(text.begin(), text.end(), is_json_space<char>)) {
     members = 0;  // an empty container
   }
   if (members > 0) {
@@ -255,7 +252,7 @@ bool JsonSplitter::scan(const std::string& window, std::size_t from, std::size_t
         if (key_escaped_) return false;  // the scan does not decode escapes: leave it whole
         expect_value_ = true;
       }
-    } else if (!is_space(c)) {
+    } else if (!is_json_space(c)) {
       if (depth_ == 1) expect_value_ = false;  // a number or a literal
     }
     ++i;

@@ -23,6 +23,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/scene_file/json_whitespace.h"
 #include "core/scene_file/rapidjson.h"
 
 namespace rtiow {
@@ -73,8 +74,8 @@ class JsonInput {
     // Skips JSON whitespace a buffer at a time (RapidJSON's own loop takes a byte at a time).
     void skip_whitespace() {
       for (;;) {
-        while (current_ < last_ && is_space(*current_)) ++current_;
-        if (current_ < last_ || !is_space(*current_)) return;
+        while (current_ < last_ && is_json_space(*current_)) ++current_;
+        if (current_ < last_ || !is_json_space(*current_)) return;
         Take();  // the buffer's last byte is a space: move to the next buffer
       }
     }
@@ -89,7 +90,6 @@ class JsonInput {
 
    private:
     friend class JsonInput;
-    static bool is_space(Ch c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
     JsonInput* input_;
     const Ch* begin_ = nullptr;       // the buffer the cursor is in
     const Ch* current_ = nullptr;     // the next byte

@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "core/limits/input_limits.h"
+#include "core/scene_file/json_whitespace.h"
 #include "core/scene_file/material_json.h"
 #include "core/scene_file/name_index.h"
 #include "core/scene_file/rapidjson.h"
@@ -111,10 +112,6 @@ class MemberHandler : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, Mem
   std::string error_;
 };
 
-bool is_space(char c) {
-  return c == ' ' || c == '\n' || c == '\r' || c == '\t';
-}
-
 }  // namespace
 
 bool read_run_records(std::string& window, const MemberRun& run, RunRecords& records) {
@@ -131,7 +128,7 @@ bool read_run_records(std::string& window, const MemberRun& run, RunRecords& rec
   const bool materials = run.key == "materials";
   const auto parse = [&] { return !reader.Parse<kFlags>(in, handler).IsError() && handler.done(); };
   const auto skip_space = [&] {
-    while (in.src_ < end && is_space(*in.src_)) ++in.src_;
+    while (in.src_ < end && is_json_space(*in.src_)) ++in.src_;
   };
   std::size_t members = 0;
   for (;;) {
