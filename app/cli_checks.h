@@ -45,4 +45,22 @@ inline const CLI::Validator kFinitePositive(
     },
     "NUMBER > 0");
 
+// A number from `least` to `most`, the bounds written as the help writes them (CLI11's own
+// Range prints "0.000000 to 0.500000" for 1e-12 to 0.5, and only its bounds).
+inline CLI::Validator from_to(double least, double most) {
+  const auto shortest = [](double v) {
+    char text[32];
+    return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
+  };
+  const std::string range = shortest(least) + " to " + shortest(most);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double value = 0;
+        return CLI::detail::lexical_cast(text, value) && value >= least && value <= most
+                   ? ""
+                   : "must be from " + range + ", got " + text;
+      },
+      "NUMBER " + range);
+}
+
 }  // namespace rtiow

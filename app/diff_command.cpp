@@ -74,17 +74,7 @@ std::string chosen_mode(const DiffOptions& o, const DiffInput& reference,
   return o.mode;
 }
 
-int run_diff(const DiffOptions& o) {
-  std::vector<std::string> inputs{o.reference};
-  inputs.insert(inputs.end(), o.tests.begin(), o.tests.end());
-  if (!o.out_diff.empty()) check_image_output(o.out_diff, inputs);
-  if (!o.out_z.empty()) check_image_output(o.out_z, inputs);
-  if (!o.summary_json.empty()) check_output_path(o.summary_json, inputs, "--summary-json");
-  // The outputs, claimed before the images are read.
-  std::vector<std::unique_ptr<OutputClaim>> claims;
-  for (const std::string* out : {&o.out_diff, &o.out_z, &o.summary_json}) {
-    if (!out->empty()) claims.push_back(std::make_unique<OutputClaim>(*out));
-  }
+int compare_images(const DiffOptions& o, const std::vector<std::string>& inputs) {
   const DiffInput reference = read_diff_input(o.reference);
   check_memory_for(inputs.size(), reference);
   std::vector<DiffInput> tests;
@@ -151,6 +141,39 @@ int run_diff(const DiffOptions& o) {
   return int(verdict);
 }
 
+// Exit codes 1 and 2 are verdicts: whatever keeps diff from giving one exits 3 or 4, and its
+// summary (a script reads one for every exit) says so.
+int run_diff(const DiffOptions& o) {
+  std::vector<std::string> inputs{o.reference};
+  inputs.insert(inputs.end(), o.tests.begin(), o.tests.end());
+  if (!o.out_diff.empty()) check_image_output(o.out_diff, inputs);
+  if (!o.out_z.empty()) check_image_output(o.out_z, inputs);
+  if (!o.summary_json.empty()) check_output_path(o.summary_json, inputs, "--summary-json");
+  // The outputs, claimed before the images are read.
+  std::vector<std::unique_ptr<OutputClaim>> claims;
+  for (const std::string* out : {&o.out_diff, &o.out_z, &o.summary_json}) {
+    if (!out->empty()) claims.push_back(std::make_unique<OutputClaim>(*out));
+  }
+  const auto not_compared = [&](const std::string& why, int code) {
+    if (!o.summary_json.empty()) {
+      DiffSummary summary;
+      summary.reference = o.reference, summary.tests = o.tests, summary.mode = o.mode;
+      summary.error = why, summary.exit_code = code;
+      write_text_atomically(o.summary_json, diff_summary_json(summary));
+    }
+    return CommandError(why, code);
+  };
+  try {
+    return compare_images(o, inputs);
+  } catch (const ImagesNotComparable& e) {
+    throw not_compared(e.what(), kDiffImagesDiffer);
+  } catch (const std::bad_alloc&) {
+    throw not_compared("out of memory; nothing was compared", kDiffCouldNotCompare);
+  } catch (const std::exception& e) {
+    throw not_compared(e.what(), kDiffCouldNotCompare);
+  }
+}
+
 }  // namespace
 
 std::function<int()> add_diff_command(CLI::App& app) {
@@ -196,10 +219,10 @@ std::function<int()> add_diff_command(CLI::App& app) {
                   "Noise-aware: the chance that noise alone fails the comparison (half for the "
                   "image mean, half over the blocks), 1e-12 to 0.5")
       ->check(kFiniteNotNegative)
-      ->check(CLI::Range(1e-12, 0.5))
+      ->check(from_to(1e-12, 0.5))
       ->capture_default_str();
   cmd->add_option("--block", o->block, "Noise-aware: the side of a block of pixels, 1 to 4096")
-      ->check(CLI::Range(1, 4096))
+      ->check(from_to(1, 4096))
       ->capture_default_str();
   cmd->add_option("--out-diff", o->out_diff,
                   "Write |test - reference| (several tests: their mean), scaled so the largest "
@@ -220,11 +243,12 @@ std::function<int()> add_diff_command(CLI::App& app) {
     if (cmd->count("--failpercent") > 0 && cmd->count("--warnpercent") == 0) {
       o->thresholds.warn_percent = o->thresholds.fail_percent;
     }
-    // Exit codes 1 and 2 are verdicts: whatever keeps diff from giving one exits 3 or 4.
+    // Exit codes 1 and 2 are verdicts: whatever keeps diff from giving one exits 3 or 4 (a
+    // refusal before the outputs are claimed too).
     try {
       return run_diff(*o);
-    } catch (const ImagesNotComparable& e) {
-      throw CommandError(e.what(), kDiffImagesDiffer);
+    } catch (const CommandError&) {
+      throw;
     } catch (const std::bad_alloc&) {
       throw CommandError("out of memory; nothing was compared", kDiffCouldNotCompare);
     } catch (const std::exception& e) {

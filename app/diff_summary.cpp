@@ -12,11 +12,13 @@ std::string diff_summary_json(const DiffSummary& d) {
   j["reference"] = d.reference;
   j["tests"] = d.tests;
   j["mode"] = d.mode;
-  j["width"] = d.width;
-  j["height"] = d.height;
-  j["verdict"] = to_string(d.verdict);
-  j["exit_code"] = int(d.verdict);
-  j["non_finite_pixels"] = d.non_finite.pixels;
+  const bool compared = d.error.empty();
+  j["width"] = compared ? json(d.width) : json();
+  j["height"] = compared ? json(d.height) : json();
+  j["verdict"] = compared ? to_string(d.verdict) : "could not compare";
+  j["exit_code"] = compared ? int(d.verdict) : d.exit_code;
+  j["failure"] = compared ? json() : json(d.error);
+  j["non_finite_pixels"] = compared ? json(d.non_finite.pixels) : json();
   j["plain"] = nullptr;
   j["noise"] = nullptr;
   if (d.plain && d.thresholds) {

@@ -20,6 +20,10 @@ struct DiffSummary {
   const NoiseDiff* noise = nullptr;
   NonFinite non_finite;
   DiffVerdict verdict = DiffVerdict::Pass;
+  // Where no verdict was reached: why, and the exit code (3: images of other sizes; 4: a file
+  // or option diff cannot use). The summary then says "could not compare", its figures null.
+  std::string error;
+  int exit_code = 0;
 };
 
 // The summary as JSON text.

@@ -28,6 +28,7 @@
 #include "app/measure/accuracy_command.h"
 #include "app/measure/bench_command.h"
 #include "app/merge_command.h"
+#include "app/mpi_launch.h"
 #include "app/mpi_session.h"
 #include "app/parse_errors.h"
 #include "app/render/render_command.h"
@@ -42,6 +43,13 @@ namespace {
 // Every message leaves as one printable line, whatever a value in it held.
 void report(const char* what) {
   std::fprintf(stderr, "rtiow: error: %s\n", rtiow::one_line(what).c_str());
+}
+
+// `rtiow --version`: the version, then what was built in, a fact a line.
+std::string version_text() {
+  std::string text = std::string("rtiow ") + rtiow::version();
+  for (const std::string& fact : rtiow::build_facts()) text.append("\n").append(fact);
+  return text.append("\n").append(rtiow::mpi_build_fact());
 }
 
 // The last guard: should an exception escape where none may (a noexcept frame, or a library's
@@ -182,6 +190,13 @@ int main(int argc, char** argv) {
   std::signal(SIGPIPE, SIG_IGN);
   // Likewise a file-size limit: the write fails (EFBIG), the target is left as it was.
   std::signal(SIGXFSZ, SIG_IGN);
+  // A build without MPI under mpirun would render the whole image in every process.
+  const rtiow::EnvironmentLookup environment = [](const char* name) { return std::getenv(name); };
+  if (const std::string why = rtiow::launch_refusal(rtiow::kBuiltWithMpi, environment);
+      !why.empty()) {
+    if (rtiow::first_of_launch(environment)) report(why.c_str());
+    return 2;
+  }
   const rtiow::MpiSession mpi(argc, argv);
   CLI::App app{
       "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend, "
@@ -190,7 +205,7 @@ int main(int argc, char** argv) {
   // Before the commands are added: each takes its parent's formatter.
   app.formatter(std::make_shared<rtiow::ReadableHelpFormatter>());
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("rtiow ") + rtiow::version());
+  app.set_version_flag("--version", version_text());
   app.footer(
       "The docs/ pages the help cites are in the source tree, and in share/doc/rtiow/ where "
       "rtiow is installed.");

@@ -1,6 +1,7 @@
 #include "app/mpi_session.h"
 
 #include <cstdlib>
+#include <string>
 
 #if defined(RTIOW_WITH_MPI)
 #include <mpi.h>
@@ -50,6 +51,16 @@ void reduce_exact(int rank, std::vector<Exact>& values) {
 
 }  // namespace
 
+std::string mpi_build_fact() {
+  std::string fact = "MPI: ";
+#if defined(OMPI_MAJOR_VERSION)
+  fact += "Open MPI " + std::to_string(OMPI_MAJOR_VERSION) + "." +
+          std::to_string(OMPI_MINOR_VERSION) + "." + std::to_string(OMPI_RELEASE_VERSION) + ", ";
+#endif
+  return fact + "the MPI " + std::to_string(MPI_VERSION) + "." + std::to_string(MPI_SUBVERSION) +
+         " interface (rendering across ranks under mpirun)";
+}
+
 MpiSession::MpiSession(int& argc, char**& argv) {
   if (!launched_by_mpi()) return;
   MPI_Init(&argc, &argv);
@@ -89,6 +100,10 @@ void MpiSession::abort(int code) const {
 }
 
 #else
+
+std::string mpi_build_fact() {
+  return "MPI: not built in (build with libopenmpi-dev installed, or -DRTIOW_MPI=ON)";
+}
 
 MpiSession::MpiSession(int&, char**&) {}
 MpiSession::~MpiSession() = default;

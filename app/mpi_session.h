@@ -9,11 +9,21 @@
 // for --stats-channels, 112 more with --passes).
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/film/pixel_sums.h"
 
 namespace rtiow {
+
+#if defined(RTIOW_WITH_MPI)
+inline constexpr bool kBuiltWithMpi = true;
+#else
+inline constexpr bool kBuiltWithMpi = false;
+#endif
+
+// MPI as `rtiow --version` says it: the implementation and version built in, or that none is.
+std::string mpi_build_fact();
 
 class MpiSession {
  public:

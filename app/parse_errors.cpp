@@ -105,12 +105,27 @@ std::string explain_count(const CLI::App& command, const std::string& what) {
   std::smatch match;
   if (!std::regex_match(what, match, pattern)) return "";
   const std::string option_name = match[1], wanted = match[2], got = match[3];
+  if (wanted == "1") {
+    return option_name + " takes one value, got " + got + ": give it once (see " +
+           full_name(command) + " --help)";
+  }
   std::string example;
   for (int i = 1; i <= std::stoi(wanted) && i <= 4; ++i) {
     example += (i > 1 ? "," : "") + std::to_string(i);
   }
   return option_name + " takes " + wanted + " numbers, got " + got + " (as " + option_name + " " +
          example + ", with commas or spaces between; see " + full_name(command) + " --help)";
+}
+
+// "A subcommand is required": rtiow alone, or only its options. The commands, as --help lists them.
+std::string explain_missing_command(const CLI::App& app) {
+  std::string commands;
+  for (const CLI::App* command : app.get_subcommands({})) {
+    if (command->get_group().empty()) continue;  // hidden (bench-point)
+    commands += (commands.empty() ? "" : ", ") + command->get_name();
+  }
+  return "no command given: rtiow COMMAND [OPTIONS], where COMMAND is one of " + commands +
+         " (see rtiow --help)";
 }
 
 }  // namespace
@@ -134,6 +149,9 @@ std::string explain_parse_error(const CLI::App& app, const CLI::ParseError& erro
     message = explain_choice(command, error.what());
   if (dynamic_cast<const CLI::ArgumentMismatch*>(&error) != nullptr)
     message = explain_count(command, error.what());
+  if (dynamic_cast<const CLI::RequiredError*>(&error) != nullptr && &command == &app &&
+      app.get_subcommands().empty() && app.get_require_subcommand_min() > 0)
+    message = explain_missing_command(app);
   if (!message.empty()) return message;
   return std::string(error.what()) + " (see " + full_name(command) + " --help)";
 }

@@ -1,5 +1,6 @@
 #include "app/progress_display.h"
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -25,13 +26,12 @@ std::string duration(double seconds) {
 
 // "37.5%  elapsed 12.0s  ETA 20.0s  error 0.031 (asked 0.02)  14.2 Mrays/s"; a mode with no
 // share of its end to show counts its samples instead, and one with no honest time to go
-// shows none. A log's lines (`tenths`) give the share in whole tenths, as they come.
-std::string progress_line(const ProgressStatus& status, const ProgressSnapshot& now, bool tenths) {
+// shows none. A log's line says the share as it is when the line is written (it gave the tenth
+// just passed: "90% ... ETA 0.1s").
+std::string progress_line(const ProgressStatus& status, const ProgressSnapshot& now) {
   char text[64];
   std::string line;
-  if (status.fraction >= 0.0 && tenths) {
-    std::snprintf(text, sizeof text, "%3d%%", 10 * int(status.fraction * 10.0));
-  } else if (status.fraction >= 0.0) {
+  if (status.fraction >= 0.0) {
     std::snprintf(text, sizeof text, "%5.1f%%", 100.0 * status.fraction);
   } else {
     std::snprintf(text, sizeof text, "%.3g samples", double(now.samples_done));
@@ -48,6 +48,20 @@ std::string progress_line(const ProgressStatus& status, const ProgressSnapshot& 
 }
 
 }  // namespace
+
+std::string fit_to_columns(const std::string& line, std::size_t columns) {
+  if (line.size() <= columns) return line;
+  // Whole fields ("  ETA 9.3s") while they fit, the share first; a field cut in two misleads.
+  std::string fitted;
+  for (std::size_t start = 0; start < line.size();) {
+    std::size_t next = line.find("  ", start + 1);
+    if (next == std::string::npos) next = line.size();
+    if (next > columns) break;
+    fitted = line.substr(0, next);
+    start = next;
+  }
+  return fitted.empty() ? line.substr(0, columns) : fitted;
+}
 
 ProgressDisplay::ProgressDisplay(const RenderProgress& progress, const RenderSettings& settings)
     : progress_(progress),
@@ -86,7 +100,13 @@ void ProgressDisplay::report(bool final_report) {
   const ProgressSnapshot now = snapshot(progress_, elapsed);
   const ProgressStatus status = progress_status(settings_, pixels_, now);
   if (terminal_) {
-    std::fprintf(stderr, "\r\033[K%s", progress_line(status, now, false).c_str());
+    // One line that never wraps: a wrapped line is not erased by the next \r, and a narrow
+    // terminal filled with copies of it.
+    std::string line = progress_line(status, now);
+    winsize size{};
+    if (::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 1)
+      line = fit_to_columns(line, size.ws_col - 1);
+    std::fprintf(stderr, "\r\033[K%s", line.c_str());
     std::fflush(stderr);
     return;
   }
@@ -99,7 +119,7 @@ void ProgressDisplay::report(bool final_report) {
   const bool judged = !status.detail.empty() && judgement != last_judgement_;
   if (step <= last_step_ && !judged) return;
   last_step_ = std::max(step, last_step_), last_judgement_ = judgement;
-  std::fprintf(stderr, "progress: %s\n", progress_line(status, now, true).c_str());
+  std::fprintf(stderr, "progress: %s\n", progress_line(status, now).c_str());
 }
 
 }  // namespace rtiow

@@ -5,13 +5,19 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <cstddef>
 #include <cstdint>
 #include <mutex>
+#include <string>
 #include <thread>
 
 #include "core/render/render_settings.h"
 
 namespace rtiow {
+
+// A progress line in at most `columns` characters: its leading fields that fit whole (the
+// share first), or its first `columns` characters where not even the first does.
+std::string fit_to_columns(const std::string& line, std::size_t columns);
 
 class ProgressDisplay {
  public:

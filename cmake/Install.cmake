@@ -1,4 +1,5 @@
-# `cmake --install build --prefix P`: the rtiow executable (with the plot scripts it runs),
+# `cmake --install build --prefix P`: the rtiow executable (with the plot scripts it runs, in
+# share/rtiow/),
 # the core as a static library with its headers and image backend, and a CMake package, so
 # that a C++ project can find_package(rtiow) and link rtiow::rtiow, or declare image tests of
 # its scenes with rtiow_add_image_test (cmake/RtiowImageTest.cmake).
@@ -7,7 +8,8 @@ include(CMakePackageConfigHelpers)
 
 set_target_properties(rtiow_core PROPERTIES EXPORT_NAME rtiow OUTPUT_NAME rtiow)
 install(TARGETS rtiow RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(FILES app/measure/bench_plot.py app/measure/accuracy_plot.py DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(FILES app/measure/bench_plot.py app/measure/accuracy_plot.py
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/rtiow)
 install(TARGETS rtiow_core EXPORT rtiowTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # The image backend: the rtiow executable loads the shared one from lib/ beside its bin/ when
 # it reads or writes an image. A program that links rtiow::rtiow writes PNG with rtiow's own
@@ -35,11 +37,12 @@ set(RTIOW_STAGING_DIR \"${rtiow_public_headers}\")
 include(\"${PROJECT_SOURCE_DIR}/cmake/InstallPublicHeaders.cmake\")")
 install(DIRECTORY ${rtiow_public_headers}/rtiow DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 
-# The user's pages, which --help cites as docs/<page> (the measurements stay in the source).
-install(FILES README.md docs/usage.md docs/scene-format.md docs/diff.md docs/distributed.md
-              docs/library.md docs/robustness.md
-        DESTINATION ${CMAKE_INSTALL_DOCDIR})
-install(FILES docs/gallery/cover.png DESTINATION ${CMAKE_INSTALL_DOCDIR}/gallery)
+# The manual as the source tree lays it out, so that its links hold: README.md, the docs/ pages
+# --help cites as docs/<page> (with the figures and measurements they link) and the examples
+# the README links.
+install(FILES README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(DIRECTORY docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
+install(DIRECTORY examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples)
 
 set(rtiow_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/rtiow)
 install(EXPORT rtiowTargets NAMESPACE rtiow:: DESTINATION ${rtiow_cmake_dir})

@@ -6,8 +6,9 @@
 # whose profile nothing would use, and the image backend are compiled once. The
 # core's objects are fat, so the tests and library users link them as ordinary objects.
 # Neither changes a pixel (floating-point semantics are untouched: the same -ffp-contract=off,
-# no fast-math); together they make the render loop about 6% faster (docs/performance.md). A
-# source change runs the training again. They add about 90 s to a fresh build;
+# no fast-math); together they made the render loop about 6% faster (docs/performance.md; not
+# resolvable on a noisier machine on 11-28). A source change runs the training again. They add
+# about 40 s to a fresh build;
 # -DRTIOW_PGO=OFF builds without either.
 #
 # RTIOW_PGO_GENERATE is the nested build's own setting: compile instrumented, writing the

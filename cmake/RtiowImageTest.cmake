@@ -81,8 +81,9 @@ function(rtiow_add_image_test name)
   set(work_dir ${CMAKE_CURRENT_BINARY_DIR}/rtiow-image-tests/${name})
   set(settings ${CMAKE_CURRENT_BINARY_DIR}/rtiow-image-tests/${name}.cmake)
   set(content "")
-  foreach(variable RTIOW reference render_args work_dir SPP SEEDS REFERENCE_SPP DIFF_ARGS
-                   EXPECT_FAILURE)
+  set(TEST_NAME ${name})
+  foreach(variable TEST_NAME RTIOW reference render_args work_dir SPP SEEDS REFERENCE_SPP
+                   DIFF_ARGS EXPECT_FAILURE)
     if(DEFINED ARG_${variable})
       set(value "${ARG_${variable}}")
     else()

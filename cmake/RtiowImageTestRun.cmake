@@ -1,7 +1,7 @@
 # One image test of rtiow_add_image_test (cmake/RtiowImageTest.cmake), run by CTest as
 #   cmake -DSETTINGS=<name>.cmake -P RtiowImageTestRun.cmake
-# SETTINGS sets RTIOW, reference, render_args, work_dir, SPP, SEEDS, REFERENCE_SPP, DIFF_ARGS
-# and EXPECT_FAILURE.
+# SETTINGS sets TEST_NAME, RTIOW, reference, render_args, work_dir, SPP, SEEDS, REFERENCE_SPP,
+# DIFF_ARGS and EXPECT_FAILURE.
 include(${SETTINGS})
 
 function(run_rtiow what)
@@ -28,7 +28,7 @@ elseif("$ENV{RTIOW_UPDATE_REFERENCES}")
 endif()
 if(NOT EXISTS ${reference})
   message(FATAL_ERROR "the reference ${reference} does not exist; make it with\n"
-                      "  RTIOW_UPDATE_REFERENCES=1 ctest -R <this test>")
+                      "  RTIOW_UPDATE_REFERENCES=1 ctest -R '^${TEST_NAME}$'")
 endif()
 
 file(REMOVE_RECURSE ${work_dir})

@@ -188,6 +188,40 @@ TEST(Cli, OptionErrorsSuggestWhatWasMeant) {
                  "--lookfrom takes 3 numbers, got 2 (as --lookfrom 1,2,3, with commas or spaces "
                  "between; see rtiow render --help)");
   expect_refused("--vup 0 1 0 0", "--vup takes 3 numbers, got 4");
+  // An option of one value given twice (it said "takes 1 numbers"), and a range in the help's
+  // own words (it said "Value 0 not in range 0.000000 to 0.500000"), issue 70.
+  expect_refused("--spp 4 --spp 8",
+                 "--spp takes one value, got 2: give it once (see rtiow render --help)");
+  expect_refused("--scene cover --target-error 0.1 --min-spp 1",
+                 "--min-spp must be >= 2 (a variance needs two), got 1");
+  expect_refused("--image-error 2",
+                 "--image-error 2 is a relative error of 100% or more: give a fraction below 1");
+  expect_refused("--target-error 1.5", "--target-error 1.5 is a relative error of 100% or more");
+  expect_refused("--scene cover --spp 8 --min-spp 4",
+                 "--min-spp 4 applies to adaptive sampling (--target-error, --image-error or "
+                 "--adaptive)");
+  const CommandResult alpha = run_rtiow("diff --alpha 0 a.png b.png");
+  EXPECT_EQ(alpha.exit_code, 4) << alpha.stderr_text;
+  EXPECT_NE(alpha.stderr_text.find("--alpha: must be from 1e-12 to 0.5, got 0 (see rtiow diff "
+                                   "--help)"),
+            std::string::npos)
+      << alpha.stderr_text;
+  const CommandResult block = run_rtiow("diff --block 0 a.png b.png");
+  EXPECT_NE(block.stderr_text.find("--block: must be from 1 to 4096, got 0"), std::string::npos)
+      << block.stderr_text;
+  // A directory that takes no new files is what to act on, not the lock's name (issue 70).
+  const CommandResult proc = run_rtiow("render -q --width 8 --spp 1 -o /proc/rtiow-x.png");
+  EXPECT_EQ(proc.exit_code, 2);
+  EXPECT_NE(proc.stderr_text.find("output '/proc/rtiow-x.png': cannot create files in directory "
+                                  "'/proc': "),
+            std::string::npos)
+      << proc.stderr_text;
+  // No command at all: the commands there are, not CLI11's "A subcommand is required".
+  const CommandResult bare = run_rtiow("");
+  EXPECT_EQ(bare.exit_code, 2);
+  EXPECT_EQ(bare.stderr_text,
+            "rtiow: error: no command given: rtiow COMMAND [OPTIONS], where COMMAND is one of "
+            "render, scene, merge, bench, accuracy, diff (see rtiow --help)\n");
   // A value outside an option's choices: the choices in words and the one meant.
   expect_refused("--sampler sobel",
                  "--sampler: 'sobel' is not one of independent, sobol, padded-sobol; did you mean "

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 #include <arpa/inet.h>
+#include <embree3/rtcore_config.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -318,11 +319,23 @@ TEST(Cli, TheDiffDocsShowWhatTheProgramPrints) {
   }
 }
 
-// One version string: the program says the library's, which CMake's project(VERSION) sets.
-TEST(Cli, TheVersionIsTheProjects) {
-  EXPECT_EQ(run_rtiow("--version").stdout_text,
-            std::string("rtiow ") + RTIOW_PROJECT_VERSION + "\n");
+// One version string: the program says the library's, which CMake's project(VERSION) sets,
+// and then what was built in (issue 70): every fact the library gives, and MPI's.
+TEST(Cli, TheVersionIsTheProjectsAndSaysWhatWasBuiltIn) {
+  const std::string out = run_rtiow("--version").stdout_text;
+  EXPECT_EQ(out.substr(0, out.find('\n')), std::string("rtiow ") + RTIOW_PROJECT_VERSION);
   EXPECT_STREQ(rtiow::version(), RTIOW_PROJECT_VERSION);
+  const std::vector<std::string> facts = rtiow::build_facts();
+  EXPECT_EQ(facts.size(), 4u);
+  for (const std::string& fact : facts) {
+    EXPECT_NE(out.find("\n" + fact + "\n"), std::string::npos) << fact << " not in\n" << out;
+  }
+  for (const std::string& said :
+       {std::string("\ncompiler: GCC ") + __VERSION__, std::string("\noptimisation: "),
+        std::string("\ninstruction sets: "), std::string("Embree ") + RTC_VERSION_STRING,
+        std::string("oneTBB "), std::string("OpenImageIO "), std::string("\nMPI: ")}) {
+    EXPECT_NE(out.find(said), std::string::npos) << said << " not in\n" << out;
+  }
 }
 
 // Debian's OpenImageIO takes some 0.3 s of symbol binding to load: only commands that read or

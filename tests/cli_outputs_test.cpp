@@ -289,6 +289,26 @@ TEST(Cli, TheDiffSummaryForScriptsIsTheVerdictPrinted) {
   EXPECT_GT(j["plain"]["max_error"].get<double>(), 0.0);
   EXPECT_TRUE(j["plain"]["thresholds"]["hardfail"].is_null());
   EXPECT_TRUE(j["noise"].is_null());
+  // No verdict (images of other sizes: 3; a file diff cannot read: 4): a summary all the same,
+  // saying why (issue 70: a script found no file for these exits).
+  const fs::path small = output_path("small.exr");
+  ASSERT_EQ(run_rtiow("render -q --width 24 --height 16 --spp 2 -o " + small.string()).exit_code,
+            0);
+  for (const auto& [other, code] :
+       {std::pair{small.string(), 3}, std::pair{output_path("none.exr").string(), 4}}) {
+    SCOPED_TRACE(other);
+    fs::remove(summary);
+    r = run_rtiow("diff " + a.string() + " " + other + " --summary-json " + summary.string());
+    EXPECT_EQ(r.exit_code, code) << r.stderr_text;
+    ASSERT_TRUE(fs::exists(summary)) << r.stderr_text;
+    j = nlohmann::json::parse(slurp(summary));
+    EXPECT_EQ(j["verdict"], "could not compare");
+    EXPECT_EQ(j["exit_code"], code);
+    EXPECT_NE(r.stderr_text.find(j["failure"].get<std::string>()), std::string::npos)
+        << r.stderr_text;
+    EXPECT_TRUE(j["width"].is_null());
+    EXPECT_TRUE(j["plain"].is_null() && j["noise"].is_null());
+  }
 }
 
 TEST(Cli, EveryAdvertisedFormatIsWritten) {

@@ -115,6 +115,17 @@ TEST(Cli, ACropRendersTheWholeImagesPixelsInEveryWayARenderIsMade) {
   r = run_rtiow("render -q --like " + at("crop.exr") + " -o " + at("like.exr"));
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   EXPECT_EQ(slurp(at("like.exr")), slurp(at("crop.exr"))) << "--like lost the crop";
+  // Another frame size drops the region only when told which (it was dropped silently).
+  r = run_rtiow("render -q --like " + at("crop.exr") + " --width 32 -o " + at("wider.exr"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("is the region "), std::string::npos) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("give --crop too (--crop 0,0,W,H for the whole frame)"),
+            std::string::npos)
+      << r.stderr_text;
+  EXPECT_FALSE(fs::exists(at("wider.exr")));
+  r = run_rtiow("render -q --like " + at("crop.exr") + " --width 32 --crop 0,0,32,21 -o " +
+                at("wider.exr"));
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
 
   r = run_rtiow(base + " --crop 10,5,70,27 -o " + at("outside.png"));
   EXPECT_EQ(r.exit_code, 2);
@@ -445,6 +456,14 @@ TEST(Cli, DisplayShowsTheRenderInTevAsItGoes) {
                 output_path("never.png").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.stderr_text.find("--display 'localhost:99999': expected HOST:PORT"),
+            std::string::npos)
+      << r.stderr_text;
+  EXPECT_FALSE(fs::exists(output_path("never.png")));
+  // A port alone was read as the host 0.0.55.78 (issue 70).
+  r = run_rtiow("render -q --width 16 --spp 2 --display 14158 -o " +
+                output_path("never.png").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("--display '14158': a number alone is not a host"),
             std::string::npos)
       << r.stderr_text;
   EXPECT_FALSE(fs::exists(output_path("never.png")));

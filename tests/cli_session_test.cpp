@@ -9,6 +9,7 @@
 #include <netinet/in.h>
 #include <poll.h>
 #include <spawn.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -30,6 +31,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/progress_display.h"
 #include "app/progress_status.h"
 #include "core/rtiow.h"
 #include "tests/cli_helpers.h"
@@ -93,6 +95,50 @@ TEST(Cli, InterruptWritesTheSamplesCompleted) {
 }
 
 // A signal ignored when rtiow starts (nohup, a script's background job) stays ignored.
+// On a terminal the live progress line fits the terminal's width: on a 40-column terminal it
+// wrapped, and each \r then rewrote only its last row, leaving the rest as a flood (issue 70).
+TEST(Cli, TheLiveProgressLineFitsANarrowTerminal) {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(::grantpt(master), 0);
+  ASSERT_EQ(::unlockpt(master), 0);
+  winsize size{};
+  size.ws_col = 40, size.ws_row = 12;
+  ASSERT_EQ(::ioctl(master, TIOCSWINSZ, &size), 0);
+  const std::string terminal = ::ptsname(master);
+  // Held open here, so the reader sees no end before rtiow has opened it too.
+  const int held = ::open(terminal.c_str(), O_RDWR | O_NOCTTY);
+  ASSERT_GE(held, 0);
+  std::string shown;
+  std::thread reader([&] {
+    char buffer[4096];
+    for (ssize_t n; (n = ::read(master, buffer, sizeof buffer)) > 0;) shown.append(buffer, n);
+  });
+  rtiow::test::Launch command;
+  command.argv = {RTIOW_BINARY, "render", "--scene", "cover", "--width",
+                  "200",        "--spp",  "64",      "-o",    output_path("narrow.png").string()};
+  command.stderr_path = terminal;
+  const int code = rtiow::test::launch(command);
+  ::close(held);  // the reader now ends (EIO) once it has read all
+  reader.join();
+  ::close(master);
+  ASSERT_EQ(code, 0) << shown;
+  int live_lines = 0;
+  for (std::size_t at = shown.find("\033[K"); at != std::string::npos;
+       at = shown.find("\033[K", at + 1)) {
+    const std::size_t start = at + 3;
+    const std::size_t end = std::min(shown.find_first_of("\r\n", start), shown.size());
+    const std::string line = shown.substr(start, end - start);
+    EXPECT_LE(line.size(), 39u) << "a live line wider than the terminal: " << line;
+    EXPECT_NE(line.find('%'), std::string::npos) << "the share goes first: " << line;
+    ++live_lines;
+  }
+  EXPECT_GE(live_lines, 1) << "no live line on a terminal:\n" << shown;
+  EXPECT_EQ(rtiow::fit_to_columns(" 37.5%  elapsed 12.0s  ETA 20.0s  14.2 Mrays/s", 32),
+            " 37.5%  elapsed 12.0s  ETA 20.0s");
+  EXPECT_EQ(rtiow::fit_to_columns("4.69e+06 samples  elapsed 1.0s", 10), "4.69e+06 s");
+}
+
 TEST(Cli, InheritedIgnoredSignalStaysIgnored) {
   const fs::path out = output_path("nohup.exr");
   BackgroundRender r(long_render(out), {SIGHUP});
@@ -164,8 +210,8 @@ TEST(Cli, SceneFromStandardInputRendersAsItsFile) {
     std::ofstream broken(bad);
     broken << "{\"version\": 1,";
   }
-  const CommandResult b = run_rtiow(
-      "render -" + common + "-o " + output_path("bad.png").string(), "", {}, bad.string());
+  const CommandResult b = run_rtiow("render -" + common + "-o " + output_path("bad.png").string(),
+                                    "", {}, bad.string());
   EXPECT_EQ(b.exit_code, 2);
   EXPECT_EQ(b.stderr_text.rfind("rtiow: error: standard input: ", 0), 0u) << b.stderr_text;
 }

@@ -168,13 +168,15 @@ TEST(CommandDoor, PlotsAndFiguresReplaceALinkAtTheirNameAndLeaveItsFileAlone) {
   fs::create_directories(dir / "b");
   fs::create_symlink("../precious.txt", dir / "b" / "bench.png");
   fs::create_symlink("../precious.txt", dir / "b" / "bench.json");
+  fs::create_symlink("../precious.txt", dir / "b" / "bench.csv");
   const CommandRun r = run_in(dir, {"bench", "--quick", "--out", "b"});
   EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
   EXPECT_EQ(slurp(dir / "precious.txt"), kPrecious);
-  for (const char* name : {"bench.png", "bench.json"}) {
+  for (const char* name : {"bench.png", "bench.json", "bench.csv"}) {
     EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / "b" / name))) << name;
   }
-  EXPECT_EQ(names_in(dir / "b"), (std::vector<std::string>{"bench.json", "bench.png"}));
+  EXPECT_EQ(names_in(dir / "b"),
+            (std::vector<std::string>{"bench.csv", "bench.json", "bench.png"}));
 }
 
 // A measurement refused at its outputs writes nothing.

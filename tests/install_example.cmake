@@ -17,11 +17,39 @@ run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 foreach(installed bin/rtiow lib/librtiow.a lib/librtiow_image_io.so include/rtiow/rtiow.h
                   include/rtiow/materials/material.h lib/cmake/rtiow/rtiowConfig.cmake
                   lib/cmake/rtiow/RtiowImageTest.cmake lib/cmake/rtiow/RtiowImageTestRun.cmake
-                  share/doc/rtiow/usage.md share/doc/rtiow/scene-format.md share/doc/rtiow/diff.md)
+                  share/doc/rtiow/README.md share/doc/rtiow/docs/usage.md
+                  share/doc/rtiow/docs/scene-format.md share/doc/rtiow/docs/diff.md
+                  share/rtiow/bench_plot.py share/rtiow/accuracy_plot.py)
   if(NOT EXISTS ${prefix}/${installed})
     message(FATAL_ERROR "not installed: ${installed}")
   endif()
 endforeach()
+if(EXISTS ${prefix}/bin/bench_plot.py OR EXISTS ${prefix}/bin/accuracy_plot.py)
+  message(FATAL_ERROR "a plot script was installed among the programs in bin/")
+endif()
+# Every relative link of the installed manual reaches a file that was installed.
+file(GLOB_RECURSE pages ${prefix}/share/doc/rtiow/*.md)
+set(links 0)
+foreach(page ${pages})
+  file(READ ${page} text)
+  get_filename_component(page_dir ${page} DIRECTORY)
+  # Brackets and semicolons would bend CMake's lists: a link's "](" is matched as ">(".
+  string(REPLACE "[" "<" text "${text}")
+  string(REPLACE "]" ">" text "${text}")
+  string(REPLACE ";" "," text "${text}")
+  string(REGEX MATCHALL ">\\([^)#:][^):]*\\)" found "${text}")
+  foreach(link ${found})
+    string(REGEX REPLACE "^>\\(([^)#]*).*$" "\\1" target "${link}")
+    if(NOT EXISTS ${page_dir}/${target})
+      message(FATAL_ERROR "the installed ${page} links ${target}, which was not installed")
+    endif()
+    math(EXPR links "${links} + 1")
+  endforeach()
+endforeach()
+if(links LESS 30)
+  message(FATAL_ERROR "only ${links} links found in the installed manual: the check missed them")
+endif()
+message(STATUS "the installed manual's ${links} relative links all reach installed files")
 # The installed program finds its image backend in lib/ beside its bin/.
 run(${prefix}/bin/rtiow render -q --scene cover --width 16 --height 9 --spp 1
     -o ${WORK_DIR}/cover.png)
@@ -141,6 +169,14 @@ file(COPY ${SOURCE_DIR}/examples/image_tests DESTINATION ${WORK_DIR})
 set(tests_source ${WORK_DIR}/image_tests)
 run(${CMAKE_COMMAND} -S ${tests_source} -B ${WORK_DIR}/image_tests_build
     -DCMAKE_PREFIX_PATH=${prefix})
+# Without its reference a test fails and says the command that makes it, with its own name.
+execute_process(COMMAND ${CTEST} --test-dir ${WORK_DIR}/image_tests_build -R "^three_spheres$"
+                        --output-on-failure
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(code EQUAL 0 OR NOT out MATCHES "RTIOW_UPDATE_REFERENCES=1 ctest -R '\\^three_spheres\\$'")
+  message(FATAL_ERROR "an image test without its reference did not say how to make it:\n"
+                      "${out}${err}")
+endif()
 run(${CMAKE_COMMAND} -E env RTIOW_UPDATE_REFERENCES=1
     ${CTEST} --test-dir ${WORK_DIR}/image_tests_build --output-on-failure)
 if(NOT EXISTS ${tests_source}/references/three-spheres.exr)

@@ -18,6 +18,7 @@
 #include "core/render/integrator.h"
 #include "core/render/render.h"
 #include "core/render/render_loop.h"
+#include "core/render/render_outcome.h"
 #include "core/render/sample_allocation.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/scene/camera.h"
@@ -135,6 +136,31 @@ Film region_of(const Film& whole, const PixelRegion& crop) {
 // A crop renders the whole image's pixels in its region, bit for bit: with either sampler, a
 // lens (the defocus scene), 1 or 2 threads or the naive intersector, a share of the samples,
 // and any region (the whole frame, an inner block, one corner pixel, a column).
+// A library render stopped through RenderProgress says why as its caller said it, or "stopped
+// on request"; it recorded "interrupted by a signal" whoever stopped it (issue 70).
+TEST(Render, AStoppedRenderSaysTheCauseItsCallerGave) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  for (const bool adaptive : {false, true}) {
+    RenderSettings settings;
+    settings.width = 16, settings.height = 9, settings.max_depth = 8;
+    settings.samples = adaptive ? SampleBudget(ImageErrorTarget{0.001, 1024}) : FixedSamples{512};
+    RenderProgress asked;
+    asked.stop_requested = true;  // honoured after the first pass or round
+    const RenderResult quiet = render(scene, settings, &asked);
+    ASSERT_TRUE(quiet.stopped) << adaptive;
+    EXPECT_EQ(describe_outcome(settings, quiet).stopped, "stopped on request") << adaptive;
+
+    RenderProgress closed;
+    closed.stop_requested = true;
+    closed.stop_cause = "the viewer's window was closed";
+    const RenderResult result = render(scene, settings, &closed);
+    EXPECT_EQ(describe_outcome(settings, result).stopped, "the viewer's window was closed");
+    const RenderResult whole = render(scene, settings);
+    EXPECT_FALSE(whole.stopped);
+    EXPECT_EQ(describe_outcome(settings, whole).stopped, "") << adaptive;
+  }
+}
+
 TEST(Render, ACropIsTheWholeImagesRegionBitForBit) {
   const Scene scene = make_builtin_scene("defocus", 1);
   for (const SamplerKind sampler : {SamplerKind::Independent, SamplerKind::Sobol}) {

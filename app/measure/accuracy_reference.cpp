@@ -1,9 +1,13 @@
 #include "app/measure/accuracy_reference.h"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <system_error>
 #include <variant>
 
 #include "app/progress_display.h"
@@ -45,6 +49,14 @@ Reference load_or_render_reference(const Scene& scene, const RenderSettings& set
     reference.reused = true;
     return reference;
   }
+  // Where it will be kept, made and checked before minutes of rendering rather than after.
+  std::error_code error;
+  fs::create_directories(cache_dir, error);
+  if (error || ::access(cache_dir.c_str(), W_OK | X_OK) != 0) {
+    const int why = error ? error.value() : errno;
+    throw InvalidInput("--cache-dir " + quote_value(cache_dir) +
+                       ": cannot keep the reference there: " + system_error_text(why));
+  }
   if (!quiet) {
     std::fprintf(stderr, "accuracy: rendering the reference (%dx%d, %d spp) into %s\n",
                  settings.width, settings.height, reference_spp(settings), reference.path.c_str());
@@ -58,7 +70,6 @@ Reference load_or_render_reference(const Scene& scene, const RenderSettings& set
     }
     result = render(scene, settings, &progress);
   }
-  fs::create_directories(cache_dir);
   namespace field = metadata_key;
   const Metadata metadata{{field::kScene, scene.name},
                           {field::kSpp, std::int64_t(reference_spp(settings))},

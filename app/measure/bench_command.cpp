@@ -1,7 +1,5 @@
 #include "app/measure/bench_command.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -28,6 +26,7 @@
 #include "core/render/render.h"
 #include "core/render/render_request.h"
 #include "core/scene/builtin_scenes.h"
+#include "core/version.h"
 
 namespace rtiow {
 namespace {
@@ -62,17 +61,24 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// A rate's median and spread over runs: "mrays_per_second" (the median, as every reader of
+// bench.json takes it), "_min" and "_max".
+void put_spread(json& into, const std::string& key, const std::vector<double>& values) {
+  into[key] = median(values);
+  into[key + "_min"] = *std::min_element(values.begin(), values.end());
+  into[key + "_max"] = *std::max_element(values.begin(), values.end());
+}
+
 int all_threads(int threads) {
   return threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-// Resident memory now (VmRSS), to separate the shared libraries mapped at start-up
-// (OpenImageIO alone brings in some 250) from what a scene and its BVH cost.
-double current_rss_mb() {
+// A figure of /proc/self/status in MB ("VmRSS:", "VmHWM:"), 0 where absent.
+double status_mb(const std::string& field) {
   std::ifstream status("/proc/self/status");
   std::string key;
   while (status >> key) {
-    if (key == "VmRSS:") {
+    if (key == field) {
       double kib = 0;
       status >> kib;
       return kib / 1024.0;
@@ -81,32 +87,76 @@ double current_rss_mb() {
   return 0.0;
 }
 
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return double(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
+// Resident memory now, to separate the shared libraries mapped at start-up (OpenImageIO alone
+// brings in some 250) from what a scene and its BVH cost.
+double current_rss_mb() {
+  return status_mb("VmRSS:");
 }
 
-// Renders `repeat` times (fewer once `budget` seconds are spent) and reports medians.
+// This process's own peak: its memory's high-water mark. Not getrusage's ru_maxrss, which a
+// spawned child inherits from the parent at exec (the parent's peak, 153 MB after the cover's
+// recorded rays, showed as every scaling point's).
+double peak_rss_mb() {
+  return status_mb("VmHWM:");
+}
+
+// Renders once untimed at 1 spp, the warm-up (the first configuration measured paid for the
+// thread pool's start, the film's first page faults and cold caches, and read 1.4-4.1 against
+// 6.4-10.3 Mrays/s for the same configuration timed after it), then `repeat` times (fewer once
+// `budget` seconds are spent): each run, and the median, least and most of each figure.
 json measure_render(const Scene& scene, RenderSettings settings, int repeat, double budget) {
-  std::vector<double> build, seconds;
+  double warmup_seconds = 0.0;
+  {  // its film gone before the timed runs, which would otherwise count it in their peak memory
+    RenderSettings warm = settings;
+    warm.samples = FixedSamples{1};
+    const RenderResult warm_up = render(scene, warm);
+    warmup_seconds = warm_up.build_seconds + warm_up.render_seconds;
+  }
+  std::vector<double> build, seconds, rates;
+  json each = json::array();
   std::uint64_t rays = 0;
-  double spent = 0.0;
+  double spent = warmup_seconds;
   for (int i = 0; i < repeat && (i == 0 || spent < budget); ++i) {
     const RenderResult r = render(scene, settings);
     build.push_back(r.build_seconds);
     seconds.push_back(r.render_seconds);
     rays = r.rays_traced;
+    rates.push_back(double(rays) / r.render_seconds * 1e-6);
+    each.push_back({{"build_seconds", r.build_seconds},
+                    {"render_seconds", r.render_seconds},
+                    {"rays", r.rays_traced},
+                    {"mrays_per_second", rates.back()}});
     spent += r.build_seconds + r.render_seconds;
   }
-  const double s = median(seconds);
-  return {{"accelerator", to_string(settings.accel)},
-          {"threads", all_threads(settings.threads)},
-          {"runs", seconds.size()},
-          {"build_seconds", median(build)},
-          {"render_seconds", s},
-          {"rays", rays},
-          {"mrays_per_second", double(rays) / s * 1e-6}};
+  json figures = {{"accelerator", to_string(settings.accel)},
+                  {"threads", all_threads(settings.threads)},
+                  {"sampler", to_string(settings.sampler)},
+                  {"seed", settings.seed},
+                  {"warmup_seconds", warmup_seconds},
+                  {"runs", seconds.size()},
+                  {"rays", rays}};
+  put_spread(figures, "build_seconds", build);
+  put_spread(figures, "render_seconds", seconds);
+  put_spread(figures, "mrays_per_second", rates);
+  figures["each_run"] = std::move(each);
+  return figures;
+}
+
+// The raw trace rate of `rays` as measure_render times a render: a warm-up, then `repeat`
+// timed runs with their spread.
+json measure_trace(const Scene& scene, const std::vector<Ray>& rays, int threads, int repeat,
+                   EmbreeCallback callback) {
+  measure_trace_rate(scene, rays, threads, callback);  // the warm-up
+  std::vector<double> rates;
+  json each = json::array();
+  for (int i = 0; i < repeat; ++i) {
+    rates.push_back(measure_trace_rate(scene, rays, threads, callback).mrays_per_second());
+    each.push_back({{"mrays_per_second", rates.back()}});
+  }
+  json figures = {{"rays", rays.size()}, {"threads", all_threads(threads)}, {"runs", rates.size()}};
+  put_spread(figures, "mrays_per_second", rates);
+  figures["each_run"] = std::move(each);
+  return figures;
 }
 
 // The book's job as measured: seed 0, its independent sampler and rtiow's Russian roulette
@@ -166,13 +216,44 @@ json run_point_in_child(const BenchOptions& o, std::uint64_t spheres, const std:
   return json::parse(run.output);
 }
 
+// The figures of the cover that no machine can give: the whole renderer outrunning the bare
+// replay of its own rays, or the replay outrunning Embree's traversal alone. Each says which
+// and why; a reader is told the run failed rather than shown the figure as a result.
+json failed_measurements(const json& cover) {
+  json failed = json::array();
+  const double render = cover["embree"]["mrays_per_second"];
+  const double trace = cover["trace"]["mrays_per_second"];
+  const double traversal = cover["traversal"]["mrays_per_second"];
+  char text[256];
+  if (render > trace) {
+    std::snprintf(text, sizeof text,
+                  "render / raw trace rate %.0f%%: the whole renderer cannot outrun the bare "
+                  "replay of its own rays",
+                  100.0 * render / trace);
+    failed.push_back(text);
+  }
+  if (trace > traversal) {
+    std::snprintf(text, sizeof text,
+                  "raw trace / traversal alone %.0f%%: the sphere test cannot make the traversal "
+                  "faster",
+                  100.0 * trace / traversal);
+    failed.push_back(text);
+  }
+  return failed;
+}
+
 json bench_cover(const BenchOptions& o) {
   auto [scene, settings] = book_job(make_builtin_scene("cover", kDefaultSceneSeed), o.width,
                                     o.height, o.spp, o.depth, o.threads, AccelKind::Embree);
 
-  json cover = {{"scene", "cover"}, {"spheres", scene.spheres.size()},
-                {"width", o.width}, {"height", o.height},
-                {"spp", o.spp},     {"depth", o.depth}};
+  json cover = {{"scene", "cover"},
+                {"spheres", scene.spheres.size()},
+                {"width", o.width},
+                {"height", o.height},
+                {"spp", o.spp},
+                {"depth", o.depth},
+                {"sampler", to_string(settings.sampler)},
+                {"seed", settings.seed}};
   std::fprintf(stderr, "bench: cover scene, embree...\n");
   cover["embree"] = measure_render(scene, settings, o.repeat, 1e9);
   std::fprintf(stderr, "bench: cover scene, naive...\n");
@@ -186,20 +267,11 @@ json bench_cover(const BenchOptions& o) {
   std::fprintf(stderr, "bench: cover scene, raw rtcIntersect1 on the rays the render traced...\n");
   settings.threads = o.threads;
   const std::vector<Ray> rays = record_traced_rays(scene, settings);
-  std::vector<double> rates, traversal_rates;
-  for (int i = 0; i < o.repeat; ++i) {
-    rates.push_back(measure_trace_rate(scene, rays, o.threads).mrays_per_second());
-    traversal_rates.push_back(
-        measure_trace_rate(scene, rays, o.threads, EmbreeCallback::Nothing).mrays_per_second());
-  }
-  cover["trace"] = {{"rays", rays.size()},
-                    {"threads", all_threads(o.threads)},
-                    {"mrays_per_second", median(rates)}};
+  cover["trace"] = measure_trace(scene, rays, o.threads, o.repeat, EmbreeCallback::SphereTest);
   // The same rays with a callback that returns at once: Embree's traversal and calls alone
   // (no hit ever shortens a ray, so this is an upper bound on what the traversal costs).
-  cover["traversal"] = {{"rays", rays.size()},
-                        {"threads", all_threads(o.threads)},
-                        {"mrays_per_second", median(traversal_rates)}};
+  cover["traversal"] = measure_trace(scene, rays, o.threads, o.repeat, EmbreeCallback::Nothing);
+  cover["failed_measurements"] = failed_measurements(cover);
   return cover;
 }
 
@@ -233,6 +305,23 @@ json bench_scaling(const BenchOptions& o) {
   return points;
 }
 
+// Where and with what the figures were measured: the CPU and its cores, and what this rtiow
+// was built with (core/version.h), so that two bench.json files can be told apart.
+json bench_context() {
+  std::string cpu = "unknown";
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);) {
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  return {{"cpu", cpu},
+          {"logical_cores", std::thread::hardware_concurrency()},
+          {"rtiow", version()},
+          {"build", build_facts()}};
+}
+
 int run_bench(const BenchOptions& o) {
   if (o.repeat < 1) throw InvalidInput("--repeat must be >= 1");
   if (o.naive_budget <= 0) throw InvalidInput("--naive-budget must be > 0");
@@ -241,7 +330,8 @@ int run_bench(const BenchOptions& o) {
   book_job(make_builtin_scene("cover", kDefaultSceneSeed), o.width, o.height, o.spp, o.depth,
            o.threads, AccelKind::Embree);
 
-  json results = {{"threads", all_threads(o.threads)},
+  json results = {{"context", bench_context()},
+                  {"threads", all_threads(o.threads)},
                   {"repeat", o.repeat},
                   {"scaling_settings",
                    {{"width", o.scaling_width},
@@ -251,14 +341,16 @@ int run_bench(const BenchOptions& o) {
                     {"naive_budget_seconds", o.naive_budget}}}};
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<OutputClaim> summary = claim_summary(o.summary_json);
-  const FigureOutputs outputs(o.out_dir, {"bench.json", "bench.png"}, "--out");
+  const FigureOutputs outputs(o.out_dir, {"bench.json", "bench.csv", "bench.png"}, "--out");
   const std::string json_path = outputs.path("bench.json");
   results["cover"] = bench_cover(o);
   results["scaling"] = bench_scaling(o);
 
   print_bench_table(results);
   write_bench_json(results, json_path);
+  write_bench_csv(results, outputs.path("bench.csv"));
   std::printf("\nfigures: %s\n", one_line(json_path).c_str());
+  std::printf("runs:    %s\n", one_line(outputs.path("bench.csv")).c_str());
   const bool plotted = plot_bench(results, outputs.path("bench.png"));
   if (summary) {
     const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - start;
@@ -276,8 +368,10 @@ std::function<int()> add_bench_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "bench",
       "Measure Embree against the naive loop: cover scene, scaling to 1M spheres, raw "
-      "rtcIntersect1 rate and traversal alone, thread scaling; prints a table, writes JSON and a "
-      "PNG plot (about 100 s on a 2-core machine; --quick: a few seconds)");
+      "rtcIntersect1 rate and traversal alone, thread scaling, each after a warm-up run; prints a "
+      "table with each figure's median and range, writes JSON (with the machine and build), a "
+      "CSV of every run and a PNG plot (about 2 minutes on a 2-core machine; --quick: a few "
+      "seconds)");
   cmd->add_option("--width", o.width, "Cover scene width")->capture_default_str();
   cmd->add_option("--height", o.height, "Cover scene height")->capture_default_str();
   cmd->add_option("--spp", o.spp, "Cover scene samples per pixel")->capture_default_str();
@@ -292,10 +386,12 @@ std::function<int()> add_bench_command(CLI::App& app) {
   cmd->add_option("--naive-budget", o.naive_budget,
                   "Seconds one naive render may take; larger N are skipped")
       ->capture_default_str();
-  cmd->add_option("--repeat", o.repeat, "Runs per measurement; the median is reported")
+  cmd->add_option("--repeat", o.repeat,
+                  "Timed runs per measurement, after one warm-up run; the median and the range "
+                  "are reported")
       ->capture_default_str();
   cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")->capture_default_str();
-  cmd->add_option("--out", o.out_dir, "Directory for bench.json and bench.png")
+  cmd->add_option("--out", o.out_dir, "Directory for bench.json, bench.csv and bench.png")
       ->capture_default_str();
   cmd->add_option("--summary-json", o.summary_json,
                   "Also write the headline figures as JSON here, for scripts (the schema every "

@@ -11,6 +11,10 @@ void print_bench_table(const nlohmann::json& results);
 // Atomic: written to a temporary beside `path`, then renamed.
 void write_bench_json(const nlohmann::json& results, const std::string& path);
 
+// Every timed run, a row each (section, configuration, its settings, the run's figures), for a
+// spreadsheet or a comparison of two machines; atomic as the JSON.
+void write_bench_csv(const nlohmann::json& results, const std::string& path);
+
 // Draws Mrays/s against N (log-log, one line per accelerator) with Debian's python3 and
 // matplotlib. Without them it says so and draws nothing (returns false); the figures are in
 // the JSON.

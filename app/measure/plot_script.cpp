@@ -23,7 +23,9 @@ bool run_plot_script(const std::string& script, const std::string& json_text,
                      const std::string& png_path) {
   namespace fs = std::filesystem;
   std::error_code error;
-  const fs::path path = fs::read_symlink("/proc/self/exe", error).parent_path() / script;
+  // share/rtiow/ beside bin/ (RTIOW_DATADIR_FROM_BINDIR, from app/CMakeLists.txt).
+  const fs::path path = fs::read_symlink("/proc/self/exe", error).parent_path() /
+                        RTIOW_DATADIR_FROM_BINDIR / "rtiow" / script;
   if (!fs::exists(kPython, error) || !fs::exists(path, error)) {
     std::printf("plot: skipped (%s or %s missing)\n", kPython, one_line(path.string()).c_str());
     return false;

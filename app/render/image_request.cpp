@@ -346,6 +346,16 @@ bool apply_image_request(const ImageRequest& request, CLI::App& render) {
   std::vector<const ImageRequest::Option*> taken;
   for (const ImageRequest::Option& o : request.options) {
     if (!given(render, o.group)) taken.push_back(&o);
+    // A new frame size would drop the image's region without a word (issue 70).
+    if (o.name == "--crop" && given(render, "size") && !given(render, "--crop")) {
+      std::string region;
+      for (const std::string& value : o.values) region += (region.empty() ? "" : ",") + value;
+      throw InvalidInput("--like image " +
+                         quote_value(render.get_option("--like")->as<std::string>()) +
+                         " is the region " + region +
+                         " of its frame; --width or --height makes another frame, whose region "
+                         "it cannot know: give --crop too (--crop 0,0,W,H for the whole frame)");
+    }
   }
   const bool scene_chosen = given(render, "scene") || given(render, "--scene-seed");
   if (!scene_chosen && !request.scene_file.empty()) {

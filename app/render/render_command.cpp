@@ -208,6 +208,7 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   }
   // From the scene's load to the last write, a signal asks the command to stop gracefully.
   RenderProgress progress;
+  progress.stop_cause = "interrupted by a signal";  // the command line's only stop
   const InterruptGuard interrupt(progress.stop_requested);
   constexpr const char* kBeforeRender = "before the render began; nothing was written";
   std::optional<RenderJob> prepared;

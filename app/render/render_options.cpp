@@ -97,7 +97,8 @@ CLI::Option* add_image_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--passes", o.passes,
                   "Add the first hit's passes to an .exr output, any of albedo, normal and depth "
                   "(channels albedo.R/G/B, N.X/Y/Z, Z), each the mean over the pixel's samples; "
-                  "0 where a sample saw the sky")
+                  "0 where a sample saw the sky, also Z (Cycles writes 1e10 there: a compositor "
+                  "reads Z 0 as at the lens)")
       ->type_name("LIST");
   return output_option;
 }
@@ -151,9 +152,9 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                 "--time-limit), spread over the pixels in proportion to sqrt(variance / cost), "
                 "which gives the lowest image error for the time");
   cmd->add_option("--min-spp", o.min_spp,
-                  "Adaptive sampling: samples every pixel takes before it may stop (at least 2)")
-      ->check(CLI::Range(2, std::numeric_limits<int>::max()))
-      ->capture_default_str();
+                  "Adaptive sampling: samples every pixel takes before it may stop, at least 2 "
+                  "(default " +
+                      std::to_string(kDefaultLeastSamples) + ")");
   cmd->add_flag("--stats-channels", o.stats_channels,
                 "Add per-pixel channels to an .exr output: spp and the variance of the pixel's "
                 "mean (variance.R/G/B). For that estimate the samples alternate between two "

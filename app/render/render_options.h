@@ -33,7 +33,7 @@ struct RenderOptions {
   double target_error = 0.0;
   double image_error = 0.0;
   bool adaptive = false;
-  int min_spp = RenderRequest{}.min_samples;
+  std::optional<int> min_spp;
   bool stats_channels = false;
   std::string passes;  // "albedo,normal,depth" or a part of it; empty: none
   bool quiet = false;

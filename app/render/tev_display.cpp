@@ -135,6 +135,12 @@ DisplayAddress parse_display_address(const std::string& text) {
   const bool digits = !address.port.empty() && address.port.size() <= 5 &&
                       std::all_of(address.port.begin(), address.port.end(),
                                   [](char c) { return c >= '0' && c <= '9'; });
+  // "14158" alone is a port, not the host 0.0.55.78 the resolver would make of it.
+  if (!address.host.empty() && address.host.find_first_not_of("0123456789") == std::string::npos) {
+    throw InvalidInput("--display " + quote_value(text) +
+                       ": a number alone is not a host; give HOST:PORT (tev listens on "
+                       "127.0.0.1:14158)");
+  }
   if (address.host.empty() || !digits || std::stoi(address.port) < 1 ||
       std::stoi(address.port) > 65535) {
     throw InvalidInput("--display " + quote_value(text) +

@@ -137,6 +137,13 @@ OutputClaim::OutputClaim(const std::string& path)
         throw std::runtime_error("cannot take the lock of output " + quote_value(path) + ": " +
                                  system_error_text(error));
       }
+      // The create itself failed: the directory takes no new files (/proc, read-only, not
+      // ours), which is what the user must act on, not the lock's name.
+      if (created) {
+        ::close(dir_fd_);
+        throw InvalidInput("output " + quote_value(path) + ": cannot create files in directory " +
+                           quote_value(directory_of(path)) + ": " + std::strerror(error));
+      }
       refuse(std::strerror(error));
     }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {

@@ -51,6 +51,7 @@ class RoundDeadline {
 
   void report(RenderResult& result, const PixelAccumulators& pixels) const {
     result.stopped = stop_requested_.load();
+    if (result.stopped) result.stop_cause = progress_->stop_cause;
     result.time_limited = time_out_.load() && !result.stopped;
     result.samples_completed = int(*std::max_element(pixels.samples.begin(), pixels.samples.end()));
   }

@@ -75,7 +75,7 @@ RenderOutcome describe_outcome(const RenderSettings& s, const RenderResult& r) {
   o.samples = text;
   if (r.stopped) {
     o.asked = what_was_asked(s.samples);
-    o.stopped = "interrupted by a signal";
+    o.stopped = r.stop_cause.empty() ? "stopped on request" : r.stop_cause;
   } else if (r.time_limited) {
     std::snprintf(text, sizeof text, "time limit of %g s", s.time_limit_seconds);
     o.stopped = text;

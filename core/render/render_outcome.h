@@ -19,8 +19,9 @@ struct RenderOutcome {
   // What was asked, where a signal stopped the render: " (of 100 asked)", " (of a budget of 64
   // spp)", " (of a cap of 1024 spp)"; empty with only a time limit.
   std::string asked;
-  // Why the render ended early: "interrupted by a signal", "time limit of 10 s"; empty when it
-  // did all it was asked.
+  // Why the render ended early: the stop's cause ("interrupted by a signal", as the command
+  // line says; "stopped on request" unless the caller said why) or "time limit of 10 s"; empty
+  // when it did all it was asked.
   std::string stopped;
 };
 

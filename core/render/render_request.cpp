@@ -1,5 +1,6 @@
 #include "core/render/render_request.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -43,26 +44,41 @@ void apply_fresnel(FresnelModel model, Scene& scene) {
 
 // What --spp means is decided here, once: a count, a budget or a cap, by the mode beside it.
 SampleBudget budget_asked(const RenderRequest& r, const ImageSettings& image) {
-  const auto error_option = [](double error, const char* what) {
+  const auto error_option = [](double error, const char* what, const char* option) {
     if (!(error >= 0.0) || !std::isfinite(error)) {
       throw InvalidInput(std::string(what) + " must be a finite number >= 0 (0: off)");
     }
+    // A relative error of 1 is the size of the values themselves: 2 is a slip for 2%, and the
+    // render would stop at the minimum while its summary claimed the target met.
+    if (error >= 1.0) {
+      char shown[32];
+      const std::string value(shown, std::to_chars(shown, shown + sizeof shown, error).ptr);
+      throw InvalidInput(std::string(option) + " " + value +
+                         " is a relative error of 100% or more: give a fraction below 1 (0.02 "
+                         "for 2%)");
+    }
     return error > 0.0;
   };
-  const bool by_pixel = error_option(r.target_error, "target error");
-  const bool by_image = error_option(r.image_error, "image error");
+  const bool by_pixel = error_option(r.target_error, "target error", "--target-error");
+  const bool by_image = error_option(r.image_error, "image error", "--image-error");
   if (int(by_pixel) + int(by_image) + int(r.adaptive) > 1) {
     throw InvalidInput(
         "choose one adaptive mode: --target-error (per pixel), --image-error or --adaptive (a "
         "budget)");
   }
-  if (r.min_samples < 2) {
-    throw InvalidInput("minimum samples must be >= 2 (a variance needs two), got " +
-                       std::to_string(r.min_samples));
+  if (r.min_samples && !by_pixel && !by_image && !r.adaptive) {
+    throw InvalidInput("--min-spp " + std::to_string(*r.min_samples) +
+                       " applies to adaptive sampling (--target-error, --image-error or "
+                       "--adaptive); a uniform render gives every pixel --spp");
+  }
+  const int least = r.min_samples.value_or(kDefaultLeastSamples);
+  if (least < 2) {
+    throw InvalidInput("--min-spp must be >= 2 (a variance needs two), got " +
+                       std::to_string(least));
   }
   const int cap = r.spp.value_or(kDefaultErrorDrivenMaxSpp);
-  if (by_pixel) return PixelErrorTarget{r.target_error, cap, r.min_samples};
-  if (by_image) return ImageErrorTarget{r.image_error, cap, r.min_samples};
+  if (by_pixel) return PixelErrorTarget{r.target_error, cap, least};
+  if (by_image) return ImageErrorTarget{r.image_error, cap, least};
   const bool timed = r.time_limit_seconds > 0.0;
   if (r.adaptive) {
     // With only a time limit, the time is the budget; with neither, the scene's count.
@@ -71,14 +87,14 @@ SampleBudget budget_asked(const RenderRequest& r, const ImageSettings& image) {
                                            : std::optional<int>(image.samples_per_pixel);
     // A budget no larger than the minimum leaves nothing to allocate: the render would be
     // uniform while its metadata says adaptive.
-    if (spp && *spp > 0 && *spp <= r.min_samples) {
+    if (spp && *spp > 0 && *spp <= least) {
       throw InvalidInput("--adaptive: a budget of " + std::to_string(*spp) +
                          " spp leaves nothing to allocate after every pixel's minimum of " +
-                         std::to_string(r.min_samples) +
+                         std::to_string(least) +
                          " (--min-spp); give --spp above it, or leave out --adaptive for a "
                          "uniform render");
     }
-    return AdaptiveBudget{spp, r.min_samples};
+    return AdaptiveBudget{spp, least};
   }
   if (r.spp) return FixedSamples{*r.spp};
   if (timed) return UntilTimeLimit{};

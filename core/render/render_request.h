@@ -45,7 +45,9 @@ struct RenderRequest {
   bool estimate_error = false;
   bool russian_roulette = RenderSettings{}.russian_roulette;  // --roulette
   FirstHitPasses passes;  // --passes: albedo, normal, depth beside the image (.exr)
-  int min_samples = kDefaultLeastSamples;
+  // --min-spp: what each pixel takes before an adaptive mode may stop it (empty:
+  // kDefaultLeastSamples); refused without one, where it would mean nothing.
+  std::optional<int> min_samples;
 };
 
 // The scene with the request's changes, and the settings that render it.

@@ -131,6 +131,9 @@ struct RenderProgress {
   std::atomic<std::uint64_t> samples_resumed{0};
   std::atomic<std::uint64_t> rays_traced{0};  // by this run
   std::atomic<bool> stop_requested{false};
+  // Why whoever sets stop_requested would set it, in the words the summary and the image's
+  // metadata record (RenderResult::stop_cause); set before the render starts.
+  std::string stop_cause = "stopped on request";
   // What the time limit counts: when this run's sample loop began (steady clock, ns since its
   // epoch; 0: not yet), and the seconds a resumed render's checkpoint had spent before.
   std::atomic<std::int64_t> loop_start_ns{0};
@@ -159,7 +162,8 @@ struct RenderResult {
   SamplerKind sampler = SamplerKind::Independent;  // what drew them
   int replicates = kReplicates;                    // in how many independent sequences
   int samples_completed = 0;    // per pixel (the most any pixel took when adaptive)
-  bool stopped = false;         // a stop request ended the render early
+  bool stopped = false;         // a stop request ended the render early...
+  std::string stop_cause;       // ...for this reason (RenderProgress::stop_cause)
   bool time_limited = false;    // the time limit ended it (with the samples completed)
   double build_seconds = 0.0;   // accelerator construction
   double render_seconds = 0.0;  // the sample loop

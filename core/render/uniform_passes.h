@@ -38,6 +38,7 @@ void render_uniform(const RenderContext<Accel>& ctx, RenderProgress* progress,
   while (done < total) {
     if (done > 0 && progress->stop_requested.load()) {
       result.stopped = true;
+      result.stop_cause = progress->stop_cause;
       break;
     }
     if (done > 0 && limit > 0.0 && journal.elapsed() >= limit) {  // spent before a resume
