@@ -109,6 +109,15 @@ std::string explain_count(const CLI::App& command, const std::string& what) {
     return option_name + " takes one value, got " + got + ": give it once (see " +
            full_name(command) + " --help)";
   }
+  // Values that are not numbers (bench --compare A.json B.json): as the help names them.
+  for (const CLI::Option* option : command.get_options()) {
+    if (!option->check_name(option_name)) continue;
+    const std::string type = option->get_type_name();
+    if (type.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZ,") != std::string::npos) {
+      return option_name + " takes " + wanted + " values (" + type + "), got " + got + " (see " +
+             full_name(command) + " --help)";
+    }
+  }
   std::string example;
   for (int i = 1; i <= std::stoi(wanted) && i <= 4; ++i) {
     example += (i > 1 ? "," : "") + std::to_string(i);

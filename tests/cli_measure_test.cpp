@@ -139,6 +139,58 @@ TEST(Cli, BenchWritesFiguresAndPlot) {
   }
 }
 
+// bench --compare: two bench.json files figure by figure, a difference beyond the noise only
+// where the runs' ranges are apart, none judged from one run (issue 70).
+TEST(Cli, BenchComparesTwoFiguresFilesByTheirRuns) {
+  const fs::path a = output_path("a-bench.json"), b = output_path("b-bench.json");
+  const auto rate = [](double median, double least, double most, int runs) {
+    return nlohmann::json{{"mrays_per_second", median},
+                          {"mrays_per_second_min", least},
+                          {"mrays_per_second_max", most},
+                          {"runs", runs}};
+  };
+  nlohmann::json first = {{"context", {{"cpu", "CPU A"}, {"rtiow", "0.3.0"}}},
+                          {"cover",
+                           {{"embree", rate(10, 9.5, 10.5, 3)},
+                            {"naive", rate(2, 1.9, 2.1, 3)},
+                            {"trace", rate(14, 13, 15, 3)}}},
+                          {"scaling", {{{"n", 10}, {"embree", rate(12, 11, 13, 3)}}}}};
+  nlohmann::json second = first;
+  second["context"]["cpu"] = "CPU B";
+  second["cover"]["embree"] = rate(12, 11.8, 12.4, 3);    // apart: faster
+  second["cover"]["naive"] = rate(2.05, 1.95, 2.2, 3);    // overlapping
+  second["cover"]["trace"] = rate(20, 20, 20, 1);         // one run: no range
+  second["scaling"][0]["embree"] = rate(6, 5.5, 6.5, 3);  // apart: slower
+  std::ofstream(a) << first.dump();
+  std::ofstream(b) << second.dump();
+  const CommandResult r = run_rtiow("bench --compare " + a.string() + " " + b.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const std::string& out = r.stdout_text;
+  EXPECT_NE(out.find("(CPU A, rtiow 0.3.0)"), std::string::npos) << out;
+  EXPECT_NE(out.find("(CPU B, rtiow 0.3.0)"), std::string::npos) << out;
+  const auto row = [&](const std::string& label) {
+    const std::size_t at = out.find("  " + label + " ");
+    return at == std::string::npos ? std::string() : out.substr(at, out.find('\n', at) - at);
+  };
+  EXPECT_NE(row("cover, embree").find("1.200x  faster, beyond the noise"), std::string::npos)
+      << out;
+  EXPECT_NE(row("cover, naive").find("within the noise"), std::string::npos) << out;
+  EXPECT_NE(row("cover, raw rtcIntersect1").find("no ranges to judge by"), std::string::npos)
+      << out;
+  EXPECT_NE(row("spheres:10, embree").find("0.500x  slower, beyond the noise"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("2 figures differ beyond the noise"), std::string::npos) << out;
+  const fs::path other = output_path("other.json");
+  std::ofstream(other) << R"({"figures": []})";
+  const CommandResult refused = run_rtiow("bench --compare " + a.string() + " " + other.string());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_EQ(count_lines(refused.stderr_text), 1) << refused.stderr_text;
+  EXPECT_NE(refused.stderr_text.find("other.json': not a bench.json (rtiow bench --out DIR writes "
+                                     "one)"),
+            std::string::npos)
+      << refused.stderr_text;
+}
+
 // --quick gives bench and accuracy the settings of a short run, but for the options given.
 TEST(Cli, QuickRunsTakeTheirOwnSettingsButTheOptionsGiven) {
   const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "quick-runs";

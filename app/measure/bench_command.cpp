@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/child_process.h"
+#include "app/measure/bench_compare.h"
 #include "app/measure/bench_report.h"
 #include "app/measure/figure_outputs.h"
 #include "app/measure/measure_summary.h"
@@ -44,6 +45,7 @@ struct BenchOptions {
   std::string out_dir = "bench";  // bench.json and bench.png
   std::string summary_json;       // empty: none
   bool quick = false;
+  std::vector<std::string> compare;  // two bench.json files to compare instead of measuring
 };
 
 struct PointOptions {
@@ -396,6 +398,12 @@ std::function<int()> add_bench_command(CLI::App& app) {
   cmd->add_option("--summary-json", o.summary_json,
                   "Also write the headline figures as JSON here, for scripts (the schema every "
                   "command's summary shares: docs/usage.md)");
+  cmd->add_option("--compare", o.compare,
+                  "Measure nothing: compare two bench.json files (two commits or machines) "
+                  "figure by figure, saying which differ beyond the noise (their runs' ranges "
+                  "apart)")
+      ->expected(2)
+      ->type_name("A.json B.json");
   cmd->add_flag("--quick", o.quick,
                 "A short run for a first look: a 200x112 cover at 4 spp, up to 10^4 spheres, "
                 "one run each (options given still apply)");
@@ -439,6 +447,9 @@ std::function<int()> add_bench_command(CLI::App& app) {
 
   return [options, point, cmd, point_cmd] {
     if (cmd->parsed()) {
+      if (!options->compare.empty()) {
+        return compare_bench_files(options->compare[0], options->compare[1]);
+      }
       if (options->quick) {
         apply_quick_run(*cmd, {{"--width", "200"},
                                {"--height", "112"},
