@@ -36,6 +36,7 @@
 #include "core/io/removed_on_abort.h"
 #include "core/limits/error.h"
 #include "core/limits/nearest_name.h"
+#include "core/limits/setting_name.h"
 #include "core/version.h"
 
 namespace {
@@ -180,8 +181,17 @@ int check_standard_output(int code) {
 
 }  // namespace
 
+// The library's setting names as this command line spells its options: "--min-spp 2".
+std::string command_line_setting(std::string_view name, std::string_view value) {
+  std::string text = name == "output" ? "-o/--" : "--";
+  for (const char c : name) text.push_back(c == '_' ? '-' : c);
+  if (!value.empty()) text.append(" ").append(value);
+  return text;
+}
+
 int main(int argc, char** argv) {
   hold_standard_descriptors();
+  rtiow::spell_settings_as(command_line_setting);
   // A signal ends rtiow in its own words, with no temporary left (a render stops gracefully
   // first: app/interrupt.h).
   rtiow::end_at_once_on_signals();

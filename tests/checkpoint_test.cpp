@@ -148,7 +148,7 @@ class CheckpointFile : public ::testing::Test {
   }
 
   // The checkpoint at path_ reads back to `state`, bit for bit.
-  void expect_reads_back(const CheckpointIdentity& id, const RenderState& state) {
+  void expect_reads_back(const RenderIdentity& id, const RenderState& state) {
     const std::optional<RenderState> read = read_checkpoint(path_.string(), id, settings_);
     ASSERT_TRUE(read);
     EXPECT_TRUE(read->pixels.sums == state.pixels.sums);
@@ -163,7 +163,7 @@ class CheckpointFile : public ::testing::Test {
     }
   }
 
-  std::string refusal(const CheckpointIdentity& identity) {
+  std::string refusal(const RenderIdentity& identity) {
     try {
       read_checkpoint(path_.string(), identity, settings_);
     } catch (const InvalidInput& e) {
@@ -175,7 +175,7 @@ class CheckpointFile : public ::testing::Test {
 
 TEST_F(CheckpointFile, KeepsTheStateBitForBit) {
   const RenderState state = saved_state();
-  const CheckpointIdentity id = checkpoint_identity(scene_, settings_);
+  const RenderIdentity id = render_identity(scene_, settings_);
   write_checkpoint(path_.string(), id, state);
   expect_reads_back(id, state);
   EXPECT_FALSE(read_checkpoint((path_.string() + ".none"), id, settings_))
@@ -184,41 +184,44 @@ TEST_F(CheckpointFile, KeepsTheStateBitForBit) {
 
 TEST_F(CheckpointFile, RefusesAnotherRequestNamingWhatDiffers) {
   const RenderState state = saved_state();
-  write_checkpoint(path_.string(), checkpoint_identity(scene_, settings_), state);
+  write_checkpoint(path_.string(), render_identity(scene_, settings_), state);
   RenderSettings other = settings_;
   other.seed = 6;
-  std::string why = refusal(checkpoint_identity(scene_, other));
+  std::string why = refusal(render_identity(scene_, other));
   EXPECT_NE(why.find("seed: the checkpoint's '5', this render's '6'"), std::string::npos) << why;
   other = settings_;
   other.width = 41;
-  why = refusal(checkpoint_identity(scene_, other));
+  why = refusal(render_identity(scene_, other));
   EXPECT_NE(why.find("image size"), std::string::npos) << why;
   other = settings_;
   other.sampler = SamplerKind::Independent;
-  why = refusal(checkpoint_identity(scene_, other));
+  why = refusal(render_identity(scene_, other));
   EXPECT_NE(why.find("sampler"), std::string::npos) << why;
   other = settings_;
   other.max_depth = 3;
-  why = refusal(checkpoint_identity(scene_, other));
+  why = refusal(render_identity(scene_, other));
   EXPECT_NE(why.find("depth"), std::string::npos) << why;
   other = settings_;
   other.russian_roulette = false;  // other paths end: other samples
-  why = refusal(checkpoint_identity(scene_, other));
-  EXPECT_NE(why.find("(no roulette)"), std::string::npos) << why;
+  why = refusal(render_identity(scene_, other));
+  EXPECT_NE(why.find("Russian roulette: the checkpoint's 'on', this render's 'off'"),
+            std::string::npos)
+      << why;
   other = settings_;
   other.samples = AdaptiveBudget{96, 4};  // an adaptive budget is part of the request
-  why = refusal(checkpoint_identity(scene_, other));
+  why = refusal(render_identity(scene_, other));
   EXPECT_NE(why.find("sampling"), std::string::npos) << why;
   const Scene materials = make_builtin_scene("materials", 1);
-  why = refusal(checkpoint_identity(materials, settings_));
+  why = refusal(render_identity(materials, settings_));
   EXPECT_NE(why.find("scene"), std::string::npos) << why;
 }
 
 TEST_F(CheckpointFile, TheSceneDigestTellsApartAnyChangeToTheScene) {
   // The digest takes the spheres and materials as bits, not as text: every field of them,
   // and the settings, still count; a scene read back from its file is the same scene.
-  const std::string base = checkpoint_identity(scene_, settings_).scene;
-  EXPECT_EQ(checkpoint_identity(parse_scene(scene_to_json(scene_), "c.json"), settings_).scene,
+  const std::string base = render_identity(scene_, settings_)[IdentityField::Scene];
+  EXPECT_EQ(render_identity(parse_scene(scene_to_json(scene_), "c.json"),
+                            settings_)[IdentityField::Scene],
             base);
   std::vector<std::pair<std::string, std::function<void(Scene&)>>> changes = {
       {"a centre's x",
@@ -254,26 +257,46 @@ TEST_F(CheckpointFile, TheSceneDigestTellsApartAnyChangeToTheScene) {
   for (const auto& [what, change] : changes) {
     Scene changed = scene_;
     change(changed);
-    EXPECT_NE(checkpoint_identity(changed, settings_).scene, base) << what;
+    EXPECT_NE(render_identity(changed, settings_)[IdentityField::Scene], base) << what;
   }
 }
 
-// A checkpoint of version 2 (fixed little-endian records, 156 bytes a pixel, before the compact
+// Formats 2 and 3 named the render in the command line's words of their day ("mode --adaptive
+// --min-spp 4 --spp 48", "sampler sobol (one sequence)"): such a header, rebuilt from today's,
+// reads as the same render.
+std::string older_header(const std::string& today, const std::string& format,
+                         const std::string& sampler, const std::string& mode) {
+  std::string header = today.substr(0, today.find("end\n") + 4);
+  header.replace(0, std::string("rtiow-checkpoint 4").size(), "rtiow-checkpoint " + format);
+  const auto line = [&](const std::string& key) {
+    const std::size_t at = header.find("\n" + key + " ");
+    EXPECT_NE(at, std::string::npos) << key;
+    return at + 1;
+  };
+  const auto drop = [&](const std::string& key) {
+    const std::size_t at = line(key);
+    header.erase(at, header.find('\n', at) + 1 - at);
+  };
+  const auto replace = [&](const std::string& key, const std::string& text) {
+    const std::size_t at = line(key);
+    header.replace(at, header.find('\n', at) - at, text);
+  };
+  drop("replicates"), drop("roulette");
+  replace("sampler", "sampler " + sampler);
+  replace("sampling", "mode " + mode);
+  if (format == "2") drop("least_samples"), drop("most_samples");
+  return header;
+}
+
+// A checkpoint of format 2 (fixed little-endian records, 156 bytes a pixel, before the compact
 // records) is still read, to the same state: a render kept before resumes after.
-TEST_F(CheckpointFile, ReadsAVersion2CheckpointToTheSameState) {
+TEST_F(CheckpointFile, ReadsAFormat2CheckpointToTheSameState) {
   const RenderState state = saved_state();
-  const CheckpointIdentity id = checkpoint_identity(scene_, settings_);
+  const RenderIdentity id = render_identity(scene_, settings_);
   write_checkpoint(path_.string(), id, state);
-  // The version-3 header without its two new fields, then version 2's records.
-  const std::string v3 = test::slurp(path_);
-  std::string header = v3.substr(0, v3.find("end\n") + 4);
-  header.replace(0, std::string("rtiow-checkpoint 3").size(), "rtiow-checkpoint 2");
-  for (const char* key : {"least_samples ", "most_samples "}) {
-    const std::size_t at = header.find(std::string("\n") + key);
-    ASSERT_NE(at, std::string::npos);
-    header.erase(at + 1, header.find('\n', at + 1) - at);
-  }
-  std::string bytes = header;
+  const std::string today = test::slurp(path_);
+  std::string bytes =
+      older_header(today, "2", "sobol (one sequence)", "--adaptive --min-spp 4 --spp 48");
   const auto put = [&](const auto& v) {
     bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
   };
@@ -294,12 +317,65 @@ TEST_F(CheckpointFile, ReadsAVersion2CheckpointToTheSameState) {
   put(checksum.value());
   test::write_file(path_, bytes);
   expect_reads_back(id, state);
-  EXPECT_LT(v3.size() * 2, bytes.size()) << "version 3 is not the smaller";
+  EXPECT_LT(today.size() * 2, bytes.size()) << "the compact records are not the smaller";
+}
+
+// Format 3: today's records under the older header, in each sampling mode it could name.
+TEST_F(CheckpointFile, ReadsAFormat3CheckpointInEveryModeItNamed) {
+  const RenderState state = saved_state();  // an adaptive budget of 48, at least 4
+  write_checkpoint(path_.string(), render_identity(scene_, settings_), state);
+  const std::string today = test::slurp(path_);
+  const std::string pixels = today.substr(today.find("end\n") + 4);
+  const std::string records = pixels.substr(0, pixels.size() - 8);
+  const auto with_header = [&](const std::string& header) {
+    std::string bytes = header + records;
+    Checksum checksum;
+    checksum.update(bytes.data(), bytes.size());
+    const std::uint64_t sum = checksum.value();
+    bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
+    test::write_file(path_, bytes);
+  };
+  with_header(older_header(today, "3", "sobol (one sequence)", "--adaptive --min-spp 4 --spp 48"));
+  expect_reads_back(render_identity(scene_, settings_), state);
+
+  // Each older mode and sampler reads as the render it named, and as no other.
+  struct Case {
+    SampleBudget samples;
+    bool roulette;
+    std::string sampler, mode;
+  };
+  const std::vector<Case> cases = {
+      {PixelErrorTarget{0.05, 64, 4}, false, "sobol (no roulette)",
+       "--target-error 0.05 --min-spp 4 --spp 64"},
+      {ImageErrorTarget{0.002, 8192, 16}, true, "sobol",
+       "--image-error 0.002 --min-spp 16 --spp 8192"},
+      {AdaptiveBudget{std::nullopt, 16}, true, "sobol (one sequence)",
+       "--adaptive --min-spp 16 (until the time limit)"},
+      {FixedSamples{48}, true, "sobol (one sequence)", "uniform"},
+  };
+  for (const Case& c : cases) {
+    with_header(older_header(today, "3", c.sampler, c.mode));
+    const std::optional<CheckpointSummary> read = read_checkpoint_summary(path_.string());
+    ASSERT_TRUE(read);
+    RenderSettings s = settings_;
+    s.samples = c.samples;
+    s.russian_roulette = c.roulette;
+    const RenderIdentity now = render_identity(scene_, s);
+    EXPECT_EQ(identity_mismatch(read->identity, now, "the checkpoint's"), "") << c.mode;
+    s.seed += 1;
+    EXPECT_NE(identity_mismatch(read->identity, render_identity(scene_, s), "the checkpoint's"), "")
+        << c.mode;
+  }
+  // A mode that does not parse stays as written, and differs by name.
+  with_header(older_header(today, "3", "sobol", "--target-error x"));
+  const std::string why = identity_mismatch(read_checkpoint_summary(path_.string())->identity,
+                                            render_identity(scene_, settings_), "the checkpoint's");
+  EXPECT_NE(why.find("sampling: the checkpoint's '--target-error x'"), std::string::npos) << why;
 }
 
 TEST_F(CheckpointFile, RefusesDamagedFiles) {
   const RenderState state = saved_state();
-  const CheckpointIdentity id = checkpoint_identity(scene_, settings_);
+  const RenderIdentity id = render_identity(scene_, settings_);
   write_checkpoint(path_.string(), id, state);
   const std::string good = test::slurp(path_);
   const auto refused_with = [&](const std::string& content, const std::string& expected) {

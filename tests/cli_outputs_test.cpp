@@ -350,7 +350,7 @@ TEST(Cli, EveryFormatThatHoldsTextCarriesTheWholeRequest) {
       for (const std::string& key : keys) EXPECT_NE(spec.find_attribute(key), nullptr) << key;
       EXPECT_EQ(spec.get_string_attribute("rtiow:scene_file"), scene.string());
       EXPECT_EQ(spec.get_string_attribute("rtiow:fresnel"), "exact");
-      EXPECT_NE(spec.get_string_attribute("rtiow:camera").find("--vfov 60"), std::string::npos);
+      EXPECT_NE(spec.get_string_attribute("rtiow:camera").find(" vfov 60 "), std::string::npos);
     } else if (e == ".jpg" || e == ".jpeg" || e == ".tif" || e == ".tiff") {
       const auto all = nlohmann::json::parse(spec.get_string_attribute("ImageDescription"));
       for (const std::string& key : keys) EXPECT_TRUE(all.contains(key)) << key;
@@ -441,7 +441,37 @@ TEST(Cli, LikeTakesEachOptionGivenOverTheImages) {
   EXPECT_EQ(spec.get_int_attribute("rtiow:scene_seed"), 6);
   EXPECT_EQ(spec.get_string_attribute("rtiow:scene"), "spheres:30");
   const std::string camera = spec.get_string_attribute("rtiow:camera");
-  EXPECT_NE(camera.find("--aperture 0 "), std::string::npos) << camera;
+  EXPECT_NE(camera.find(" aperture 0 "), std::string::npos) << camera;
+}
+
+// The camera record is in the scene file's words; an image of rtiow 0.3.0 spelt it as the
+// render command's options, and renders again to the same bytes.
+TEST(Cli, LikeReadsTheCameraOfAnOlderImage) {
+  const fs::path base = output_path("like-camera-base.png"), older = output_path("like-older.png");
+  const fs::path a = output_path("like-camera-a.png"), b = output_path("like-camera-b.png");
+  ASSERT_EQ(run_rtiow("render -q --reproducible --scene cover --width 24 --spp 2 --vfov 31.5 -o " +
+                      base.string())
+                .exit_code,
+            0);
+  OIIO::ImageBuf buffer(base.string());
+  ASSERT_TRUE(buffer.read());
+  std::string record = buffer.spec().get_string_attribute("rtiow:camera");
+  EXPECT_EQ(record.rfind("lookfrom 13,2,3 lookat 0,0,0 vup 0,1,0 vfov 31.5 aperture 0.1 ", 0), 0u)
+      << record;
+  std::string spelt;  // "--lookfrom 13,2,3 ... --focus-dist 10"
+  std::istringstream words(record);
+  for (std::string name, value; words >> name >> value;) {
+    spelt += (spelt.empty() ? "--" : " --") +
+             (name == "focus_distance" ? std::string("focus-dist") : name) + " " + value;
+  }
+  buffer.specmod().attribute("rtiow:camera", spelt);
+  ASSERT_TRUE(buffer.write(older.string()));
+  ASSERT_EQ(run_rtiow("render -q --like " + base.string() + " -o " + a.string()).exit_code, 0);
+  const CommandResult r = run_rtiow("render -q --like " + older.string() + " -o " + b.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_EQ(slurp(a), slurp(b)) << spelt;
+  EXPECT_EQ(slurp(a), slurp(base));
+  for (const fs::path& p : {base, older, a, b}) fs::remove(p);
 }
 
 // What --like cannot repeat is refused in one line, before any work: a scene file edited since
@@ -522,6 +552,10 @@ TEST(Cli, LikeRefusesWhatItCannotRenderAgain) {
                                                         {"rtiow:sampler", "bogus"},
                                                         {"rtiow:camera", "--lookfrom nan,1,1"},
                                                         {"rtiow:camera", "--lookfrom 1,2"},
+                                                        {"rtiow:camera", "lookfrom 1,2,3,4"},
+                                                        {"rtiow:camera", "vfov 20 vfov 30"},
+                                                        {"rtiow:camera", "vfov"},
+                                                        {"rtiow:camera", "zoom 2"},
                                                         {"rtiow:crop", "0,0,5,5"},
                                                         {"rtiow:frame", "16x9"},
                                                         {"rtiow:passes", "albedo,sparkle"}}) {

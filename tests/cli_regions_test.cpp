@@ -207,7 +207,7 @@ TEST(Cli, PassesAreWrittenBesideTheImageAndCombineLikeIt) {
   ASSERT_EQ(run_rtiow(base + "--spp 3 --keep-state -o " + at("bare_state.exr")).exit_code, 0);
   r = run_rtiow(base + "--spp 6 --resume" + passes + " -o " + at("bare_state.exr"));
   EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
-  EXPECT_NE(r.stderr_text.find("passes (--passes): the checkpoint's 'none'"), std::string::npos)
+  EXPECT_NE(r.stderr_text.find("passes: the checkpoint's 'none'"), std::string::npos)
       << r.stderr_text;
 
   // Again from the image's own record; into a PNG, which holds no passes, the image alone.

@@ -328,7 +328,7 @@ class CraftedCheckpoint : public ::testing::Test {
 
   std::string refusal(const rtiow::RenderState& state) {
     const std::string path = (dir_ / "c.rtiow-checkpoint").string();
-    const rtiow::CheckpointIdentity id = rtiow::checkpoint_identity(scene_, settings_);
+    const rtiow::RenderIdentity id = rtiow::render_identity(scene_, settings_);
     rtiow::write_checkpoint(path, id, state);
     try {
       rtiow::read_checkpoint(path, id, settings_);
@@ -412,7 +412,7 @@ TEST_F(CraftedCheckpoint, AResumedRenderHonoursASignalSoon) {
   state.targets[0] = rtiow::limits::kMostAdaptiveSamples;  // minutes of work on one pixel
   const fs::path out = dir_ / "r.png";
   rtiow::write_checkpoint(out.string() + ".rtiow-checkpoint",
-                          rtiow::checkpoint_identity(scene_, settings_), state);
+                          rtiow::render_identity(scene_, settings_), state);
   BackgroundRender r({"render", "--width", "12", "--height", "8", "--spp", "64", "--adaptive",
                       "--min-spp", "4", "--resume", "-o", out.string()});
   ASSERT_TRUE(r.wait_until_rendering());

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "core/limits/error.h"
+#include "core/limits/setting_name.h"
 #include "core/render/render_request.h"
 #include "core/render/sample_share.h"
 #include "core/scene/builtin_scenes.h"
@@ -81,6 +82,40 @@ TEST(SampleBudget, EachMeaningHasItsOwnChecks) {
   EXPECT_EQ(shareable_samples(s, "--part"), 64u);
   s.first_sample = 8, s.samples = AdaptiveBudget{64};
   EXPECT_NE(refusal(s).find("a share of a render"), std::string::npos) << refusal(s);
+}
+
+// The core names a setting by the library's name; a front end that spells it otherwise says
+// so once, and the same refusal then reads in its words.
+TEST(SampleBudget, RefusalsNameSettingsInTheAskersWords) {
+  RenderRequest r;
+  r.min_samples = 1, r.adaptive = true;
+  const auto refusal_of = [&] {
+    try {
+      resolve(make_builtin_scene("materials", 1), r);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(refusal_of().find("min_spp must be >= 2"), std::string::npos) << refusal_of();
+  r.min_samples = 4, r.adaptive = false;
+  EXPECT_NE(refusal_of().find("min_spp=4 applies to adaptive sampling (target_error, "
+                              "image_error or adaptive)"),
+            std::string::npos)
+      << refusal_of();
+  spell_settings_as([](std::string_view name, std::string_view value) {
+    std::string text = "<";
+    text.append(name);
+    if (!value.empty()) text.append(":").append(value);
+    return text.append(">");
+  });
+  const std::string spelt = refusal_of();
+  spell_settings_as(nullptr);  // the library's own again
+  EXPECT_NE(spelt.find("<min_spp:4> applies to adaptive sampling (<target_error>, "
+                       "<image_error> or <adaptive>)"),
+            std::string::npos)
+      << spelt;
+  EXPECT_EQ(setting("spp", "8"), "spp=8");
 }
 
 }  // namespace

@@ -31,7 +31,8 @@ int reference_spp(const RenderSettings& settings) {
 }
 
 std::string reference_key(const Scene& scene, const RenderSettings& settings) {
-  return render_digest(scene, settings) + "-" + std::to_string(reference_spp(settings)) + "spp";
+  return shared_digest(render_identity(scene, settings)) + "-" +
+         std::to_string(reference_spp(settings)) + "spp";
 }
 
 }  // namespace

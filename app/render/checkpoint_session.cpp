@@ -39,7 +39,7 @@ CheckpointSession::CheckpointSession(const std::string& output, const Scene& sce
   // The identity digests the scene (about a second for a million spheres): only a render
   // that writes or reads a checkpoint needs it.
   if (options_.interval_seconds > 0.0 || options_.resume) {
-    identity_ = checkpoint_identity(scene, settings);
+    identity_ = render_identity(scene, settings);
   }
   if (options_.resume) {
     resumed_ = read_checkpoint(path_, identity_, settings);
@@ -76,7 +76,7 @@ void CheckpointSession::refuse_unless_told() {
     throw InvalidInput(std::string(e.what()) + "; --restart replaces it");
   }
   if (!there) return;
-  const std::string differs = identity_mismatch(there->identity, identity_);
+  const std::string differs = identity_mismatch(there->identity, identity_, "the checkpoint's");
   const std::string done = samples_done(*there);
   if (differs.empty()) {
     throw InvalidInput("checkpoint " + quote_value(path_) +

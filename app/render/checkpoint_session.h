@@ -73,7 +73,7 @@ class CheckpointSession {
 
   std::string path_;
   CheckpointOptions options_;
-  CheckpointIdentity identity_;
+  RenderIdentity identity_;
   bool wrote_beside_ = false;  // a checkpoint of this render is (or was) at path_
   bool warned_ = false;
   bool finished_ = false;

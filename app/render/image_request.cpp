@@ -68,28 +68,10 @@ Recorded recorded_keys(const ImageHeader& header) {
   return recorded;
 }
 
-std::optional<double> number(const std::string& text) {
-  double value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-    return std::nullopt;
-  }
-  return value;
-}
-
-// "x,y,z" as a vector; nothing when it is not three numbers.
-std::optional<Vec3d> triple(const std::string& text) {
-  std::istringstream parts(text);
-  std::string part;
-  double v[3];
-  int n = 0;
-  while (std::getline(parts, part, ',')) {
-    const auto value = number(part);
-    if (!value || n == 3) return std::nullopt;
-    v[n++] = *value;
-  }
-  if (n != 3) return std::nullopt;
-  return Vec3d{v[0], v[1], v[2]};
+// The shortest text that reads back as the same double.
+std::string exact(double v) {
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
 }
 
 class RequestBuilder {
@@ -122,33 +104,19 @@ class RequestBuilder {
     if (const std::string* value = find(key)) add(option, option, {*value});
   }
 
-  // The camera as render_metadata() writes it: "--lookfrom x,y,z --lookat ... --focus-dist f".
+  // The camera the image records (core/render/render_metadata.h), one option per setting.
   void add_camera() {
-    std::istringstream words(need(metadata_key::kCamera));
-    std::string name, value;
-    CameraOverrides& c = request_.camera;
-    while (words >> name >> value) {
-      const bool vector = name == "--lookfrom" || name == "--lookat" || name == "--vup";
-      const std::optional<Vec3d> v = vector ? triple(value) : std::nullopt;
-      const std::optional<double> x = vector ? std::nullopt : number(value);
-      if (vector && !v) refuse("rtiow:camera: " + name + " is not x,y,z");
-      if (!vector && !x) refuse("rtiow:camera: " + name + " is not a number");
-      if (name == "--lookfrom")
-        c.lookfrom = v;
-      else if (name == "--lookat")
-        c.lookat = v;
-      else if (name == "--vup")
-        c.vup = v;
-      else if (name == "--vfov")
-        c.vfov_degrees = x;
-      else if (name == "--aperture")
-        c.aperture = x;
-      else if (name == "--focus-dist")
-        c.focus_distance = x;
-      else
-        refuse("rtiow:camera: unknown setting " + quote_value(name));
-      add(name, name, {value});
-    }
+    const CameraOverrides c = read_camera_record(need(metadata_key::kCamera), image_);
+    request_.camera = c;
+    const auto vector = [&](const char* option, const std::optional<Vec3d>& v) {
+      if (v) add(option, option, {exact(v->x) + "," + exact(v->y) + "," + exact(v->z)});
+    };
+    const auto scalar = [&](const char* option, const std::optional<double>& x) {
+      if (x) add(option, option, {exact(*x)});
+    };
+    vector("--lookfrom", c.lookfrom), vector("--lookat", c.lookat), vector("--vup", c.vup);
+    scalar("--vfov", c.vfov_degrees), scalar("--aperture", c.aperture);
+    scalar("--focus-dist", c.focus_distance);
   }
 
   // How many samples, and how they were spent: one group, replaced whole by any sampling

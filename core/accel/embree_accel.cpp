@@ -10,6 +10,7 @@
 #include "core/geometry/sphere_bounds.h"
 #include "core/geometry/sphere_intersect.h"
 #include "core/limits/error.h"
+#include "core/limits/setting_name.h"
 #include "core/parallel/cancellation.h"
 #include "core/parallel/instruction_sets.h"
 #include "core/parallel/thread_limit.h"
@@ -202,8 +203,9 @@ EmbreeAccel::EmbreeAccel(const SphereSet& spheres, EmbreeCallback callback) {
       // TBB could not start a worker for the build (Embree reports that as "unknown"); the
       // device is left unreleased, since releasing it would try to start one again.
       device_ = nullptr;
-      throw std::runtime_error("embree: cannot start the threads the BVH's build needs: " +
-                               system_error_text(EAGAIN) + "; --threads 1 needs none");
+      throw std::runtime_error(
+          "embree: cannot start the threads the BVH's build needs: " + system_error_text(EAGAIN) +
+          "; " + setting("threads", "1") + " needs none");
     }
     throw_on_device_error(device_, "building the sphere BVH");
   } catch (...) {

@@ -11,6 +11,7 @@
 #include "core/compare/image_diff.h"
 #include "core/compare/student_t.h"
 #include "core/limits/error.h"
+#include "core/limits/setting_name.h"
 
 namespace rtiow {
 namespace {
@@ -101,8 +102,8 @@ NoiseDiff noise_diff(const DiffInput& test, const DiffInput& reference, int bloc
   check_comparable(test, reference);
   if (test.variance.empty() || reference.variance.empty()) {
     throw InvalidInput(
-        "the noise-aware comparison needs both images' variance channels (render with "
-        "--stats-channels to an .exr)");
+        "the noise-aware comparison needs both images' variance channels (render with " +
+        setting("stats_channels") + " to an .exr)");
   }
   NoiseDiff d = start_blocks(test.width, test.height, block_size, alpha);
   d.block_critical_z = normal_critical_value(block_level(d));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/limits/error.h"
+#include "core/limits/setting_name.h"
 
 namespace rtiow {
 namespace {
@@ -44,10 +45,10 @@ void require_threads(int threads) {
   }
   for (const pthread_t thread : started) ::pthread_join(thread, nullptr);
   if (error != 0) {
-    throw std::runtime_error("cannot start " + std::to_string(threads) + " threads (" +
-                             std::to_string(started.size() + 1) +
-                             " could run): " + system_error_text(error) + "; --threads " +
-                             std::to_string(started.size() + 1) + " asks for fewer");
+    throw std::runtime_error(
+        "cannot start " + std::to_string(threads) + " threads (" +
+        std::to_string(started.size() + 1) + " could run): " + system_error_text(error) + "; " +
+        setting("threads", std::to_string(started.size() + 1)) + " asks for fewer");
   }
   g_verified = threads;
 }

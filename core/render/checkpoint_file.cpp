@@ -23,6 +23,7 @@
 #include "core/io/input_file.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/limits/setting_name.h"
 #include "core/scene_file/scene_digest.h"
 #include "core/version.h"
 
@@ -30,7 +31,8 @@ namespace rtiow {
 namespace {
 
 constexpr char kMagicPrefix[] = "rtiow-checkpoint ";
-constexpr char kMagic[] = "rtiow-checkpoint 3\n";
+constexpr char kMagic[] = "rtiow-checkpoint 4\n";
+constexpr char kMagicFormat3[] = "rtiow-checkpoint 3\n";       // still read
 constexpr char kMagicFixedRecords[] = "rtiow-checkpoint 2\n";  // still read
 constexpr std::size_t kMaxHeaderBytes = 1 << 16;
 constexpr std::size_t kChunkBytes = 1 << 20;
@@ -39,9 +41,6 @@ constexpr std::size_t kChunkBytes = 1 << 20;
 // sums add at most kMaxPassBytesPerPixel.
 constexpr std::uint64_t kMaxBytesPerPixel = 4 * 3 * 19 + 3 * 10;
 constexpr std::uint64_t kMaxPassBytesPerPixel = FirstHitSum::kChannels * 19;
-// The identity's word for a render that keeps the passes' sums, and for one that does not.
-constexpr char kPassesKept[] = "albedo, normal and depth kept";
-constexpr char kNoPasses[] = "none";
 // The longest a render can have run, in seconds (a century): beyond, a time is not one.
 constexpr double kMaxRenderSeconds = 3.2e9;
 
@@ -77,22 +76,14 @@ std::string exact(double v) {  // a double in text that reads back to the same b
   return text;
 }
 
-std::string header_text(const CheckpointIdentity& id, const RenderState& state) {
+std::string header_text(const RenderIdentity& id, const RenderState& state) {
   std::string h = kMagic;
   const auto line = [&](const char* key, const std::string& value) {
     h.append(key).append(" ").append(value).append("\n");
   };
   const auto& samples = state.pixels.samples;
   const auto [least, most] = std::minmax_element(samples.begin(), samples.end());
-  line("version", id.version);
-  line("scene", id.scene);
-  line("size", id.size);
-  line("depth", id.depth);
-  line("seed", id.seed);
-  line("sampler", id.sampler);
-  line("first_sample", id.first_sample);
-  line("mode", id.mode);
-  line("passes", id.passes);
+  for (const IdentityFieldDeclaration& d : kIdentityFields) line(d.key, id[d.field]);
   line("pixels", std::to_string(samples.size()));
   line("least_samples", std::to_string(samples.empty() ? 0 : *least));
   line("most_samples", std::to_string(samples.empty() ? 0 : *most));
@@ -113,7 +104,7 @@ bool write_summed(int fd, const char* data, std::size_t n, Checksum& checksum,
   return write_all(fd, data, n, reason);
 }
 
-bool write_state(int fd, const CheckpointIdentity& identity, const RenderState& state,
+bool write_state(int fd, const RenderIdentity& identity, const RenderState& state,
                  std::string& reason) {
   Checksum checksum;
   const std::string header = header_text(identity, state);
@@ -158,7 +149,8 @@ bool read_exact(int fd, char* data, std::size_t n) {
 }
 
 struct Header {
-  bool fixed_records = false;  // version 2
+  int format = 4;
+  bool fixed_records = false;  // format 2
   std::map<std::string, std::string> fields;
 };
 
@@ -172,7 +164,8 @@ Header read_header(int fd, const std::string& path, Checksum& checksum) {
   }
   Header header;
   header.fixed_records = text.rfind(kMagicFixedRecords, 0) == 0;
-  if (text.rfind(kMagic, 0) != 0 && !header.fixed_records) {
+  header.format = header.fixed_records ? 2 : text.rfind(kMagicFormat3, 0) == 0 ? 3 : 4;
+  if (text.rfind(kMagic, 0) != 0 && header.format == 4) {
     throw bad_file(path, text.rfind(kMagicPrefix, 0) == 0 ? "a checkpoint of another format"
                                                           : "no checkpoint header");
   }
@@ -219,16 +212,60 @@ double field_double(const Header& header, const char* key, const std::string& pa
                            " is missing or not a finite number from 0 to " + exact(most));
 }
 
-CheckpointIdentity stored_identity(const Header& header) {
-  const auto get = [&](const char* key) {
-    const auto it = header.fields.find(key);
-    return it == header.fields.end() ? std::string("(none)") : it->second;
+std::string field_text(const Header& header, const char* key) {
+  const auto it = header.fields.find(key);
+  return it == header.fields.end() ? std::string("(none)") : it->second;
+}
+
+// Formats 2 and 3 named the sampling as the command line spelt it then ("--target-error
+// 0.05 --min-spp 16 --spp 64") and folded the replicates and the roulette into the sampler
+// ("sobol (one sequence) (no roulette)"). Read into the identity's words, so a render kept by
+// an older rtiow still continues; what does not parse stays as it was, and so differs by name.
+void read_older_identity(const Header& header, RenderIdentity& id) {
+  using F = IdentityField;
+  std::string sampler = field_text(header, "sampler");
+  const auto take = [&](const std::string& suffix) {
+    const std::size_t at = sampler.find(suffix);
+    if (at == std::string::npos) return false;
+    sampler.erase(at, suffix.size());
+    return true;
   };
+  id[F::Roulette] = roulette_name(!take(" (no roulette)"));
+  id[F::Replicates] = take(" (one sequence)") ? "1" : std::to_string(kReplicates);
+  id[F::Sampler] = sampler;
+  const std::string mode = field_text(header, "mode");
+  double error = 0.0;
+  int least = 0, most = 0, used = 0;
+  const char* m = mode.c_str();
+  const auto whole = [&](int n, int expected) { return n == expected && m[used] == '\0'; };
+  std::optional<SampleBudget> budget;
+  if (mode == "uniform") {
+    budget = FixedSamples{};
+  } else if (whole(std::sscanf(m, "--target-error %lf --min-spp %d --spp %d%n", &error, &least,
+                               &most, &used),
+                   3)) {
+    budget = PixelErrorTarget{error, most, least};
+  } else if (whole(std::sscanf(m, "--image-error %lf --min-spp %d --spp %d%n", &error, &least,
+                               &most, &used),
+                   3)) {
+    budget = ImageErrorTarget{error, most, least};
+  } else if (whole(std::sscanf(m, "--adaptive --min-spp %d --spp %d%n", &least, &most, &used), 2)) {
+    budget = AdaptiveBudget{most, least};
+  } else if (whole(
+                 std::sscanf(m, "--adaptive --min-spp %d (until the time limit)%n", &least, &used),
+                 1)) {
+    budget = AdaptiveBudget{std::nullopt, least};
+  }
+  id[F::Sampling] = budget ? sampling_words(*budget) : mode;
   // A checkpoint from before the passes keeps none.
-  const bool passes_named = header.fields.count("passes") != 0;
-  return {get("version"),      get("scene"), get("size"),
-          get("depth"),        get("seed"),  get("sampler"),
-          get("first_sample"), get("mode"),  passes_named ? get("passes") : kNoPasses};
+  if (!header.fields.count("passes")) id[F::Passes] = "none";
+}
+
+RenderIdentity stored_identity(const Header& header) {
+  RenderIdentity id;
+  for (const IdentityFieldDeclaration& d : kIdentityFields) id[d.field] = field_text(header, d.key);
+  if (header.format < 4) read_older_identity(header, id);
+  return id;
 }
 
 // The most samples a pixel of this render may hold: its cap when adaptive; otherwise what its
@@ -338,59 +375,11 @@ void read_sums(RecordReader& in, bool fixed_records, const PixelSumsOut& sums) {
 
 }  // namespace
 
-CheckpointIdentity checkpoint_identity(const Scene& scene, const RenderSettings& s) {
-  // A uniform render continues to any count; an adaptive one only as it was asked.
-  std::string mode = "uniform";
-  if (const std::optional<int> least = least_samples(s.samples)) {
-    const std::optional<int> asked = spp_option(s.samples);
-    const std::string spp =
-        asked ? " --spp " + std::to_string(*asked) : std::string(" (until the time limit)");
-    const std::string min_spp = " --min-spp " + std::to_string(*least);
-    char value[64];
-    if (const auto* t = std::get_if<PixelErrorTarget>(&s.samples)) {
-      std::snprintf(value, sizeof value, "--target-error %g", t->error);
-    } else if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) {
-      std::snprintf(value, sizeof value, "--image-error %g", i->error);
-    } else {
-      std::snprintf(value, sizeof value, "--adaptive");
-    }
-    mode = value + min_spp + spp;
-  }
-  return {version(), scene_digest(scene),
-          std::to_string(s.width) + "x" + std::to_string(s.height) +
-              (s.crop ? " crop " + to_string(*s.crop) : ""),
-          std::to_string(s.max_depth), std::to_string(s.seed),
-          // One sequence draws other samples than two replicates (an older checkpoint's).
-          to_string(s.sampler) + (replicates(s) == 1 ? " (one sequence)" : "") +
-              (s.russian_roulette ? "" : " (no roulette)"),
-          std::to_string(s.first_sample), mode, s.passes.any() ? kPassesKept : kNoPasses};
-}
-
-std::string identity_mismatch(const CheckpointIdentity& checkpoint, const CheckpointIdentity& now) {
-  std::string text;
-  const auto compare = [&](const char* what, const std::string& a, const std::string& b) {
-    if (a == b) return;
-    if (!text.empty()) text += "; ";
-    text += std::string(what) + ": the checkpoint's " + quote_value(a, 60) + ", this render's " +
-            quote_value(b, 60);
-  };
-  compare("rtiow version", checkpoint.version, now.version);
-  compare("scene", checkpoint.scene, now.scene);
-  compare("image size", checkpoint.size, now.size);
-  compare("depth", checkpoint.depth, now.depth);
-  compare("seed", checkpoint.seed, now.seed);
-  compare("sampler", checkpoint.sampler, now.sampler);
-  compare("first sample", checkpoint.first_sample, now.first_sample);
-  compare("sampling", checkpoint.mode, now.mode);
-  compare("passes (--passes)", checkpoint.passes, now.passes);
-  return text;
-}
-
 std::string checkpoint_path(const std::string& output) {
   return output + ".rtiow-checkpoint";
 }
 
-void write_checkpoint(const std::string& path, const CheckpointIdentity& identity,
+void write_checkpoint(const std::string& path, const RenderIdentity& identity,
                       const RenderState& state) {
   try {
     write_atomically(path, [&](int fd, std::string& reason) {
@@ -434,18 +423,18 @@ std::optional<CheckpointSummary> read_checkpoint_summary(const std::string& path
   return summary;
 }
 
-std::optional<RenderState> read_checkpoint(const std::string& path,
-                                           const CheckpointIdentity& expected,
+std::optional<RenderState> read_checkpoint(const std::string& path, const RenderIdentity& expected,
                                            const RenderSettings& settings) {
   const std::optional<InputFile> file = open_checkpoint(path);
   if (!file) return std::nullopt;
   const int fd = file->fd();
   Checksum checksum;
   const Header header = read_header(fd, path, checksum);
-  const std::string differs = identity_mismatch(stored_identity(header), expected);
+  const std::string differs =
+      identity_mismatch(stored_identity(header), expected, "the checkpoint's");
   if (!differs.empty()) {
     throw InvalidInput("checkpoint " + quote_value(path) + " is of another render (" + differs +
-                       "): remove it, or render with --restart to replace it");
+                       "): remove it, or render with " + setting("restart") + " to replace it");
   }
   // Every field against the request and the limits, before anything is allocated.
   const std::uint64_t expected_pixels =

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "core/limits/error.h"
+#include "core/limits/setting_name.h"
 #include "core/render/render_metadata.h"
 #include "core/render/render_part.h"
 #include "core/render/render_statistics.h"
@@ -17,7 +18,8 @@ std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
   if (!merged.sums.keeps(SumGroup::Odd)) {
     for (const RenderPart& p : parts) {
       if (!p.sums.keeps(SumGroup::Odd)) {
-        throw InvalidInput("--stats-channels: part file " + quote_value(p.path, kWholePath) +
+        throw InvalidInput(setting("stats_channels") + ": part file " +
+                           quote_value(p.path, kWholePath) +
                            " holds no spreads (an older rtiow wrote it): render it again");
       }
     }
@@ -31,20 +33,21 @@ std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
       replicates = *n;
   }
   if (replicates != 1 && replicates != kReplicates) {
-    throw InvalidInput("--stats-channels: the parts record " + std::string(kMetadataPrefix) +
-                       metadata_key::kReplicates + " " + std::to_string(replicates) +
-                       ": a render draws one sequence or " + std::to_string(kReplicates) +
-                       " replicates");
+    throw InvalidInput(setting("stats_channels") + ": the parts record " +
+                       std::string(kMetadataPrefix) + metadata_key::kReplicates + " " +
+                       std::to_string(replicates) + ": a render draws one sequence or " +
+                       std::to_string(kReplicates) + " replicates");
   }
   if (replicates != kReplicates && sampler != to_string(SamplerKind::Independent)) {
-    throw InvalidInput(
-        "--stats-channels: the parts were rendered from one sequence, which keeps no estimate of "
-        "the error: render them with --stats-channels");
+    throw InvalidInput(setting("stats_channels") +
+                       ": the parts were rendered from one sequence, which keeps no estimate of "
+                       "the error: render them with " +
+                       setting("stats_channels"));
   }
   try {
     return statistics_channels(merged_result(merged, parse_sampler(sampler), int(replicates)));
   } catch (const InvalidInput& e) {
-    throw InvalidInput("--stats-channels: the parts' sampler: " + std::string(e.what()));
+    throw InvalidInput(setting("stats_channels") + ": the parts' sampler: " + e.what());
   }
 }
 

@@ -16,6 +16,7 @@
 #include "core/limits/image_size.h"
 #include "core/limits/input_limits.h"
 #include "core/limits/nearest_name.h"
+#include "core/limits/setting_name.h"
 #include "core/parallel/ieee_floating_point.h"
 #include "core/parallel/thread_count.h"
 #include "core/render/adaptive_sampling.h"
@@ -100,8 +101,8 @@ void check_resumable(const RenderState& state, const RenderSettings& settings) {
   const auto* fixed = std::get_if<FixedSamples>(&settings.samples);
   if (fixed && *most > std::uint32_t(fixed->per_pixel)) {
     throw InvalidInput("the render to resume already has " + std::to_string(*most) +
-                       " spp, more than the " + std::to_string(fixed->per_pixel) +
-                       " asked: give --spp " + std::to_string(*most) + " or more");
+                       " spp, more than the " + std::to_string(fixed->per_pixel) + " asked: give " +
+                       setting("spp", std::to_string(*most)) + " or more");
   }
 }
 

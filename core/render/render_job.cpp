@@ -8,6 +8,7 @@
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/limits/setting_name.h"
 #include "core/parallel/thread_count.h"
 #include "core/render/render.h"
 #include "core/render/render_part.h"
@@ -21,19 +22,20 @@ namespace {
 
 Scene load_scene(const JobRequest& r) {
   if (r.scene_file.empty()) return make_builtin_scene(r.scene, r.scene_seed);
-  if (r.scene_named) throw InvalidInput("give a scene file or --scene, not both");
+  if (r.scene_named) throw InvalidInput("give a scene file or " + setting("scene") + ", not both");
   // `rtiow render cover`, as `rtiow scene cover` takes it: the built-in scene is --scene cover.
   std::error_code no_file;
   if (!std::filesystem::exists(r.scene_file, no_file) && is_builtin_scene_name(r.scene_file)) {
     throw InvalidInput("no scene file " + quote_value(r.scene_file) +
-                       "; the built-in scene is rendered with --scene " + r.scene_file);
+                       "; the built-in scene is rendered with " + setting("scene", r.scene_file));
   }
   return load_scene_file(r.scene_file);
 }
 
 // The output: as given (an empty -o is an error, not the default), or named after the scene.
 std::string output_path(const JobRequest& r, const Scene& scene) {
-  if (r.output_given && r.output.empty()) throw InvalidInput("-o/--output: the path is empty");
+  if (r.output_given && r.output.empty())
+    throw InvalidInput(setting("output") + ": the path is empty");
   return r.output_given ? r.output : safe_file_stem(scene.name) + ".png";
 }
 
@@ -42,14 +44,14 @@ std::string output_path(const JobRequest& r, const Scene& scene) {
 void apply_share(const JobRequest& r, const std::string& output, RenderSettings& settings) {
   if (r.sample_range.empty() && r.part.empty()) return;
   if (!r.sample_range.empty() && !r.part.empty()) {
-    throw InvalidInput("give --sample-range or --part, not both");
+    throw InvalidInput("give " + setting("sample_range") + " or " + setting("part") + ", not both");
   }
   if (image_format(output) == nullptr || !image_format(output)->extra_channels) {
     throw InvalidInput("output " + quote_value(output) +
                        ": a share of a render is written as a part file, which must be .exr");
   }
   const std::uint64_t total =
-      shareable_samples(settings, r.part.empty() ? "--sample-range" : "--part");
+      shareable_samples(settings, setting(r.part.empty() ? "sample_range" : "part"));
   restrict_to(
       r.part.empty() ? parse_sample_range(r.sample_range, total) : parse_part(r.part, total),
       settings);
@@ -59,9 +61,9 @@ void apply_share(const JobRequest& r, const std::string& output, RenderSettings&
 void apply_rank_share(const JobRequest& r, RenderSettings& settings) {
   if (r.ranks <= 1) return;
   if (!r.sample_range.empty() || !r.part.empty()) {
-    throw InvalidInput(
-        "--sample-range and --part are for separate jobs; under mpirun the ranks "
-        "share the samples themselves");
+    throw InvalidInput(setting("sample_range") + " and " + setting("part") +
+                       " are for separate jobs; under mpirun the ranks share the samples "
+                       "themselves");
   }
   const std::uint64_t total = shareable_samples(settings, "mpirun");
   const auto ranks = std::uint64_t(r.ranks);
@@ -77,22 +79,24 @@ void apply_rank_share(const JobRequest& r, RenderSettings& settings) {
 void check_adaptive_options(const JobRequest& r, const std::string& output) {
   const ImageFormat* format = image_format(output);
   if (r.stats_channels && format && !format->extra_channels) {
-    throw InvalidInput("--stats-channels: output " + quote_value(output) +
+    throw InvalidInput(setting("stats_channels") + ": output " + quote_value(output) +
                        " must be .exr to hold the spp and variance channels");
   }
   const RenderRequest& q = r.request;
   if (q.passes.any() && format && !format->extra_channels) {
-    throw InvalidInput("--passes: output " + quote_value(output) + " must be .exr to hold the " +
-                       to_string(q.passes) + " channels beside the image");
+    throw InvalidInput(setting("passes") + ": output " + quote_value(output) +
+                       " must be .exr to hold the " + to_string(q.passes) +
+                       " channels beside the image");
   }
-  const char* adaptive = q.target_error > 0  ? "--target-error"
-                         : q.image_error > 0 ? "--image-error"
-                         : q.adaptive        ? "--adaptive"
+  const char* adaptive = q.target_error > 0  ? "target_error"
+                         : q.image_error > 0 ? "image_error"
+                         : q.adaptive        ? "adaptive"
                                              : nullptr;
   if (adaptive && (!r.sample_range.empty() || !r.part.empty() || r.ranks > 1)) {
-    throw InvalidInput(std::string(adaptive) +
+    throw InvalidInput(setting(adaptive) +
                        " needs all of a pixel's samples in one process: it cannot be combined "
-                       "with --sample-range, --part or mpirun");
+                       "with " +
+                       setting("sample_range") + ", " + setting("part") + " or mpirun");
   }
   // (A part with --stats-channels keeps two replicates, so that 'rtiow merge --stats-channels'
   // can write the whole render's variances; the part file holds its exact spreads, not channels.)

@@ -1,8 +1,12 @@
 #include "core/render/render_metadata.h"
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -26,11 +30,49 @@ std::string triple(const Vec3d& v) {
   return number(v.x) + "," + number(v.y) + "," + number(v.z);
 }
 
-// In the render command's own options: --lookfrom X,Y,Z --lookat ... (exact doubles).
-std::string describe_camera(const CameraSettings& c) {
-  return "--lookfrom " + triple(c.lookfrom) + " --lookat " + triple(c.lookat) + " --vup " +
-         triple(c.vup) + " --vfov " + number(c.vfov_degrees) + " --aperture " + number(c.aperture) +
-         " --focus-dist " + number(focus_distance_of(c));
+// A camera record's settings, in the scene file's words: each a vector or a number.
+struct CameraSetting {
+  const char* name;
+  std::optional<Vec3d> CameraOverrides::*vector;
+  std::optional<double> CameraOverrides::*number;
+};
+constexpr CameraSetting kCameraSettings[] = {
+    {"lookfrom", &CameraOverrides::lookfrom, nullptr},
+    {"lookat", &CameraOverrides::lookat, nullptr},
+    {"vup", &CameraOverrides::vup, nullptr},
+    {"vfov", nullptr, &CameraOverrides::vfov_degrees},
+    {"aperture", nullptr, &CameraOverrides::aperture},
+    {"focus_distance", nullptr, &CameraOverrides::focus_distance},
+};
+
+std::optional<double> read_number(std::string_view text) {
+  double value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+    return std::nullopt;
+  }
+  return value;
+}
+
+// "x,y,z" as a vector; nothing when it is not three numbers.
+std::optional<Vec3d> read_triple(std::string_view text) {
+  double v[3];
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t comma = i < 2 ? text.find(',') : text.size();
+    if (comma == std::string_view::npos) return std::nullopt;
+    const std::optional<double> x = read_number(text.substr(0, comma));
+    if (!x) return std::nullopt;
+    v[i] = *x;
+    text.remove_prefix(std::min(text.size(), comma + 1));
+    if (i == 2 && comma != std::string_view::npos && !text.empty()) return std::nullopt;
+  }
+  return Vec3d{v[0], v[1], v[2]};
+}
+
+// A setting's name in a record of rtiow 0.3.0, which spelt it as the render command's option.
+std::string name_of_older_record(std::string name) {
+  if (name.rfind("--", 0) == 0) name.erase(0, 2);
+  return name == "focus-dist" ? "focus_distance" : name;
 }
 
 // The reflectance models of the scene's glass ("schlick", "exact" or both), empty without glass.
@@ -47,12 +89,46 @@ std::string glass_reflectance(const Scene& scene) {
 
 }  // namespace
 
+std::string camera_record(const CameraSettings& c) {
+  return "lookfrom " + triple(c.lookfrom) + " lookat " + triple(c.lookat) + " vup " +
+         triple(c.vup) + " vfov " + number(c.vfov_degrees) + " aperture " + number(c.aperture) +
+         " focus_distance " + number(focus_distance_of(c));
+}
+
+CameraOverrides read_camera_record(const std::string& record, const std::string& source) {
+  CameraOverrides camera;
+  std::istringstream words(record);
+  std::string name, value;
+  const auto refuse = [&](const std::string& why) {
+    throw InvalidInput(source + ": " + kMetadataPrefix + metadata_key::kCamera + ": " + why);
+  };
+  while (words >> name) {
+    if (!(words >> value)) refuse(quote_value(name) + " has no value");
+    const std::string setting = name_of_older_record(name);
+    const CameraSetting* known = nullptr;
+    for (const CameraSetting& c : kCameraSettings) {
+      if (setting == c.name) known = &c;
+    }
+    if (!known) refuse("unknown setting " + quote_value(name));
+    if (known->vector) {
+      if (camera.*known->vector) refuse(quote_value(name) + " is given twice");
+      camera.*known->vector = read_triple(value);
+      if (!(camera.*known->vector)) refuse(quote_value(name) + " is not x,y,z");
+    } else {
+      if (camera.*known->number) refuse(quote_value(name) + " is given twice");
+      camera.*known->number = read_number(value);
+      if (!(camera.*known->number)) refuse(quote_value(name) + " is not a number");
+    }
+  }
+  return camera;  // what it leaves out is the scene's
+}
+
 Metadata render_metadata(const Scene& scene, const RenderSettings& s, const RenderResult& r,
                          bool reproducible) {
   namespace key = metadata_key;
   Metadata metadata{{key::kScene, scene.name},
                     {key::kSceneDigest, scene_digest(scene)},
-                    {key::kCamera, describe_camera(scene.camera)},
+                    {key::kCamera, camera_record(scene.camera)},
                     {key::kVersion, std::string(version())}};
   if (const std::string fresnel = glass_reflectance(scene); !fresnel.empty())
     metadata.emplace_back(key::kFresnel, fresnel);

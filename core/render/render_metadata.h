@@ -4,6 +4,7 @@
 // reads back what rendering wrote.
 
 #include "core/io/image_output.h"
+#include "core/render/render_request.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
@@ -61,6 +62,15 @@ namespace rtiow {
 // scene, settings and seed give a byte-identical file.
 Metadata render_metadata(const Scene& scene, const RenderSettings& settings,
                          const RenderResult& result, bool reproducible);
+
+// The camera as the metadata records it (kCamera), in the scene file's words and exact
+// doubles: "lookfrom 13,2,3 lookat 0,0,0 vup 0,1,0 vfov 20 aperture 0.1 focus_distance 10".
+std::string camera_record(const CameraSettings& camera);
+
+// The camera a record gives, each setting at most once. Images of rtiow 0.3.0 spelt the same record
+// as the render command's options then ("--lookfrom 13,2,3 ... --focus-dist 10"), which
+// reads the same. Throws InvalidInput naming `source` and the setting at fault.
+CameraOverrides read_camera_record(const std::string& record, const std::string& source);
 
 // The crop the metadata of a `width` x `height` image records (kCrop, kFrame), as a place in
 // the frame; the whole frame where it records none. Throws InvalidInput, naming `source`,

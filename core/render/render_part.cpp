@@ -17,10 +17,11 @@
 #include "core/io/image_file.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/limits/setting_name.h"
 #include "core/render/render.h"
+#include "core/render/render_identity.h"
 #include "core/render/render_metadata.h"
 #include "core/render/sample_share.h"
-#include "core/sampling/rng.h"
 #include "core/scene_file/scene_digest.h"
 
 namespace rtiow {
@@ -41,12 +42,6 @@ const std::string kDigest = std::string(kMetadataPrefix) + "digest";
 // (core/film/sum_channels.h): "sum.R.0", "first_hit.albedo.R.3".
 std::string word_channel(const SumGroupDeclaration& d, std::size_t c, int w) {
   return std::string(d.name) + "." + std::string(d.channel_names[c]) + "." + std::to_string(w);
-}
-
-std::string hex(std::uint64_t v) {
-  char buffer[17];
-  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(v));
-  return buffer;
 }
 
 // A whole number from a header field, or InvalidInput naming the file and the field.
@@ -76,21 +71,6 @@ std::int64_t metadata_count(const RenderPart& part, const std::string& key) {
 
 }  // namespace
 
-std::string render_digest(const Scene& scene, const RenderSettings& settings) {
-  std::string text = scene_digest(scene);
-  for (const std::uint64_t v : {std::uint64_t(settings.width), std::uint64_t(settings.height),
-                                std::uint64_t(settings.max_depth), settings.seed}) {
-    text.append("|").append(std::to_string(v));
-  }
-  text.append("|").append(to_string(settings.sampler));
-  if (settings.crop) text.append("|crop ").append(to_string(*settings.crop));
-  if (replicates(settings) == 1) text.append("|one sequence");  // other samples than replicates'
-  if (!settings.russian_roulette) text.append("|no roulette");
-  std::uint64_t h = 0x6a09e667f3bcc908ull;
-  for (unsigned char c : text) h = hash_combine(h, c);
-  return hex(h);
-}
-
 RenderPart make_part(const Scene& scene, const RenderSettings& share, std::uint64_t job_samples,
                      const RenderResult& result, Metadata metadata) {
   const RenderSettings s = with_scene_image(scene, share);  // as the render took them
@@ -105,7 +85,7 @@ RenderPart make_part(const Scene& scene, const RenderSettings& share, std::uint6
   part.first_sample = s.first_sample;
   part.samples = std::uint64_t(result.samples_completed);
   part.job_samples = job_samples;
-  part.digest = render_digest(scene, s);
+  part.digest = shared_digest(render_identity(scene, s));
   part.metadata = std::move(metadata);
   part.sums = result.sums;
   return part;
@@ -312,7 +292,8 @@ RenderPart read_part(ImageReader& in, const std::string& path) {
   const std::string name = "part file " + quote_value(path);
   const std::optional<SumChannels> channels = find_sum_channels(in.header());
   if (!channels) {
-    throw InvalidInput(name + ": not a part file (render one with --sample-range or --part)");
+    throw InvalidInput(name + ": not a part file (render one with " + setting("sample_range") +
+                       " or " + setting("part") + ")");
   }
   RenderPart part;
   part.path = path;
@@ -425,9 +406,10 @@ void check_passes(const RenderPart& reference, const std::vector<const RenderPar
   merged.passes = recorded(reference);
   for (const RenderPart* p : parts) {
     if (recorded(*p) != merged.passes) {
-      throw InvalidInput("merge: " + p->path + " was rendered with --passes " +
-                         to_string(recorded(*p)) + " and " + reference.path + " with --passes " +
-                         to_string(merged.passes) + ": render every part with the same passes");
+      throw InvalidInput("merge: " + p->path + " was rendered with " +
+                         setting("passes", to_string(recorded(*p))) + " and " + reference.path +
+                         " with " + setting("passes", to_string(merged.passes)) +
+                         ": render every part with the same passes");
     }
     if (merged.passes.any() && !p->sums.keeps(SumGroup::FirstHit)) {
       throw InvalidInput("part file " + quote_value(p->path) + ": records passes " +

@@ -8,7 +8,8 @@
 // before parts kept spreads has sum.* alone, and merges without variances); a part rendered
 // with --passes adds first_hit.{albedo.R,...,Z}.{0..3}, the 128-bit signed sums the passes are
 // the mean of (core/film/first_hit_sum.h). Metadata names
-// the samples held and a digest of the scene and settings, which merging checks.
+// the samples held and the digest of what its render's shares have in common
+// (core/render/render_identity.h), which merging checks.
 
 #include <cstdint>
 #include <string>
@@ -26,15 +27,11 @@ struct RenderPart {
   int width = 0, height = 0;
   std::uint64_t first_sample = 0, samples = 0;
   std::uint64_t job_samples = 0;  // the whole job's samples per pixel, so a missing share shows
-  std::string digest;             // scene + settings that change pixels
+  std::string digest;             // shared_digest(): what every share of its render has
   Metadata metadata;              // everything else the part recorded (scene, seed, rays...)
   // Spreads empty in a part written without them, first hits in one rendered without passes.
   PixelSums sums;
 };
-
-// What must match for two shares to belong to one render: the scene, the image size, the
-// depth and the seed (not the thread count or the accelerator: they do not change pixels).
-std::string render_digest(const Scene& scene, const RenderSettings& settings);
 
 // A share's result as a part file keeps it: `share` the settings it was rendered with (its
 // first sample and count), `job_samples` the whole job's samples per pixel, `metadata` what the

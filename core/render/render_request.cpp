@@ -8,6 +8,7 @@
 
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/limits/setting_name.h"
 
 namespace rtiow {
 namespace {
@@ -44,7 +45,7 @@ void apply_fresnel(FresnelModel model, Scene& scene) {
 
 // What --spp means is decided here, once: a count, a budget or a cap, by the mode beside it.
 SampleBudget budget_asked(const RenderRequest& r, const ImageSettings& image) {
-  const auto error_option = [](double error, const char* what, const char* option) {
+  const auto error_option = [](double error, const char* what, const char* name) {
     if (!(error >= 0.0) || !std::isfinite(error)) {
       throw InvalidInput(std::string(what) + " must be a finite number >= 0 (0: off)");
     }
@@ -53,27 +54,27 @@ SampleBudget budget_asked(const RenderRequest& r, const ImageSettings& image) {
     if (error >= 1.0) {
       char shown[32];
       const std::string value(shown, std::to_chars(shown, shown + sizeof shown, error).ptr);
-      throw InvalidInput(std::string(option) + " " + value +
+      throw InvalidInput(setting(name, value) +
                          " is a relative error of 100% or more: give a fraction below 1 (0.02 "
                          "for 2%)");
     }
     return error > 0.0;
   };
-  const bool by_pixel = error_option(r.target_error, "target error", "--target-error");
-  const bool by_image = error_option(r.image_error, "image error", "--image-error");
+  const bool by_pixel = error_option(r.target_error, "target error", "target_error");
+  const bool by_image = error_option(r.image_error, "image error", "image_error");
   if (int(by_pixel) + int(by_image) + int(r.adaptive) > 1) {
-    throw InvalidInput(
-        "choose one adaptive mode: --target-error (per pixel), --image-error or --adaptive (a "
-        "budget)");
+    throw InvalidInput("choose one adaptive mode: " + setting("target_error") + " (per pixel), " +
+                       setting("image_error") + " or " + setting("adaptive") + " (a budget)");
   }
   if (r.min_samples && !by_pixel && !by_image && !r.adaptive) {
-    throw InvalidInput("--min-spp " + std::to_string(*r.min_samples) +
-                       " applies to adaptive sampling (--target-error, --image-error or "
-                       "--adaptive); a uniform render gives every pixel --spp");
+    throw InvalidInput(setting("min_spp", std::to_string(*r.min_samples)) +
+                       " applies to adaptive sampling (" + setting("target_error") + ", " +
+                       setting("image_error") + " or " + setting("adaptive") +
+                       "); a uniform render gives every pixel " + setting("spp"));
   }
   const int least = r.min_samples.value_or(kDefaultLeastSamples);
   if (least < 2) {
-    throw InvalidInput("--min-spp must be >= 2 (a variance needs two), got " +
+    throw InvalidInput(setting("min_spp") + " must be >= 2 (a variance needs two), got " +
                        std::to_string(least));
   }
   const int cap = r.spp.value_or(kDefaultErrorDrivenMaxSpp);
@@ -88,11 +89,11 @@ SampleBudget budget_asked(const RenderRequest& r, const ImageSettings& image) {
     // A budget no larger than the minimum leaves nothing to allocate: the render would be
     // uniform while its metadata says adaptive.
     if (spp && *spp > 0 && *spp <= least) {
-      throw InvalidInput("--adaptive: a budget of " + std::to_string(*spp) +
+      throw InvalidInput(setting("adaptive") + ": a budget of " + std::to_string(*spp) +
                          " spp leaves nothing to allocate after every pixel's minimum of " +
-                         std::to_string(least) +
-                         " (--min-spp); give --spp above it, or leave out --adaptive for a "
-                         "uniform render");
+                         std::to_string(least) + " (" + setting("min_spp") + "); give " +
+                         setting("spp") + " above it, or leave out " + setting("adaptive") +
+                         " for a uniform render");
     }
     return AdaptiveBudget{spp, least};
   }
@@ -114,11 +115,11 @@ ResolvedRender resolve(Scene scene, const RenderRequest& r) {
   } else if (r.height) {
     s.height = *r.height;
     s.width =
-        derived_side(s.height, width_for_height(s.height, image.aspect_ratio), "width", "--height");
+        derived_side(s.height, width_for_height(s.height, image.aspect_ratio), "width", "height");
   } else {
     s.width = r.width.value_or(image.width);
     s.height =
-        derived_side(s.width, height_for_width(s.width, image.aspect_ratio), "height", "--width");
+        derived_side(s.width, height_for_width(s.width, image.aspect_ratio), "height", "width");
   }
   s.crop = r.crop;
   s.samples = budget_asked(r, image);

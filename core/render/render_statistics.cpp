@@ -9,14 +9,15 @@
 #include "core/io/image_file.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/limits/setting_name.h"
 
 namespace rtiow {
 
 std::vector<Vec3d> pixel_mean_variances(const RenderResult& result) {
   if (result.replicates < kReplicates) {
     throw std::invalid_argument(
-        "no estimate of the error of a render drawn from one sequence: render it with "
-        "estimate_error (--stats-channels) to keep two replicates");
+        "no estimate of the error of a render drawn from one sequence: render it with " +
+        setting("stats_channels") + " (RenderSettings::estimate_error) to keep two replicates");
   }
   return honest_variances(result.film.width(), result.film.height(), result.sums.color,
                           result.sums.spreads, result.pixel_samples, result.first_sample,

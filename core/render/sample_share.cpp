@@ -7,6 +7,7 @@
 
 #include "core/film/sample_sum.h"
 #include "core/limits/error.h"
+#include "core/limits/setting_name.h"
 
 namespace rtiow {
 namespace {
@@ -37,35 +38,34 @@ SampleShare equal_share(std::uint64_t total, std::uint64_t index, std::uint64_t 
 
 SampleShare parse_part(const std::string& text, std::uint64_t total) {
   const auto share = parse_pair(text, '/');
-  if (!share) throw InvalidInput("--part " + quote_value(text) + ": expected i/n, e.g. 0/4");
+  const std::string part = setting("part", quote_value(text));
+  if (!share) throw InvalidInput(part + ": expected i/n, e.g. 0/4");
   const auto [i, n] = *share;
-  if (n == 0 || i >= n) throw InvalidInput("--part " + quote_value(text) + ": need 0 <= i < n");
+  if (n == 0 || i >= n) throw InvalidInput(part + ": need 0 <= i < n");
   if (n > total) {
-    throw InvalidInput("--part " + quote_value(text) + ": " + std::to_string(total) +
-                       " samples per pixel do not make " + std::to_string(n) + " shares");
+    throw InvalidInput(part + ": " + std::to_string(total) + " samples per pixel do not make " +
+                       std::to_string(n) + " shares");
   }
   return equal_share(total, i, n);
 }
 
 SampleShare parse_sample_range(const std::string& text, std::uint64_t total) {
   const auto range = parse_pair(text, ':');
-  if (!range) {
-    throw InvalidInput("--sample-range " + quote_value(text) + ": expected A:B, e.g. 0:100");
-  }
+  const std::string option = setting("sample_range", quote_value(text));
+  if (!range) throw InvalidInput(option + ": expected A:B, e.g. 0:100");
   const auto [a, b] = *range;
   if (a >= b || b > total) {
-    throw InvalidInput("--sample-range " + quote_value(text) + ": need A < B <= the job's " +
-                       std::to_string(total) + " samples per pixel (--spp)");
+    throw InvalidInput(option + ": need A < B <= the job's " + std::to_string(total) +
+                       " samples per pixel (" + setting("spp") + ")");
   }
   return {a, b - a};
 }
 
-std::uint64_t shareable_samples(const RenderSettings& settings, const char* option) {
+std::uint64_t shareable_samples(const RenderSettings& settings, const std::string& what) {
   const auto* fixed = std::get_if<FixedSamples>(&settings.samples);
   if (!fixed) {
-    throw InvalidInput(std::string(option) +
-                       " shares a fixed number of samples per pixel: give --spp (and no "
-                       "adaptive mode)");
+    throw InvalidInput(what + " shares a fixed number of samples per pixel: give " +
+                       setting("spp") + " (and no adaptive mode)");
   }
   return std::uint64_t(fixed->per_pixel);
 }

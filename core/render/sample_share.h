@@ -15,8 +15,8 @@ struct SampleShare {
 };
 
 // The samples per pixel of a job that is to be shared: its fixed count. Throws InvalidInput
-// for any other budget (`option` names what asked to share it).
-std::uint64_t shareable_samples(const RenderSettings& settings, const char* option);
+// for any other budget (`what` names what asked to share it, as the front end spells it).
+std::uint64_t shareable_samples(const RenderSettings& settings, const std::string& what);
 
 // The index-th of `shares` equal shares of `total` samples (sizes differ by at most one).
 // Needs index < shares <= total.

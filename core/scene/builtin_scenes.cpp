@@ -12,6 +12,7 @@
 #include "core/limits/error.h"
 #include "core/limits/image_size.h"
 #include "core/limits/nearest_name.h"
+#include "core/limits/setting_name.h"
 #include "core/parallel/cancellation.h"
 #include "core/parallel/huge_pages.h"
 #include "core/parallel/parallel_for_range.h"
@@ -289,7 +290,8 @@ Scene make_builtin_scene(const std::string& name, std::uint64_t scene_seed) {
   throw InvalidInput(
       "unknown scene " + quote_value(name) + did_you_mean(name, names) + " (known: " + known +
       kFieldPrefix + "N with N from 1 to " + std::to_string(kMaxFieldSpheres) + ")" +
-      (looks_like_a_file ? "; a scene file is given by its path, without --scene" : ""));
+      (looks_like_a_file ? "; a scene file is given by its path, without " + setting("scene")
+                         : std::string()));
 }
 
 }  // namespace rtiow

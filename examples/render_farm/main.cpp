@@ -28,7 +28,7 @@ bool same_pixels(const rtiow::Film& a, const rtiow::Film& b) {
 // Stops the render at its first safe point (where its state is saved), then continues it.
 bool stopped_and_resumed(const rtiow::Scene& scene, const rtiow::RenderSettings& job,
                          const std::string& checkpoint, const rtiow::Film& whole) {
-  const rtiow::CheckpointIdentity identity = rtiow::checkpoint_identity(scene, job);
+  const rtiow::RenderIdentity identity = rtiow::render_identity(scene, job);
   rtiow::RenderProgress progress;
   rtiow::Checkpointing keep;
   keep.interval_seconds = 1e-9;  // save at every safe point

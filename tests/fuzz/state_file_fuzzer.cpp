@@ -33,7 +33,7 @@
 
 namespace {
 
-using rtiow::CheckpointIdentity;
+using rtiow::RenderIdentity;
 using rtiow::RenderSettings;
 
 // The request the fuzzed checkpoints are read for: a 5x3 cover, uniform or adaptive, with the
@@ -46,16 +46,15 @@ RenderSettings request(bool adaptive, bool passes) {
   return s;
 }
 
-CheckpointIdentity identity(bool adaptive, bool passes) {
-  return {"0.3.0",
-          "fuzz-scene",
-          "5x3",
-          "8",
-          "1",
-          "sobol",
-          "0",
-          adaptive ? "--target-error 0.05 --min-spp 4 --spp 64" : "uniform",
-          passes ? "albedo, normal and depth kept" : "none"};
+RenderIdentity identity(bool adaptive, bool passes) {
+  RenderIdentity id;
+  using F = rtiow::IdentityField;
+  id[F::Version] = "0.3.0", id[F::Scene] = "fuzz-scene", id[F::Size] = "5x3";
+  id[F::Depth] = "8", id[F::Seed] = "1", id[F::Sampler] = "sobol", id[F::Replicates] = "2";
+  id[F::Roulette] = "on", id[F::FirstSample] = "0";
+  id[F::Sampling] = adaptive ? "pixel error 0.05, 4 to 64 samples" : "uniform";
+  id[F::Passes] = passes ? "albedo, normal and depth kept" : "none";
+  return id;
 }
 
 void check_state(const rtiow::RenderState& state, const RenderSettings& s) {

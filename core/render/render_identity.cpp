@@ -1,0 +1,89 @@
+#include "core/render/render_identity.h"
+
+#include <charconv>
+#include <cstdio>
+#include <variant>
+
+#include "core/limits/error.h"
+#include "core/sampling/rng.h"
+#include "core/scene_file/scene_digest.h"
+#include "core/version.h"
+
+namespace rtiow {
+namespace {
+
+// The shortest text that reads back as the same double: targets that differ in any bit differ.
+std::string shortest(double v) {
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
+}
+
+std::string range(int least, int most) {
+  return std::to_string(least) + " to " + std::to_string(most) + " samples";
+}
+
+}  // namespace
+
+std::string sampling_words(const SampleBudget& samples) {
+  if (const auto* t = std::get_if<PixelErrorTarget>(&samples)) {
+    return "pixel error " + shortest(t->error) + ", " + range(t->least, t->most);
+  }
+  if (const auto* i = std::get_if<ImageErrorTarget>(&samples)) {
+    return "image error " + shortest(i->error) + ", " + range(i->least, i->most);
+  }
+  if (const auto* a = std::get_if<AdaptiveBudget>(&samples)) {
+    return "adaptive, " +
+           (a->per_pixel ? std::to_string(*a->per_pixel) + " samples a pixel"
+                         : std::string("within the time limit")) +
+           ", at least " + std::to_string(a->least);
+  }
+  return "uniform";  // a uniform render continues to any count
+}
+
+RenderIdentity render_identity(const Scene& scene, const RenderSettings& s) {
+  RenderIdentity id;
+  using F = IdentityField;
+  id[F::Version] = version();
+  id[F::Scene] = scene_digest(scene);
+  id[F::Size] = std::to_string(s.width) + "x" + std::to_string(s.height) +
+                (s.crop ? " crop " + to_string(*s.crop) : "");
+  id[F::Depth] = std::to_string(s.max_depth);
+  id[F::Seed] = std::to_string(s.seed);
+  id[F::Sampler] = to_string(s.sampler);
+  id[F::Replicates] = std::to_string(replicates(s));
+  id[F::Roulette] = roulette_name(s.russian_roulette);
+  id[F::FirstSample] = std::to_string(s.first_sample);
+  id[F::Sampling] = sampling_words(s.samples);
+  id[F::Passes] = s.passes.any() ? "albedo, normal and depth kept" : "none";
+  return id;
+}
+
+std::string identity_mismatch(const RenderIdentity& stored, const RenderIdentity& now,
+                              const std::string& whose) {
+  std::string text;
+  for (const IdentityFieldDeclaration& d : kIdentityFields) {
+    const std::string& a = stored[d.field];
+    const std::string& b = now[d.field];
+    if (a == b) continue;
+    if (!text.empty()) text += "; ";
+    text += std::string(d.label) + ": " + whose + " " + quote_value(a, 60) + ", this render's " +
+            quote_value(b, 60);
+  }
+  return text;
+}
+
+std::string shared_digest(const RenderIdentity& identity) {
+  std::uint64_t h = 0x6a09e667f3bcc908ull;
+  for (const IdentityFieldDeclaration& d : kIdentityFields) {
+    if (!d.shared) continue;
+    for (const char* c = d.key; *c; ++c) h = hash_combine(h, std::uint8_t(*c));
+    h = hash_combine(h, '=');
+    for (const unsigned char c : identity[d.field]) h = hash_combine(h, c);
+    h = hash_combine(h, '|');
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+}  // namespace rtiow
