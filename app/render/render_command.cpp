@@ -115,7 +115,9 @@ void write_or_keep(const RenderOptions& o, const JobRequest& request, const Rend
                    const RenderResult& result, CheckpointSession* checkpoint) {
   try {
     Metadata metadata = render_metadata(job.scene, job.settings, result, o.reproducible);
-    if (!o.scene_file.empty()) metadata.emplace_back(metadata_key::kSceneFile, o.scene_file);
+    if (!request.scene_file.empty()) {
+      metadata.emplace_back(metadata_key::kSceneFile, request.scene_file);
+    }
     write_job_result(request, job, result, metadata);
   } catch (const InvalidInput&) {
     throw;
@@ -201,7 +203,7 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   if (o.list_scenes) return mpi.rank() == 0 ? list_scenes() : 0;
   if (!o.summary_json.empty()) {
     std::vector<std::string> inputs;
-    for (const std::string* input : {&o.scene_file, &o.like}) {
+    for (const std::string* input : {&request.scene_file, &o.like}) {
       if (!input->empty()) inputs.push_back(*input);
     }
     check_output_path(o.summary_json, inputs, "--summary-json");
@@ -270,7 +272,7 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   } catch (const Cancelled&) {  // a signal while the BVH was built: any checkpoint is as it was
     return interrupted_outside_render(kBeforeRender);
   }
-  if (mpi.distributed() && !gather_ranks(mpi, job, result, o.stats_channels)) return 0;
+  if (mpi.distributed() && !gather_ranks(mpi, job, result, request.stats_channels)) return 0;
   if (display) display->show(result.film, pass_channels(result, job.settings.passes));
   write_or_keep(o, request, job, result, checkpoint.get());
   if (checkpoint) checkpoint->warn_where_kept();  // even when quiet
@@ -298,18 +300,19 @@ std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
   const RenderOptionHandles given = add_render_options(cmd, *options);
   return [options, cmd, given, &mpi] {
     if (!cmd->parsed()) return -1;
-    std::optional<ImageRequest> like;
-    bool scene_chosen = false;  // by the user, over the --like image's
-    if (!options->like.empty()) {
-      like = read_image_request(options->like);
-      scene_chosen = apply_image_request(*like, *cmd);
-    }
     JobRequest request = job_request_of(*options, given.scene->count() > 0,
                                         given.output->count() > 0, mpi.rank(), mpi.size());
-    if (like && !scene_chosen) {
-      request.check_loaded_scene = [&like, image = options->like](const Scene& scene) {
-        check_scene_of_image(*like, scene, image);
-      };
+    if (!options->like.empty()) {
+      auto like = std::make_shared<RecordedRequest>(
+          read_recorded_request(options->like, "--like image " + quote_value(options->like)));
+      const std::set<RequestPart> typed = parts_given(*cmd);
+      request = overlay_recorded(*like, std::move(request), typed, output_holds_channels(*cmd),
+                                 options->reproducible);
+      if (!typed.count(RequestPart::Scene) && !typed.count(RequestPart::SceneSeed)) {
+        request.check_loaded_scene = [like](const Scene& scene) {
+          check_scene_of_image(*like, scene);
+        };
+      }
     }
     return run_render(*options, request, mpi);
   };

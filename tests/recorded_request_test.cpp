@@ -1,0 +1,106 @@
+// An image's recorded request, through the library: read back, it asks for the render that
+// made the image, and a caller's part replaces the image's whole part and nothing else.
+
+#include "core/render/recorded_request.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include "core/io/image_output.h"
+#include "core/limits/error.h"
+#include "core/render/render.h"
+#include "core/render/render_job.h"
+#include "core/render/render_metadata.h"
+#include "core/scene/builtin_scenes.h"
+
+namespace rtiow {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RecordedRequestTest : public ::testing::Test {
+ protected:
+  fs::path image_ = fs::path(::testing::TempDir()) / "recorded_request.png";
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove(image_, ignored);
+  }
+
+  // Renders `job` as `rtiow render` would and writes it with its metadata.
+  RenderJob render_to_image(const JobRequest& job, bool reproducible) {
+    RenderJob prepared = prepare_job(job);
+    const RenderResult result = render(prepared.scene, prepared.settings);
+    write_image(image_.string(), result.film,
+                render_metadata(prepared.scene, prepared.settings, result, reproducible));
+    return prepared;
+  }
+};
+
+TEST_F(RecordedRequestTest, AnImageAsksForTheRenderThatMadeIt) {
+  JobRequest job;
+  job.scene = "spheres:20", job.scene_seed = 7;
+  job.request.width = 24, job.request.spp = 3, job.request.seed = 11;
+  job.request.max_depth = 9, job.request.russian_roulette = false;
+  job.request.sampler = SamplerKind::Independent;
+  job.request.camera.vfov_degrees = 33.5;
+  const RenderJob made = render_to_image(job, true);
+
+  const RecordedRequest image = read_recorded_request(image_.string(), "image");
+  EXPECT_TRUE(image.reproducible);
+  bool reproducible = false;
+  JobRequest again = overlay_recorded(image, JobRequest{}, {}, false, reproducible);
+  EXPECT_TRUE(reproducible);
+  const RenderJob remade = prepare_job(again);
+  EXPECT_EQ(remade.scene.name, made.scene.name);
+  EXPECT_EQ(remade.settings.width, made.settings.width);
+  EXPECT_EQ(remade.settings.height, made.settings.height);
+  EXPECT_EQ(remade.settings.seed, 11u);
+  EXPECT_EQ(remade.settings.max_depth, 9);
+  EXPECT_FALSE(remade.settings.russian_roulette);
+  EXPECT_EQ(remade.settings.sampler, SamplerKind::Independent);
+  EXPECT_EQ(remade.scene.camera.vfov_degrees, 33.5);
+  EXPECT_NO_THROW(check_scene_of_image(image, make_builtin_scene("spheres:20", 7)));
+  EXPECT_THROW(check_scene_of_image(image, make_builtin_scene("spheres:20", 8)), InvalidInput);
+
+  // The caller's seed and vfov are theirs; the rest is still the image's.
+  JobRequest mine;
+  mine.request.seed = 3;
+  mine.request.camera.vfov_degrees = 50;
+  again =
+      overlay_recorded(image, mine, {RequestPart::Seed, RequestPart::Vfov}, false, reproducible);
+  const RenderJob changed = prepare_job(again);
+  EXPECT_EQ(changed.settings.seed, 3u);
+  EXPECT_EQ(changed.scene.camera.vfov_degrees, 50);
+  EXPECT_EQ(changed.settings.max_depth, 9);
+  EXPECT_EQ(changed.scene.camera.lookfrom.x, made.scene.camera.lookfrom.x);
+}
+
+TEST_F(RecordedRequestTest, WhatNoRenderRepeatsIsRefusedUnlessTheCallerGivesIt) {
+  JobRequest job;
+  job.scene = "materials";
+  job.request.width = 16, job.request.adaptive = true, job.request.time_limit_seconds = 0.5;
+  render_to_image(job, false);
+  const RecordedRequest image = read_recorded_request(image_.string(), "image 'x'");
+  bool reproducible = false;
+  try {
+    overlay_recorded(image, JobRequest{}, {}, false, reproducible);
+    ADD_FAILURE() << "a time limit's budget was repeated";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("image 'x': its adaptive budget was a time limit"),
+              std::string::npos)
+        << e.what();
+  }
+  JobRequest mine;
+  mine.request.spp = 4;
+  const JobRequest again =
+      overlay_recorded(image, mine, {RequestPart::Samples}, false, reproducible);
+  EXPECT_EQ(again.request.spp, 4);
+  EXPECT_FALSE(again.request.adaptive);
+  EXPECT_FALSE(reproducible) << "the image recorded its time: it was not reproducible";
+}
+
+}  // namespace
+}  // namespace rtiow
