@@ -180,50 +180,24 @@ void read_size(const KeyReader& keys, const ImageHeader& header, RecordedRequest
   r.crop = PixelRegion{place.x, place.y, place.x + header.width, place.y + header.height};
 }
 
-RecordedRequest recorded_request(const ImageHeader& header, const std::string& source) {
+// The scene: a file, or a built-in scene and its layout.
+void read_scene(const KeyReader& keys, JobRequest& job) {
   namespace key = metadata_key;
-  const KeyReader keys(source, recorded_keys(header));
-  if (keys.empty()) {
-    keys.refuse(
-        "holds no rtiow provenance (HDR, PPM, BMP and TGA keep none; PNG, EXR, JPEG and TIFF "
-        "do)");
-  }
-  if (keys.find("part_samples")) {
-    keys.refuse(
-        "is a part of a shared render: merge the parts (rtiow merge) and use the merged "
-        "image");
-  }
-  RecordedRequest out;
-  out.source = source;
-  out.scene_digest = keys.need(key::kSceneDigest);
-  out.version = keys.need(key::kVersion);
-  JobRequest& job = out.job;
-  RenderRequest& r = job.request;
   if (const std::string* file = keys.find(key::kSceneFile)) {
     job.scene_file = *file;
-  } else {
-    job.scene = keys.need(key::kScene);
-    if (keys.find(key::kSceneSeed)) {
-      job.scene_seed =
-          keys.whole<std::uint64_t>(key::kSceneSeed, 0, std::numeric_limits<std::uint64_t>::max());
-    }
+    return;
   }
-  read_size(keys, header, out);
-  read_samples(keys, out);
-  r.max_depth = keys.whole<int>(key::kDepth, 0, std::numeric_limits<int>::max());
-  r.seed = keys.whole<std::uint64_t>(key::kSeed, 0, std::numeric_limits<std::uint64_t>::max());
-  r.sampler = keys.parsed(key::kSampler, parse_sampler);
-  if (keys.find(key::kAccelerator)) r.accel = keys.parsed(key::kAccelerator, parse_accel);
-  if (const std::string* roulette = keys.find(key::kRussianRoulette)) {  // absent: on
-    if (*roulette != roulette_name(true) && *roulette != roulette_name(false)) {
-      keys.refuse(key::kRussianRoulette, "is neither on nor off");
-    }
-    r.russian_roulette = *roulette == roulette_name(true);
+  job.scene = keys.need(key::kScene);
+  if (keys.find(key::kSceneSeed)) {
+    job.scene_seed =
+        keys.whole<std::uint64_t>(key::kSceneSeed, 0, std::numeric_limits<std::uint64_t>::max());
   }
-  r.camera = read_camera_record(keys.need(key::kCamera), source);
-  // One model for all the glass, as the override gave it or the scene said; a scene that mixes
-  // the two gives both names, and its own glass says which.
-  if (const std::string* fresnel = keys.find(key::kFresnel)) r.fresnel = parse_fresnel(*fresnel);
+}
+
+// What the image holds beside its colour: the statistics channels, and the passes.
+void read_channels(const KeyReader& keys, const ImageHeader& header, JobRequest& job) {
+  namespace key = metadata_key;
+  RenderRequest& r = job.request;
   // The statistics channels, or two replicates in a uniform render or on an adaptive budget
   // (the error targets keep two whatever was asked) of a sampler whose one sequence differs
   // from two replicates (independent samples are the same either way): they were asked for.
@@ -244,6 +218,45 @@ RecordedRequest recorded_request(const ImageHeader& header, const std::string& s
       }
     });
   }
+}
+
+RecordedRequest recorded_request(const ImageHeader& header, const std::string& source) {
+  namespace key = metadata_key;
+  const KeyReader keys(source, recorded_keys(header));
+  if (keys.empty()) {
+    keys.refuse(
+        "holds no rtiow provenance (HDR, PPM, BMP and TGA keep none; PNG, EXR, JPEG and TIFF "
+        "do)");
+  }
+  if (keys.find("part_samples")) {
+    keys.refuse(
+        "is a part of a shared render: merge the parts (rtiow merge) and use the merged "
+        "image");
+  }
+  RecordedRequest out;
+  out.source = source;
+  out.scene_digest = keys.need(key::kSceneDigest);
+  out.version = keys.need(key::kVersion);
+  JobRequest& job = out.job;
+  RenderRequest& r = job.request;
+  read_scene(keys, job);
+  read_size(keys, header, out);
+  read_samples(keys, out);
+  r.max_depth = keys.whole<int>(key::kDepth, 0, std::numeric_limits<int>::max());
+  r.seed = keys.whole<std::uint64_t>(key::kSeed, 0, std::numeric_limits<std::uint64_t>::max());
+  r.sampler = keys.parsed(key::kSampler, parse_sampler);
+  if (keys.find(key::kAccelerator)) r.accel = keys.parsed(key::kAccelerator, parse_accel);
+  if (const std::string* roulette = keys.find(key::kRussianRoulette)) {  // absent: on
+    if (*roulette != roulette_name(true) && *roulette != roulette_name(false)) {
+      keys.refuse(key::kRussianRoulette, "is neither on nor off");
+    }
+    r.russian_roulette = *roulette == roulette_name(true);
+  }
+  r.camera = read_camera_record(keys.need(key::kCamera), source);
+  // One model for all the glass, as the override gave it or the scene said; a scene that mixes
+  // the two gives both names, and its own glass says which.
+  if (const std::string* fresnel = keys.find(key::kFresnel)) r.fresnel = parse_fresnel(*fresnel);
+  read_channels(keys, header, job);
   out.reproducible = !keys.find(key::kRenderSeconds);
   return out;
 }
