@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -61,6 +62,36 @@ inline CLI::Validator from_to(double least, double most) {
                    : "must be from " + range + ", got " + text;
       },
       "NUMBER " + range);
+}
+
+// A whole number as a user writes it: decimal. CLI11 reads "010" as octal 8 and "0x10" as
+// sixteen; every whole-number option takes leading zeros as decimal and refuses another base.
+// A transform, so that it runs before the option's own checks and conversion.
+inline const CLI::Validator kDecimal(
+    [](std::string& text) -> std::string {
+      const std::size_t at = !text.empty() && (text[0] == '+' || text[0] == '-') ? 1 : 0;
+      if (text.size() > at + 1 && text[at] == '0' && std::isalpha(std::uint8_t(text[at + 1]))) {
+        return "'" + text + "' is not a decimal number";
+      }
+      std::size_t zeros = at;
+      while (zeros + 1 < text.size() && text[zeros] == '0' &&
+             std::isdigit(std::uint8_t(text[zeros + 1]))) {
+        ++zeros;
+      }
+      text.erase(at, zeros - at);
+      return "";
+    },
+    "");
+
+// Gives every whole-number option of `app` and its commands kDecimal.
+inline void read_whole_numbers_as_decimal(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    const std::string type = option->get_type_name();
+    if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0) option->transform(kDecimal);
+  }
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    read_whole_numbers_as_decimal(*command);
+  }
 }
 
 }  // namespace rtiow

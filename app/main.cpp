@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "app/cli_checks.h"
 #include "app/command_error.h"
 #include "app/diff_command.h"
 #include "app/help_format.h"
@@ -223,6 +224,8 @@ int main(int argc, char** argv) {
       rtiow::add_render_command(app, mpi), rtiow::add_scene_command(app),
       rtiow::add_merge_command(app),       rtiow::add_bench_command(app),
       rtiow::add_accuracy_command(app),    rtiow::add_diff_command(app)};
+
+  rtiow::read_whole_numbers_as_decimal(app);
 
   // Under mpirun every rank parses the same command line: rank 0 alone prints what it says.
   const bool speaks = mpi.rank() == 0;

@@ -254,6 +254,46 @@ TEST(Cli, OptionErrorsSuggestWhatWasMeant) {
 }
 
 // The natural slips between a scene's name and a scene file, and a scene written as an image.
+// Every whole number reads as a user writes it, in decimal (issue 69): CLI11 read a leading
+// zero as octal ("--crop 010,..." rendered the region at x 8, "--seed 09" was refused as too
+// large) and 0x as hexadecimal.
+TEST(Cli, WholeNumbersAreDecimalInEveryCommand) {
+  const fs::path image = output_path("decimal.png");
+  CommandResult r = run_rtiow(
+      "render -q --scene spheres:12 --scene-seed 010 --width 040 --spp 02 "
+      "--depth 05 --seed 09 --threads 01 --crop 010,0,020,05 -o " +
+      image.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  auto in = OIIO::ImageInput::open(image.string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec& spec = in->spec();
+  EXPECT_EQ(spec.get_string_attribute("rtiow:crop"), "10,0,20,5");
+  EXPECT_EQ(spec.get_string_attribute("rtiow:frame"), "40x27");
+  EXPECT_EQ(spec.get_int_attribute("rtiow:seed"), 9);
+  EXPECT_EQ(spec.get_int_attribute("rtiow:scene_seed"), 10);
+  EXPECT_EQ(spec.get_int_attribute("rtiow:spp"), 2);
+  EXPECT_EQ(spec.get_int_attribute("rtiow:depth"), 5);
+  in.reset();
+  fs::remove(image);
+  // Another base is refused by name, in every command.
+  for (const std::string& args :
+       {std::string("render --width 0x20"), std::string("render --crop 0,0,0x8,8"),
+        std::string("scene spheres:10 --scene-seed 0b11"), std::string("bench --repeat 0x3"),
+        std::string("accuracy --width 0o20"), std::string("diff --block 0x10 a.png b.png")}) {
+    r = run_rtiow(args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_NE(r.stderr_text.find("is not a decimal number"), std::string::npos)
+        << args << ": " << r.stderr_text;
+  }
+  // A leading zero in the other commands' whole numbers is decimal too.
+  const fs::path scene = output_path("decimal.json");
+  ASSERT_EQ(run_rtiow("scene spheres:10 --scene-seed 010 -o " + scene.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow("scene spheres:10 --scene-seed 10 -o " + image.string() + ".json").exit_code,
+            0);
+  EXPECT_EQ(slurp(scene), slurp(image.string() + ".json"));
+  fs::remove(scene), fs::remove(image.string() + ".json");
+}
+
 TEST(Cli, SceneNamesAndFilesPointToEachOther) {
   expect_refused("cover",
                  "no scene file 'cover'; the built-in scene is rendered with --scene cover");

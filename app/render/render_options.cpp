@@ -93,7 +93,8 @@ CLI::Option* add_image_options(CLI::App* cmd, RenderOptions& o) {
                   "keeps the region's place in the frame (uniform sampling only)")
       ->expected(4)
       ->delimiter(',')
-      ->type_name("X0,Y0,X1,Y1");
+      ->type_name("X0,Y0,X1,Y1")
+      ->transform(kDecimal);  // a whole-number option with a type name of its own
   cmd->add_option("--passes", o.passes,
                   "Add the first hit's passes to an .exr output, any of albedo, normal and depth "
                   "(channels albedo.R/G/B, N.X/Y/Z, Z), each the mean over the pixel's samples; "
