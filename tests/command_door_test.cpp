@@ -290,6 +290,39 @@ TEST(CommandDoor, EveryCommandsLockNameRefusesWhatRtiowNeverMakes) {
   }
 }
 
+// A lock, a temporary or a checkpoint of rtiow's is not a name any output may take: the next
+// render of that image would replace or remove it (issue 69). Refused before any work, with
+// what was there left alone.
+TEST(CommandDoor, EveryCommandRefusesRtiowsOwnNamesAsOutputs) {
+  const fs::path dir = fresh_dir();
+  make_part(dir, "part.exr");
+  const std::vector<std::string> own = {".o.png.rtiow-lock", "o.png.rtiow-checkpoint",
+                                        ".o.png.rtiow-tmp-AbCdEfGh", "x.rtiow-tmp-12345678.png"};
+  for (const std::string& name : own) {
+    write_file(dir / name, kPrecious);
+    const std::vector<std::pair<std::string, std::vector<std::string>>> commands = {
+        {"render", {"render", "-q", "--width", "24", "--spp", "2", "-o", name}},
+        {"render --summary-json",
+         {"render", "-q", "--width", "24", "--spp", "2", "-o", "r.png", "--summary-json", name}},
+        {"scene", {"scene", "cover", "-o", name}},
+        {"merge", {"merge", "part.exr", "-o", name}},
+        {"diff", {"diff", "part.exr", "part.exr", "--summary-json", name}},
+        {"bench", {"bench", "--quick", "--summary-json", name}},
+    };
+    for (const auto& [label, args] : commands) {
+      SCOPED_TRACE(label + " " + name);
+      const CommandRun r = run_in(dir, args, 30);
+      EXPECT_EQ(r.exit_code, label == "diff" ? 4 : 2) << r.stderr_text;
+      EXPECT_NE(r.stderr_text.find("is a name rtiow gives its own files"), std::string::npos)
+          << r.stderr_text;
+      EXPECT_TRUE(one_line(r.stderr_text)) << r.stderr_text;
+      EXPECT_EQ(slurp(dir / name), kPrecious);
+      EXPECT_FALSE(fs::exists(dir / "r.png")) << "rendered before it refused";
+    }
+    fs::remove(dir / name);
+  }
+}
+
 TEST(CommandDoor, EveryCommandsOutputNameIsReplacedNeverFollowedOrOpened) {
   const fs::path dir = fresh_dir();
   make_part(dir, "part.exr");

@@ -47,6 +47,12 @@ std::string lowercase_extension(const std::string& path) {
 
 }  // namespace
 
+bool is_own_file_name(const std::string& file_name) {
+  const auto ends_with = [&](std::string_view end) { return file_name.ends_with(end); };
+  return (file_name.starts_with(".") && ends_with(".rtiow-lock")) ||
+         file_name.find(".rtiow-tmp-") != std::string::npos || ends_with(".rtiow-checkpoint");
+}
+
 const ImageFormat* image_format(const std::string& path) {
   const std::string ext = lowercase_extension(path);
   for (const ImageFormat& f : kFormats) {
@@ -78,6 +84,12 @@ void check_output_path(const std::string& path, const std::vector<std::string>& 
   if (path.size() > kMaxPathBytes) {
     throw InvalidInput(name + ": the path is longer than " + std::to_string(kMaxPathBytes) +
                        " bytes");
+  }
+  if (is_own_file_name(file_name)) {
+    throw InvalidInput(name +
+                       ": is a name rtiow gives its own files (a lock, a temporary or a "
+                       "checkpoint), which a render of that image replaces or removes: choose "
+                       "another");
   }
   const fs::path parent = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   struct stat info {};

@@ -38,6 +38,11 @@ std::string image_extensions();
 void check_output_path(const std::string& path, const std::vector<std::string>& inputs,
                        const char* what = "output");
 
+// Whether a file name is one rtiow gives its own files beside an output: a lock
+// (".NAME.rtiow-lock"), a temporary ("….rtiow-tmp-…") or a checkpoint ("NAME.rtiow-checkpoint").
+// check_output_path refuses them: the next render of that image would replace or remove them.
+bool is_own_file_name(const std::string& file_name);
+
 // check_output_path, and the extension must name an image format (with extra channels
 // when `extra_channels`).
 void check_image_output(const std::string& path, const std::vector<std::string>& inputs,
