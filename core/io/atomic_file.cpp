@@ -13,13 +13,13 @@
 
 #include "core/io/file_bytes.h"
 #include "core/io/output_claim.h"
+#include "core/io/output_path.h"
 #include "core/io/removed_on_abort.h"
 #include "core/limits/error.h"
 
 namespace rtiow {
 namespace {
 
-constexpr const char* kTemporaryMark = ".rtiow-tmp-";
 constexpr std::size_t kRandomLetters = 8;
 constexpr char kAlphabet[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/io/atomic_file.h"
+#include "core/io/output_path.h"
 #include "core/limits/error.h"
 
 namespace rtiow {
@@ -69,7 +70,7 @@ bool same_directory(int a, int b) {
 
 std::string lock_name_of(const std::string& name) {
   std::string lock(1, '.');  // not `"." + ...`: GCC 12 warns falsely (-Wrestrict)
-  lock.append(name).append(".rtiow-lock");
+  lock.append(name).append(kLockSuffix);
   return lock;
 }
 

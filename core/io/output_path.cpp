@@ -49,8 +49,8 @@ std::string lowercase_extension(const std::string& path) {
 
 bool is_own_file_name(const std::string& file_name) {
   const auto ends_with = [&](std::string_view end) { return file_name.ends_with(end); };
-  return (file_name.starts_with(".") && ends_with(".rtiow-lock")) ||
-         file_name.find(".rtiow-tmp-") != std::string::npos || ends_with(".rtiow-checkpoint");
+  return (file_name.starts_with(".") && ends_with(kLockSuffix)) ||
+         file_name.find(kTemporaryMark) != std::string::npos || ends_with(kCheckpointSuffix);
 }
 
 const ImageFormat* image_format(const std::string& path) {

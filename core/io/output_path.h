@@ -38,6 +38,12 @@ std::string image_extensions();
 void check_output_path(const std::string& path, const std::vector<std::string>& inputs,
                        const char* what = "output");
 
+// The marks of the files rtiow keeps beside an output NAME: its lock ".NAME" + kLockSuffix,
+// its temporaries ".NAME" + kTemporaryMark + 8 letters, its checkpoint NAME + kCheckpointSuffix.
+inline constexpr const char* kLockSuffix = ".rtiow-lock";
+inline constexpr const char* kTemporaryMark = ".rtiow-tmp-";
+inline constexpr const char* kCheckpointSuffix = ".rtiow-checkpoint";
+
 // Whether a file name is one rtiow gives its own files beside an output: a lock
 // (".NAME.rtiow-lock"), a temporary ("….rtiow-tmp-…") or a checkpoint ("NAME.rtiow-checkpoint").
 // check_output_path refuses them: the next render of that image would replace or remove them.

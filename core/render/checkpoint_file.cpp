@@ -21,6 +21,7 @@
 #include "core/io/checksum.h"
 #include "core/io/file_bytes.h"
 #include "core/io/input_file.h"
+#include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
 #include "core/limits/setting_name.h"
@@ -376,7 +377,7 @@ void read_sums(RecordReader& in, bool fixed_records, const PixelSumsOut& sums) {
 }  // namespace
 
 std::string checkpoint_path(const std::string& output) {
-  return output + ".rtiow-checkpoint";
+  return output + kCheckpointSuffix;
 }
 
 void write_checkpoint(const std::string& path, const RenderIdentity& identity,
