@@ -18,6 +18,7 @@ volatile std::sig_atomic_t g_signal = 0;
 // A live progress line is on stderr only when it is a terminal: the messages below start on a
 // line of their own there, and add no empty line to a log.
 volatile std::sig_atomic_t g_terminal = 0;
+volatile std::sig_atomic_t g_quiet = 0;  // a helper: its parent says it
 // The standard error rtiow started with, held apart: a library may point descriptor 2 at
 // /dev/null for a while (core/io/oiio_image_backend.cpp), and rtiow's last line must not go
 // there.
@@ -76,6 +77,7 @@ void write_stderr(const char* text) {
 // Async-signal-safe: no allocation, no stdio.
 [[noreturn]] void end_at_once(int signal) {
   remove_files_now();
+  if (g_quiet) ::_exit(128 + signal);
   char number[4] = {char('0' + signal / 10 % 10), char('0' + signal % 10), 0, 0};
   const char* digits = signal < 10 ? number + 1 : number;
   write_stderr(g_terminal ? "\nrtiow: " : "rtiow: ");
@@ -91,7 +93,7 @@ void write_stderr(const char* text) {
 }
 
 void on_request(int signal) {
-  if (g_signal != 0) end_at_once(signal);
+  if (g_signal != 0 || g_quiet) end_at_once(signal);
   g_signal = signal;
   if (g_stop) g_stop->store(true);
   write_stderr(g_terminal ? "\nrtiow: stopping; a second signal ends rtiow at once\n"
@@ -146,6 +148,10 @@ void end_at_once_on_signals() {
   give_handlers_a_stack();
   install(end_at_once, is_request, nullptr);
   install(end_at_once, is_fault_to_handle, nullptr);
+}
+
+void end_quietly_on_signals() {
+  g_quiet = 1;
 }
 
 InterruptGuard::InterruptGuard(std::atomic<bool>& stop) {

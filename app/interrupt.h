@@ -21,6 +21,11 @@ namespace rtiow {
 // Installs the end-at-once handlers for the whole process (main calls it first).
 void end_at_once_on_signals();
 
+// For a helper whose parent rtiow reports the signal (bench's points): a terminal's Ctrl-C
+// reaches the whole process group, and one line a signal is the parent's. The helper still
+// removes what it was writing and ends with 128 + the signal.
+void end_quietly_on_signals();
+
 class InterruptGuard {
  public:
   // Installs the stop-first handlers; `stop` is set on the first signal. Only one guard may

@@ -168,8 +168,13 @@ void hold_standard_descriptors() {
 // What a command printed must have reached standard output: a full disk, a closed pipe
 // (`| head -1`) or a closed descriptor turn success into exit 1 with one line. (A command
 // that failed has said why already, and exits non-zero.)
-int check_standard_output(int code) {
-  if (code != 0) return code;
+// What a command printed is part of its result: lost, it is an error in one line. A command
+// that failed has said why already; diff's 1 and 2 are verdicts, not failures, which a script
+// would take as given though their text is gone: a lost verdict is diff's "could not
+// compare" (4).
+int check_standard_output(int code, bool diff) {
+  const bool verdict = diff && (code == 1 || code == 2);
+  if (code != 0 && !verdict) return code;
   errno = 0;
   const bool flushed = std::fflush(stdout) == 0;
   if (flushed && !std::ferror(stdout)) return code;
@@ -177,10 +182,18 @@ int check_standard_output(int code) {
                               ? std::strerror(errno)
                               : "a closed descriptor, a closed pipe or a full disk";
   report(("cannot write to standard output (" + why + "): what was printed is lost").c_str());
-  return 1;
+  return diff ? rtiow::kDiffCouldNotCompare : 1;
 }
 
 }  // namespace
+
+// bench's points, run in processes of their own (bench-point --helper): a Ctrl-C reaches them
+// too, and bench says what it did.
+bool is_bench_helper(int argc, char** argv) {
+  return argc > 2 && std::string_view(argv[1]) == "bench-point" &&
+         std::any_of(argv + 2, argv + argc,
+                     [](const char* a) { return std::string_view(a) == "--helper"; });
+}
 
 // The library's setting names as this command line spells its options: "--min-spp 2".
 std::string command_line_setting(std::string_view name, std::string_view value) {
@@ -193,6 +206,8 @@ std::string command_line_setting(std::string_view name, std::string_view value) 
 int main(int argc, char** argv) {
   hold_standard_descriptors();
   rtiow::spell_settings_as(command_line_setting);
+  // Quiet from the first instant, before a signal can find a helper parsing.
+  if (is_bench_helper(argc, argv)) rtiow::end_quietly_on_signals();
   // A signal ends rtiow in its own words, with no temporary left (a render stops gracefully
   // first: app/interrupt.h).
   rtiow::end_at_once_on_signals();
@@ -244,5 +259,6 @@ int main(int argc, char** argv) {
     return argc > 1 && std::string_view(argv[1]) == "diff" ? rtiow::kDiffCouldNotCompare : 2;
   }
 
-  return check_standard_output(run_parsed_command(commands, mpi));
+  return check_standard_output(run_parsed_command(commands, mpi),
+                               argc > 1 && std::string_view(argv[1]) == "diff");
 }

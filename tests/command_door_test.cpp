@@ -459,6 +459,90 @@ TEST(CommandDoor, AFaultSignalEndsARenderAsAnInternalErrorWithNothingLeft) {
 
 // Outside a render (reading parts, building a scene, writing), a signal ends the command at
 // once: in its words, on the stderr it started with, with nothing left behind.
+// rtiow `args` in `dir` with its standard output to `out`, in a process group of its own (as a
+// shell's foreground job is).
+struct GroupRun {
+  pid_t pid = -1;
+  fs::path err;
+};
+GroupRun start_in_group(const fs::path& dir, const std::vector<std::string>& args,
+                        const std::string& out) {
+  GroupRun run;
+  run.err = fs::path(RTIOW_TEST_OUTPUT_DIR) / (current_test_name() + ".group.stderr");
+  std::vector<std::string> full = {RTIOW_BINARY};
+  full.insert(full.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : full) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  run.pid = ::fork();
+  if (run.pid == 0) {
+    ::setpgid(0, 0);
+    for (const int sig : {SIGINT, SIGTERM}) std::signal(sig, SIG_DFL);
+    if (::chdir(dir.c_str()) != 0) _exit(126);
+    const int o = ::open(out.c_str(), O_WRONLY);
+    const int e = ::open(run.err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (o < 0 || e < 0) _exit(126);
+    ::dup2(o, 1), ::dup2(e, 2);
+    ::execv(argv[0], argv.data());
+    _exit(127);
+  }
+  ::setpgid(run.pid, run.pid);
+  return run;
+}
+
+int wait_for(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Whether `parent` has a child process now.
+bool has_child(pid_t parent) {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string stat = slurp(entry.path() / "stat");
+    const std::size_t close = stat.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream fields(stat.substr(close + 2));
+    std::string state;
+    long ppid = 0;
+    if (fields >> state >> ppid && ppid == parent) return true;
+  }
+  return false;
+}
+
+// Nothing lost quietly (issue 69): a verdict that cannot be printed is an error in one line,
+// not diff's FAILURE with nothing said; a Ctrl-C, which reaches bench and the point it runs in
+// a process of its own, is said once.
+TEST(CommandDoor, NothingALostVerdictOrASecondSignalLineHides) {
+  const fs::path dir = fresh_dir();
+  make_part(dir, "a.exr");
+  ASSERT_EQ(run_in(dir, {"render", "-q", "--width", "24", "--height", "16", "--spp", "2", "--seed",
+                         "2", "--part", "0/1", "-o", "b.exr"})
+                .exit_code,
+            0);
+  for (const std::string& other : {std::string("a.exr"), std::string("b.exr")}) {
+    SCOPED_TRACE(other);
+    const GroupRun diff = start_in_group(dir, {"diff", "a.exr", other}, "/dev/full");
+    EXPECT_EQ(wait_for(diff.pid), 4) << "a verdict nobody could read";
+    const std::string err = slurp(diff.err);
+    EXPECT_NE(err.find("cannot write to standard output"), std::string::npos) << err;
+    EXPECT_TRUE(one_line(err)) << err;
+  }
+
+  const GroupRun bench = start_in_group(dir, {"bench", "--quick", "--out", "b"}, "/dev/null");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!has_child(bench.pid) && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ::killpg(bench.pid, SIGINT);  // as a terminal's Ctrl-C: the whole foreground group
+  EXPECT_EQ(wait_for(bench.pid), 128 + SIGINT);
+  const std::string err = slurp(bench.err);
+  EXPECT_EQ(err.substr(err.find("rtiow: ")),
+            "rtiow: ended by signal 2 (SIGINT); nothing more was written\n")
+      << err;
+  EXPECT_FALSE(fs::exists(dir / "b")) << "the directory it made for its figures is left";
+}
+
 TEST(CommandDoor, EveryTerminatingSignalEndsOtherCommandsInTheirWordsWithNothingLeft) {
   const fs::path dir = fresh_dir();
   // Parts large enough that merging them takes a while.

@@ -89,9 +89,12 @@ TEST_F(RecordedRequestTest, WhatNoRenderRepeatsIsRefusedUnlessTheCallerGivesIt) 
     overlay_recorded(image, JobRequest{}, {}, false, reproducible);
     ADD_FAILURE() << "a time limit's budget was repeated";
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("image 'x': its adaptive budget was a time limit"),
-              std::string::npos)
-        << e.what();
+    // Its budget was the time limit, or the limit stopped it (on a loaded machine): either
+    // way where each pixel stopped depends on the clock.
+    const std::string why = e.what();
+    EXPECT_TRUE(why.find("image 'x': its adaptive budget was a time limit") != std::string::npos ||
+                why.find("image 'x': its adaptive render was stopped early") != std::string::npos)
+        << why;
   }
   JobRequest mine;
   mine.request.spp = 4;

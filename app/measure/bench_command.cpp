@@ -55,6 +55,7 @@ struct PointOptions {
   double budget = 60.0;
   std::string roulette = roulette_name(true);  // off: the book's (and the lean tracer's) paths
   std::string sampler = to_string(SamplerKind::Independent);  // the book's; sobol: render's
+  bool helper = false;  // started by bench, which says what a signal did
 };
 
 double median(std::vector<double> v) {
@@ -206,7 +207,8 @@ json run_point_in_child(const BenchOptions& o, std::uint64_t spheres, const std:
                                       "--depth",   std::to_string(o.scaling_depth),
                                       "--repeat",  std::to_string(o.repeat),
                                       "--threads", std::to_string(o.threads),
-                                      "--budget",  std::to_string(budget)};
+                                      "--budget",  std::to_string(budget),
+                                      "--helper"};
   const ChildRun run = run_child(argv);
   if (!run.ok()) {
     const std::string why = !run.started ? run.failure
@@ -440,6 +442,8 @@ std::function<int()> add_bench_command(CLI::App& app) {
                    "padded-sobol")
       ->check(CLI::IsMember(sampler_name_list()))
       ->capture_default_str();
+  point_cmd->add_flag("--helper", point->helper,
+                      "Started by rtiow bench, which reports a signal: end on one without a word");
 
   return [options, point, cmd, point_cmd] {
     if (cmd->parsed()) {
@@ -458,7 +462,7 @@ std::function<int()> add_bench_command(CLI::App& app) {
       }
       return run_bench(*options);
     }
-    if (point_cmd->parsed()) return run_point(*point);
+    if (point_cmd->parsed()) return run_point(*point);  // --helper: main read it first
     return -1;
   };
 }

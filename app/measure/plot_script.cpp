@@ -30,6 +30,12 @@ bool run_plot_script(const std::string& script, const std::string& json_text,
     std::printf("plot: skipped (%s or %s missing)\n", kPython, one_line(path.string()).c_str());
     return false;
   }
+  // The plot is optional where matplotlib is not installed; once it is, a plot that cannot be
+  // written (a full disk, a file-size limit, the helper failing) is the command's failure.
+  if (!run_child({kPython, "-c", "import matplotlib"}).ok()) {
+    std::printf("plot: skipped (python3-matplotlib is not installed)\n");
+    return false;
+  }
   try {
     write_atomically(png_path, [&](int fd, std::string& reason) {
       const ChildRun run = run_child({kPython, path.string()}, json_text, fd);
@@ -47,9 +53,8 @@ bool run_plot_script(const std::string& script, const std::string& json_text,
       return true;
     });
   } catch (const std::runtime_error& e) {
-    std::printf("plot: skipped (%s: %s; is python3-matplotlib installed?)\n",
-                one_line(path.string()).c_str(), one_line(e.what()).c_str());
-    return false;
+    throw std::runtime_error("cannot draw the plot (" + one_line(path.string()) +
+                             "): " + one_line(e.what()) + "; the figures are written");
   }
   std::printf("plot:    %s\n", one_line(png_path).c_str());
   return true;

@@ -14,7 +14,8 @@ namespace rtiow {
 
 // Runs `script` (a file name in share/rtiow/) on the figures `json_text` to draw
 // `png_path`. Without python3 or matplotlib it says so on stdout and draws nothing: the
-// figures are still in the JSON. Returns whether the plot was drawn.
+// figures are still in the JSON. Returns whether the plot was drawn; throws
+// std::runtime_error where matplotlib is there but the plot could not be drawn or written.
 bool run_plot_script(const std::string& script, const std::string& json_text,
                      const std::string& png_path);
 
