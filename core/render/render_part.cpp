@@ -327,7 +327,11 @@ void check_same_render(const std::vector<const RenderPart*>& parts) {
         p->height != reference.height || p->job_samples != reference.job_samples) {
       throw InvalidInput("merge: " + p->path + " is a share of a different render than " +
                          reference.path +
-                         " (scene, size, depth, seed, sampler, roulette or spp differ)");
+                         " (scene, size, depth, seed, sampler, replicates, roulette or spp "
+                         "differ; or one was written by an rtiow " +
+                         part_version(reference) +
+                         " from before its digest named the render's identity: render the "
+                         "parts with one rtiow)");
     }
   }
 }
