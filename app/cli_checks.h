@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <string>
 
+#include "core/limits/number_text.h"
+
 namespace rtiow {
 
 // A seed: a whole number from 0 to 2^64-1 (an unsigned option would wrap "-1", and CLI11
@@ -49,11 +51,7 @@ inline const CLI::Validator kFinitePositive(
 // A number from `least` to `most`, the bounds written as the help writes them (CLI11's own
 // Range prints "0.000000 to 0.500000" for 1e-12 to 0.5, and only its bounds).
 inline CLI::Validator from_to(double least, double most) {
-  const auto shortest = [](double v) {
-    char text[32];
-    return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
-  };
-  const std::string range = shortest(least) + " to " + shortest(most);
+  const std::string range = shortest_text(least) + " to " + shortest_text(most);
   return CLI::Validator(
       [=](std::string& text) -> std::string {
         double value = 0;

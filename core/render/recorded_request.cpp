@@ -12,6 +12,7 @@
 #include "core/io/image_file.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/limits/number_text.h"
 #include "core/limits/setting_name.h"
 #include "core/render/render_metadata.h"
 #include "core/scene_file/scene_digest.h"
@@ -20,14 +21,6 @@ namespace rtiow {
 namespace {
 
 using Recorded = std::map<std::string, std::string>;  // key (without "rtiow:") -> text
-
-// The shortest text that reads back as the same number: a float attribute (EXR keeps doubles
-// as floats) 0.05f is "0.05", the value the user typed, not 0.0500000007.
-template <typename T>
-std::string shortest(T v) {
-  char text[32];
-  return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
-}
 
 void add_json_keys(const std::string& description, Recorded& recorded) {
   const auto all = nlohmann::json::parse(description, nullptr, /*allow_exceptions=*/false);
@@ -41,7 +34,7 @@ void add_json_keys(const std::string& description, Recorded& recorded) {
     } else if (value.is_number_integer()) {
       recorded[key] = value.dump();
     } else if (value.is_number_float()) {
-      recorded[key] = shortest(value.get<double>());
+      recorded[key] = shortest_text(value.get<double>());
     }
   }
 }
@@ -59,7 +52,8 @@ Recorded recorded_keys(const ImageHeader& header) {
     if (a.name.rfind(prefix, 0) != 0) continue;
     const std::string key = a.name.substr(prefix.size());
     if (const auto* i = std::get_if<int>(&a.value)) recorded[key] = std::to_string(*i);
-    if (const auto* f = std::get_if<float>(&a.value)) recorded[key] = shortest(*f);
+    if (const auto* f = std::get_if<float>(&a.value))
+      recorded[key] = shortest_text(*f);  // EXR keeps doubles as floats
     if (const auto* s = std::get_if<std::string>(&a.value)) recorded[key] = *s;
   }
   return recorded;

@@ -5,18 +5,13 @@
 #include <variant>
 
 #include "core/limits/error.h"
+#include "core/limits/number_text.h"
 #include "core/sampling/rng.h"
 #include "core/scene_file/scene_digest.h"
 #include "core/version.h"
 
 namespace rtiow {
 namespace {
-
-// The shortest text that reads back as the same double: targets that differ in any bit differ.
-std::string shortest(double v) {
-  char text[32];
-  return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
-}
 
 std::string range(int least, int most) {
   return std::to_string(least) + " to " + std::to_string(most) + " samples";
@@ -26,10 +21,10 @@ std::string range(int least, int most) {
 
 std::string sampling_words(const SampleBudget& samples) {
   if (const auto* t = std::get_if<PixelErrorTarget>(&samples)) {
-    return "pixel error " + shortest(t->error) + ", " + range(t->least, t->most);
+    return "pixel error " + shortest_text(t->error) + ", " + range(t->least, t->most);
   }
   if (const auto* i = std::get_if<ImageErrorTarget>(&samples)) {
-    return "image error " + shortest(i->error) + ", " + range(i->least, i->most);
+    return "image error " + shortest_text(i->error) + ", " + range(i->least, i->most);
   }
   if (const auto* a = std::get_if<AdaptiveBudget>(&samples)) {
     return "adaptive, " +

@@ -12,6 +12,7 @@
 
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
+#include "core/limits/number_text.h"
 #include "core/render/render_outcome.h"
 #include "core/scene_file/scene_digest.h"
 #include "core/version.h"
@@ -19,15 +20,8 @@
 namespace rtiow {
 namespace {
 
-// The shortest text that reads back as the same double.
-std::string number(double v) {
-  char text[32];
-  const auto end = std::to_chars(text, text + sizeof text, v).ptr;
-  return std::string(text, end);
-}
-
 std::string triple(const Vec3d& v) {
-  return number(v.x) + "," + number(v.y) + "," + number(v.z);
+  return shortest_text(v.x) + "," + shortest_text(v.y) + "," + shortest_text(v.z);
 }
 
 // A camera record's settings, in the scene file's words: each a vector or a number.
@@ -91,8 +85,8 @@ std::string glass_reflectance(const Scene& scene) {
 
 std::string camera_record(const CameraSettings& c) {
   return "lookfrom " + triple(c.lookfrom) + " lookat " + triple(c.lookat) + " vup " +
-         triple(c.vup) + " vfov " + number(c.vfov_degrees) + " aperture " + number(c.aperture) +
-         " focus_distance " + number(focus_distance_of(c));
+         triple(c.vup) + " vfov " + shortest_text(c.vfov_degrees) + " aperture " +
+         shortest_text(c.aperture) + " focus_distance " + shortest_text(focus_distance_of(c));
 }
 
 CameraOverrides read_camera_record(const std::string& record, const std::string& source) {
