@@ -8,15 +8,14 @@ namespace rtiow {
 
 std::string diff_summary_json(const DiffSummary& d) {
   using json = nlohmann::ordered_json;
-  json j = summary_head("diff");
+  const bool compared = d.error.empty();
+  json j = summary_head("diff", compared ? int(d.verdict) : d.exit_code);
   j["reference"] = d.reference;
   j["tests"] = d.tests;
   j["mode"] = d.mode;
-  const bool compared = d.error.empty();
   j["width"] = compared ? json(d.width) : json();
   j["height"] = compared ? json(d.height) : json();
   j["verdict"] = compared ? to_string(d.verdict) : "could not compare";
-  j["exit_code"] = compared ? int(d.verdict) : d.exit_code;
   j["failure"] = compared ? json() : json(d.error);
   j["non_finite_pixels"] = compared ? json(d.non_finite.pixels) : json();
   j["plain"] = nullptr;

@@ -34,6 +34,7 @@
 #include "app/parse_errors.h"
 #include "app/render/render_command.h"
 #include "app/scene_command.h"
+#include "app/source_commit.h"
 #include "core/io/removed_on_abort.h"
 #include "core/limits/error.h"
 #include "core/limits/nearest_name.h"
@@ -50,6 +51,7 @@ void report(const char* what) {
 // `rtiow --version`: the version, then what was built in, a fact a line.
 std::string version_text() {
   std::string text = std::string("rtiow ") + rtiow::version();
+  text.append("\ncommit: ").append(rtiow::source_commit());
   for (const std::string& fact : rtiow::build_facts()) text.append("\n").append(fact);
   return text.append("\n").append(rtiow::mpi_build_fact());
 }

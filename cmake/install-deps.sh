@@ -20,7 +20,7 @@ case "${1:-}" in
       libgtest-dev libgmock-dev libbenchmark-dev
       clang libclang-rt-14-dev
       libopenmpi-dev openmpi-bin
-      python3-matplotlib
+      python3-matplotlib python3-jsonschema
     )
     ;;
   *)

@@ -74,6 +74,21 @@ inline CommandResult run_rtiow(const std::string& args, const std::string& direc
   return {code, slurp(out), slurp(err)};
 }
 
+// The violations of docs/summary.schema.json (the published --summary-json schema) in these
+// summaries, one line each, as Python's jsonschema finds them: empty when they hold to it.
+inline std::string summary_schema_violations(const std::vector<fs::path>& summaries) {
+  const fs::path source = RTIOW_SOURCE_DIR;
+  const fs::path report = fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + ".schema");
+  rtiow::test::Launch check;
+  check.argv = {"python3", (source / "tests/schema/check_summary.py").string(),
+                (source / "docs/summary.schema.json").string()};
+  for (const fs::path& s : summaries) check.argv.push_back(s.string());
+  check.stdout_path = report.string(), check.stderr_path = report.string();
+  const int code = rtiow::test::launch(check);
+  const std::string found = slurp(report);
+  return code == 0 ? "" : found.empty() ? "the schema check exited " + std::to_string(code) : found;
+}
+
 inline fs::path output_path(const std::string& name) {
   const fs::path p = fs::path(RTIOW_TEST_OUTPUT_DIR) / (test_name() + "-" + name);
   fs::remove(p);

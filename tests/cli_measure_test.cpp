@@ -61,6 +61,10 @@ TEST(Cli, BenchWritesFiguresAndPlot) {
   // sampler and seed of every row, the machine and build, and every run in a CSV.
   const auto bench = nlohmann::json::parse(figures);
   EXPECT_EQ(bench["context"]["rtiow"], rtiow::version());
+  const std::string version_text = run_rtiow("--version").stdout_text;
+  EXPECT_NE(version_text.find("\ncommit: " + bench["context"]["commit"].get<std::string>() + "\n"),
+            std::string::npos)
+      << version_text;
   EXPECT_EQ(bench["context"]["build"].size(), rtiow::build_facts().size());
   EXPECT_FALSE(bench["context"]["cpu"].get<std::string>().empty());
   EXPECT_EQ(bench["cover"]["sampler"], "independent");
@@ -70,6 +74,14 @@ TEST(Cli, BenchWritesFiguresAndPlot) {
     SCOPED_TRACE(what);
     EXPECT_LE(f["mrays_per_second_min"].get<double>(), f["mrays_per_second"].get<double>());
     EXPECT_LE(f["mrays_per_second"].get<double>(), f["mrays_per_second_max"].get<double>());
+    // The median absolute deviation: at most half the range, and 0 exactly for one run.
+    const double mad = f["mrays_per_second_mad"].get<double>();
+    EXPECT_GE(mad, 0.0);
+    EXPECT_LE(mad,
+              f["mrays_per_second_max"].get<double>() - f["mrays_per_second_min"].get<double>());
+    if (f["runs"] == 1) {
+      EXPECT_EQ(mad, 0.0);
+    }
     EXPECT_EQ(f["each_run"].size(), f["runs"].get<std::size_t>());
     csv_rows_expected += int(f["each_run"].size());
   };
@@ -221,7 +233,8 @@ TEST(Cli, MeasurementsWriteSummariesInTheSharedSchema) {
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const auto figures = nlohmann::json::parse(slurp(dir / "b" / "bench.json"));
   const auto bench = nlohmann::json::parse(slurp(bench_summary));
-  EXPECT_EQ(bench["schema"], 1);
+  EXPECT_EQ(summary_schema_violations({bench_summary}), "");
+  EXPECT_EQ(bench["schema"], 2);
   EXPECT_EQ(bench["command"], "bench");
   EXPECT_EQ(bench["exit_code"], 0);
   EXPECT_EQ(bench["version"], rtiow::version());
@@ -244,7 +257,9 @@ TEST(Cli, MeasurementsWriteSummariesInTheSharedSchema) {
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const auto measured = nlohmann::json::parse(slurp(dir / "a" / "accuracy.json"));
   const auto accuracy = nlohmann::json::parse(slurp(accuracy_summary));
-  EXPECT_EQ(accuracy["schema"], 1);
+  EXPECT_EQ(summary_schema_violations({accuracy_summary}), "");
+  EXPECT_EQ(accuracy["schema"], 2);
+  EXPECT_GT(accuracy["threads"].get<int>(), 0);
   EXPECT_EQ(accuracy["command"], "accuracy");
   EXPECT_EQ(accuracy["width"], 32);
   EXPECT_EQ(accuracy["reference"]["spp"], 1024);
@@ -347,7 +362,8 @@ TEST(Cli, ErrorTargetsMissedAtTheCapAreReported) {
       << timed.stderr_text;
   EXPECT_EQ(timed.stderr_text.find("at 4096 spp"), std::string::npos) << timed.stderr_text;
   const auto j = nlohmann::json::parse(slurp(summary));
-  EXPECT_EQ(j["error"]["reached"], false);
+  EXPECT_EQ(summary_schema_violations({summary}), "");
+  EXPECT_EQ(j["error"]["target"]["reached"], false);
   const double estimated = j["error"]["estimated"].get<double>();
   if (estimated == 0.0) {
     EXPECT_NE(timed.stderr_text.find("no estimate yet"), std::string::npos) << timed.stderr_text;

@@ -204,7 +204,8 @@ TEST(Cli, TheSummaryForScriptsAgreesWithTheImage) {
   auto in = OIIO::ImageInput::open(out.string());
   ASSERT_TRUE(in);
   const OIIO::ImageSpec& spec = in->spec();
-  EXPECT_EQ(j["schema"], 1);
+  EXPECT_EQ(summary_schema_violations({summary}), "");
+  EXPECT_EQ(j["schema"], 2);
   EXPECT_EQ(j["command"], "render");
   EXPECT_EQ(j["version"], std::string(spec.get_string_attribute("rtiow:version")));
   EXPECT_EQ(j["output"], out.string());
@@ -217,8 +218,17 @@ TEST(Cli, TheSummaryForScriptsAgreesWithTheImage) {
   EXPECT_EQ(j["spp"]["least"], 3);
   EXPECT_EQ(j["spp"]["most"], 3);
   EXPECT_TRUE(j["stopped"].is_null());
-  EXPECT_TRUE(j["error"].is_null());
+  EXPECT_EQ(j["seed"], 1);
+  EXPECT_EQ(j["spp"]["asked"], 3);
+  // Every render estimates its error: one Sobol sequence gives a bound, as the image records.
+  EXPECT_TRUE(j["error"]["target"].is_null());
+  EXPECT_EQ(j["error"]["estimate"], "upper bound");
+  EXPECT_EQ(j["error"]["estimate"], std::string(spec.get_string_attribute("rtiow:error_estimate")));
+  EXPECT_NEAR(j["error"]["estimated"].get<double>(),
+              spec.get_float_attribute("rtiow:estimated_image_error"), 1e-6);
   EXPECT_EQ(j["exit_code"], 0);
+  // The whole command's time, of which the sample loop is a part.
+  EXPECT_GE(j["seconds"].get<double>(), j["render_seconds"].get<double>());
   EXPECT_GT(j["threads"].get<int>(), 0);
   EXPECT_GT(j["mrays_per_second"].get<double>(), 0.0);
   // An error target: the goal asked and the estimate reached, as the image records it.
@@ -228,11 +238,13 @@ TEST(Cli, TheSummaryForScriptsAgreesWithTheImage) {
   j = nlohmann::json::parse(slurp(summary));
   in = OIIO::ImageInput::open(out.string());
   ASSERT_TRUE(in);
-  EXPECT_EQ(j["error"]["kind"], "image");
-  EXPECT_EQ(j["error"]["asked"], 0.05);
+  EXPECT_EQ(summary_schema_violations({summary}), "");
+  EXPECT_EQ(j["error"]["target"]["kind"], "image");
+  EXPECT_EQ(j["error"]["target"]["asked"], 0.05);
+  EXPECT_EQ(j["error"]["estimate"], "calibrated");
   EXPECT_NEAR(j["error"]["estimated"].get<double>(),
               in->spec().get_float_attribute("rtiow:estimated_image_error"), 1e-6);
-  EXPECT_EQ(j["error"]["reached"], j["error"]["estimated"].get<double>() <= 0.05);
+  EXPECT_EQ(j["error"]["target"]["reached"], j["error"]["estimated"].get<double>() <= 0.05);
   EXPECT_LE(j["spp"]["least"].get<int>(), j["spp"]["most"].get<int>());
   // Stopped by a signal: said, with the command's exit code and the samples the image holds.
   const fs::path stopped = output_path("stopped.exr");
@@ -245,6 +257,7 @@ TEST(Cli, TheSummaryForScriptsAgreesWithTheImage) {
   j = nlohmann::json::parse(slurp(summary));
   in = OIIO::ImageInput::open(stopped.string());
   ASSERT_TRUE(in);
+  EXPECT_EQ(summary_schema_violations({summary}), "");
   EXPECT_EQ(j["stopped"], "interrupted by a signal");
   EXPECT_EQ(j["exit_code"], 128 + SIGTERM);
   EXPECT_EQ(j["spp"]["least"], in->spec().get_int_attribute("rtiow:spp"));
@@ -272,7 +285,8 @@ TEST(Cli, TheDiffSummaryForScriptsIsTheVerdictPrinted) {
   CommandResult r =
       run_rtiow("diff " + a.string() + " " + b.string() + " --summary-json " + summary.string());
   auto j = nlohmann::json::parse(slurp(summary));
-  EXPECT_EQ(j["schema"], 1);
+  EXPECT_EQ(summary_schema_violations({summary}), "");
+  EXPECT_EQ(j["schema"], 2);
   EXPECT_EQ(j["command"], "diff");
   EXPECT_EQ(j["mode"], "noise");
   EXPECT_EQ(j["exit_code"], r.exit_code);
@@ -289,6 +303,7 @@ TEST(Cli, TheDiffSummaryForScriptsIsTheVerdictPrinted) {
   EXPECT_GT(j["plain"]["max_error"].get<double>(), 0.0);
   EXPECT_TRUE(j["plain"]["thresholds"]["hardfail"].is_null());
   EXPECT_TRUE(j["noise"].is_null());
+  EXPECT_EQ(summary_schema_violations({summary}), "");
   // No verdict (images of other sizes: 3; a file diff cannot read: 4): a summary all the same,
   // saying why (issue 70: a script found no file for these exits).
   const fs::path small = output_path("small.exr");
@@ -308,6 +323,7 @@ TEST(Cli, TheDiffSummaryForScriptsIsTheVerdictPrinted) {
         << r.stderr_text;
     EXPECT_TRUE(j["width"].is_null());
     EXPECT_TRUE(j["plain"].is_null() && j["noise"].is_null());
+    EXPECT_EQ(summary_schema_violations({summary}), "");
   }
 }
 

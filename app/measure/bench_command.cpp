@@ -20,10 +20,12 @@
 #include "app/measure/measure_summary.h"
 #include "app/measure/quick_run.h"
 #include "app/measure/trace_rate.h"
+#include "app/source_commit.h"
 #include "core/io/atomic_file.h"
 #include "core/io/output_claim.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
+#include "core/parallel/thread_count.h"
 #include "core/render/render.h"
 #include "core/render/render_request.h"
 #include "core/scene/builtin_scenes.h"
@@ -65,15 +67,16 @@ double median(std::vector<double> v) {
 }
 
 // A rate's median and spread over runs: "mrays_per_second" (the median, as every reader of
-// bench.json takes it), "_min" and "_max".
+// bench.json takes it), "_min", "_max" and "_mad", the median absolute deviation from the
+// median (Google Benchmark's and hyperfine's robust spread: one slow run moves it little).
 void put_spread(json& into, const std::string& key, const std::vector<double>& values) {
-  into[key] = median(values);
+  const double middle = median(values);
+  std::vector<double> deviations;
+  for (const double v : values) deviations.push_back(std::abs(v - middle));
+  into[key] = middle;
   into[key + "_min"] = *std::min_element(values.begin(), values.end());
   into[key + "_max"] = *std::max_element(values.begin(), values.end());
-}
-
-int all_threads(int threads) {
-  return threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  into[key + "_mad"] = median(deviations);
 }
 
 // A figure of /proc/self/status in MB ("VmRSS:", "VmHWM:"), 0 where absent.
@@ -132,7 +135,7 @@ json measure_render(const Scene& scene, RenderSettings settings, int repeat, dou
     spent += r.build_seconds + r.render_seconds;
   }
   json figures = {{"accelerator", to_string(settings.accel)},
-                  {"threads", all_threads(settings.threads)},
+                  {"threads", thread_count(settings.threads)},
                   {"sampler", to_string(settings.sampler)},
                   {"seed", settings.seed},
                   {"warmup_seconds", warmup_seconds},
@@ -156,7 +159,8 @@ json measure_trace(const Scene& scene, const std::vector<Ray>& rays, int threads
     rates.push_back(measure_trace_rate(scene, rays, threads, callback).mrays_per_second());
     each.push_back({{"mrays_per_second", rates.back()}});
   }
-  json figures = {{"rays", rays.size()}, {"threads", all_threads(threads)}, {"runs", rates.size()}};
+  json figures = {
+      {"rays", rays.size()}, {"threads", thread_count(threads)}, {"runs", rates.size()}};
   put_spread(figures, "mrays_per_second", rates);
   figures["each_run"] = std::move(each);
   return figures;
@@ -319,6 +323,7 @@ json bench_context() {
   return {{"cpu", cpu},
           {"logical_cores", std::thread::hardware_concurrency()},
           {"rtiow", version()},
+          {"commit", source_commit()},
           {"build", build_facts()}};
 }
 
@@ -331,7 +336,7 @@ int run_bench(const BenchOptions& o) {
            o.threads, AccelKind::Embree);
 
   json results = {{"context", bench_context()},
-                  {"threads", all_threads(o.threads)},
+                  {"threads", thread_count(o.threads)},
                   {"repeat", o.repeat},
                   {"scaling_settings",
                    {{"width", o.scaling_width},
@@ -339,7 +344,6 @@ int run_bench(const BenchOptions& o) {
                     {"spp", o.scaling_spp},
                     {"depth", o.scaling_depth},
                     {"naive_budget_seconds", o.naive_budget}}}};
-  const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<OutputClaim> summary = claim_summary(o.summary_json);
   const FigureOutputs outputs(o.out_dir, {"bench.json", "bench.csv", "bench.png"}, "--out");
   const std::string json_path = outputs.path("bench.json");
@@ -353,9 +357,9 @@ int run_bench(const BenchOptions& o) {
   std::printf("runs:    %s\n", one_line(outputs.path("bench.csv")).c_str());
   const bool plotted = plot_bench(results, outputs.path("bench.png"));
   if (summary) {
-    const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - start;
-    const MeasureFiles files{json_path, "", plotted ? outputs.path("bench.png") : ""};
-    write_text_atomically(o.summary_json, bench_summary_json(results, files, seconds.count()));
+    const MeasureFiles files{json_path, outputs.path("bench.csv"),
+                             plotted ? outputs.path("bench.png") : ""};
+    write_text_atomically(o.summary_json, bench_summary_json(results, files));
   }
   return 0;
 }

@@ -39,12 +39,9 @@ ordered warnings_of(const std::vector<std::string>& candidates) {
   return out;
 }
 
-// What every measurement's summary starts with: the shared head, its exit code, its time and
-// the files it wrote.
-ordered measurement_head(const char* command, const MeasureFiles& files, double seconds) {
-  ordered j = summary_head(command);
-  j["exit_code"] = 0;
-  j["seconds"] = seconds;
+// What every measurement's summary starts with: the shared head and the files it wrote.
+ordered measurement_head(const char* command, const MeasureFiles& files) {
+  ordered j = summary_head(command, 0);
   j["files"] = files_of(files);
   return j;
 }
@@ -55,8 +52,8 @@ double rate(const json& results, const char* run) {
 
 }  // namespace
 
-std::string bench_summary_json(const json& results, const MeasureFiles& files, double seconds) {
-  ordered j = measurement_head("bench", files, seconds);
+std::string bench_summary_json(const json& results, const MeasureFiles& files) {
+  ordered j = measurement_head("bench", files);
   j["threads"] = results["threads"];
   j["repeat"] = results["repeat"];
   const json& c = results["cover"];
@@ -88,8 +85,8 @@ std::string bench_summary_json(const json& results, const MeasureFiles& files, d
   return summary_text(j);
 }
 
-std::string accuracy_summary_json(const json& results, const MeasureFiles& files, double seconds) {
-  ordered j = measurement_head("accuracy", files, seconds);
+std::string accuracy_summary_json(const json& results, const MeasureFiles& files) {
+  ordered j = measurement_head("accuracy", files);
   j["scene"] = results["scene"];
   j["width"] = results["width"];
   j["height"] = results["height"];
@@ -112,7 +109,7 @@ std::string accuracy_summary_json(const json& results, const MeasureFiles& files
                            {"asked", row["parameter"]},
                            {"delivered", at(row, "/achieved_error")},
                            {"rmse", row["rmse"]},
-                           {"seconds", row["seconds"]}});
+                           {"render_seconds", row["seconds"]}});
   }
   j["image_error"] = image_error;
   std::vector<double> depths, times;

@@ -24,12 +24,10 @@ struct MeasureFiles {
   std::string plot;
 };
 
-// `results` is what bench.json holds; `seconds` the command's wall time.
-std::string bench_summary_json(const nlohmann::json& results, const MeasureFiles& files,
-                               double seconds);
+// `results` is what bench.json holds.
+std::string bench_summary_json(const nlohmann::json& results, const MeasureFiles& files);
 
 // `results` is what accuracy.json holds.
-std::string accuracy_summary_json(const nlohmann::json& results, const MeasureFiles& files,
-                                  double seconds);
+std::string accuracy_summary_json(const nlohmann::json& results, const MeasureFiles& files);
 
 }  // namespace rtiow

@@ -28,6 +28,7 @@
 #include "core/render/render_job.h"
 #include "core/render/render_metadata.h"
 #include "core/render/render_outcome.h"
+#include "core/render/render_statistics.h"
 #include "core/render/sample_share.h"
 #include "core/scene/builtin_scenes.h"
 
@@ -53,19 +54,20 @@ RenderResult render_with_progress(const RenderOptions& o, const RenderJob& job,
 }
 
 // Under MPI, rank 0 adds every rank's exact sums into the image of one process with all the
-// samples; false on the other ranks, which are done. The spreads travel only where the file
-// holds them (the statistics channels; a part is refused under mpirun): they triple what a
-// rank sends.
-bool gather_ranks(const MpiSession& mpi, RenderJob& job, RenderResult& result,
-                  bool stats_channels) {
+// samples; false on the other ranks, which are done. The spreads travel too (they triple what
+// a rank sends, once, at the end): the image's error estimate needs them, and the file is the
+// single process's, byte for byte.
+bool gather_ranks(const MpiSession& mpi, RenderJob& job, RenderResult& result) {
   const std::uint64_t done = mpi.reduce_sum(std::uint64_t(result.samples_completed));
   result.rays_traced = mpi.reduce_sum(result.rays_traced);
   result.render_seconds = mpi.reduce_max(result.render_seconds);
-  if (!stats_channels) result.sums.spreads.clear();
   mpi.reduce_sums(result.sums);
   if (mpi.rank() != 0) return false;
   result.stopped = done < job.samples_asked;
   complete_from_shares(done, result);
+  // The estimate of the whole image, from every rank's sums (each rank's was of its share).
+  const ImageErrorEstimate estimate = estimate_image_error(result, job.settings.threads);
+  result.estimated_image_error = estimate.error, result.error_estimate = estimate.kind;
   restore_whole_job(job.samples_asked, job.settings);
   return true;
 }
@@ -76,14 +78,16 @@ void print_summary(const RenderJob& job, const RenderResult& result, const MpiSe
   const double rays = double(result.rays_traced);
   const int threads = thread_count(s.threads);  // the threads used (core/parallel/thread_count.h)
   const std::string ranks = mpi.distributed() ? std::to_string(mpi.size()) + " ranks x " : "";
+  const RenderOutcome outcome = describe_outcome(s, result);
   std::fprintf(stderr,
-               "rendered %s %dx%d%s, %s, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
+               "rendered %s %dx%d%s, %s%s, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
                "%.2f Mrays/s -> %s\n",
                job.scene.name.c_str(), s.width, s.height,
-               s.crop ? (" crop " + to_string(*s.crop)).c_str() : "",
-               describe_outcome(s, result).samples.c_str(), s.max_depth, to_string(s.accel).c_str(),
-               ranks.c_str(), threads, threads == 1 ? "" : "s", result.render_seconds, rays,
-               rays / result.render_seconds * 1e-6, one_line(job.output).c_str());
+               s.crop ? (" crop " + to_string(*s.crop)).c_str() : "", outcome.samples.c_str(),
+               outcome.error.empty() ? "" : (", " + outcome.error).c_str(), s.max_depth,
+               to_string(s.accel).c_str(), ranks.c_str(), threads, threads == 1 ? "" : "s",
+               result.render_seconds, rays, rays / result.render_seconds * 1e-6,
+               one_line(job.output).c_str());
 }
 
 // The checkpoint of this process's render: none under mpirun (each rank holds only its
@@ -272,7 +276,7 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   } catch (const Cancelled&) {  // a signal while the BVH was built: any checkpoint is as it was
     return interrupted_outside_render(kBeforeRender);
   }
-  if (mpi.distributed() && !gather_ranks(mpi, job, result, request.stats_channels)) return 0;
+  if (mpi.distributed() && !gather_ranks(mpi, job, result)) return 0;
   if (display) display->show(result.film, pass_channels(result, job.settings.passes));
   write_or_keep(o, request, job, result, checkpoint.get());
   if (checkpoint) checkpoint->warn_where_kept();  // even when quiet

@@ -12,6 +12,37 @@
 namespace rtiow {
 namespace {
 
+// The sampler and the replicates the parts record.
+std::pair<std::string, std::int64_t> recorded_sampling(const MergedRender& merged) {
+  std::string sampler;
+  std::int64_t replicates = kReplicates;  // an older rtiow's parts always had two
+  for (const auto& [key, value] : merged.metadata) {
+    if (const auto* text = std::get_if<std::string>(&value); key == metadata_key::kSampler && text)
+      sampler = *text;
+    if (const auto* n = std::get_if<std::int64_t>(&value); key == metadata_key::kReplicates && n)
+      replicates = *n;
+  }
+  return {sampler, replicates};
+}
+
+// The merged image's estimated error, recorded as one render's is: from the sums of every
+// part (a part records its share's alone, which the merged metadata leaves out). None where
+// the parts keep no spreads or record no sampler this rtiow knows.
+void record_error_estimate(const MergedRender& merged, Metadata& metadata) {
+  if (!merged.sums.keeps(SumGroup::Odd)) return;
+  const auto [sampler, replicates] = recorded_sampling(merged);
+  RenderResult whole;
+  try {
+    whole = merged_result(merged, parse_sampler(sampler), replicates > 1 ? kReplicates : 1);
+  } catch (const InvalidInput&) {
+    return;
+  }
+  const ImageErrorEstimate estimate = estimate_image_error(whole, 0);
+  if (estimate.kind == ErrorEstimate::None) return;
+  metadata.emplace_back(metadata_key::kEstimatedImageError, estimate.error);
+  metadata.emplace_back(metadata_key::kErrorEstimate, to_string(estimate.kind));
+}
+
 // The spp and variance channels of the merged render, as one render's --stats-channels.
 std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
                                             const std::vector<RenderPart>& parts) {
@@ -24,14 +55,7 @@ std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
       }
     }
   }
-  std::string sampler;
-  std::int64_t replicates = kReplicates;  // an older rtiow's parts always had two
-  for (const auto& [key, value] : merged.metadata) {
-    if (const auto* text = std::get_if<std::string>(&value); key == metadata_key::kSampler && text)
-      sampler = *text;
-    if (const auto* n = std::get_if<std::int64_t>(&value); key == metadata_key::kReplicates && n)
-      replicates = *n;
-  }
+  const auto [sampler, replicates] = recorded_sampling(merged);
   if (replicates != 1 && replicates != kReplicates) {
     throw InvalidInput(setting("stats_channels") + ": the parts record " +
                        std::string(kMetadataPrefix) + metadata_key::kReplicates + " " +
@@ -66,7 +90,8 @@ MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeR
     for (ExtraChannel& c : pass_channels(whole, merged.passes))
       image.channels.push_back(std::move(c));
   }
-  image.metadata = std::move(merged.metadata);
+  image.metadata = merged.metadata;
+  record_error_estimate(merged, image.metadata);
   image.placement = recorded_placement(image.metadata, "part " + quote_value(paths.front()),
                                        merged.film.width(), merged.film.height());
   if (!image.passes_kept) {

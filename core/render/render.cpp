@@ -22,6 +22,7 @@
 #include "core/render/adaptive_sampling.h"
 #include "core/render/render_loop.h"
 #include "core/render/render_state.h"
+#include "core/render/render_statistics.h"
 #include "core/render/stopwatch.h"
 #include "core/render/uniform_passes.h"
 #include "core/scene/camera.h"
@@ -183,6 +184,16 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   result.first_sample = settings.first_sample;
   result.sampler = settings.sampler;
   result.replicates = replicates(settings);
+  if (std::holds_alternative<ImageErrorTarget>(settings.samples)) {
+    // Its last judgement's estimate, the one its stopping rule took.
+    const bool judged =
+        result.estimated_image_error > 0.0 || !(result.stopped || result.time_limited);
+    result.error_estimate = judged ? ErrorEstimate::Calibrated : ErrorEstimate::None;
+  } else {
+    const ImageErrorEstimate estimate = estimate_image_error(result, settings.threads);
+    result.estimated_image_error = estimate.error;
+    result.error_estimate = estimate.kind;
+  }
   return result;
 }
 

@@ -14,6 +14,7 @@
 #include "core/limits/input_limits.h"
 #include "core/limits/number_text.h"
 #include "core/render/render_outcome.h"
+#include "core/render/render_statistics.h"
 #include "core/scene_file/scene_digest.h"
 #include "core/version.h"
 
@@ -171,6 +172,12 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
                     });
   } else {
     metadata.emplace_back(key::kSpp, std::int64_t(r.samples_completed));
+  }
+  if (r.error_estimate != ErrorEstimate::None) {
+    if (!std::holds_alternative<ImageErrorTarget>(s.samples)) {
+      metadata.emplace_back(key::kEstimatedImageError, r.estimated_image_error);
+    }
+    metadata.emplace_back(key::kErrorEstimate, to_string(r.error_estimate));
   }
   if (const auto* fixed = std::get_if<FixedSamples>(&s.samples); fixed && r.stopped) {
     metadata.emplace_back(key::kSppRequested, std::int64_t(fixed->per_pixel));

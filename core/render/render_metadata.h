@@ -25,9 +25,11 @@ inline constexpr const char* kSpp = "spp";                     // uniform sampli
 inline constexpr const char* kSppRequested = "spp_requested";  // when stopped early
 inline constexpr const char* kTargetError = "target_error";    // adaptive sampling...
 inline constexpr const char* kImageError = "image_error";
-// ...where they ended: the image's estimated relative RMS error, the pixels left above the
-// target at the cap.
+// ...where they ended: the image's estimated relative RMS error (every render's that has one),
+// the pixels left above the target at the cap.
 inline constexpr const char* kEstimatedImageError = "estimated_image_error";
+// What that estimate is worth: "calibrated", or "upper bound" (one Sobol sequence).
+inline constexpr const char* kErrorEstimate = "error_estimate";
 inline constexpr const char* kPixelsAboveTarget = "pixels_above_target";
 inline constexpr const char* kAdaptive = "adaptive";  // the budget mode: "sqrt(variance/cost)"
 inline constexpr const char* kSppMin = "spp_min";     // the fewest a pixel took

@@ -73,6 +73,8 @@ RenderOutcome describe_outcome(const RenderSettings& s, const RenderResult& r) {
     std::snprintf(text, sizeof text, "%d spp", r.samples_completed);
   }
   o.samples = text;
+  // --image-error's goal already holds its estimate.
+  if (!std::holds_alternative<ImageErrorTarget>(s.samples)) o.error = describe_error_estimate(r);
   if (r.stopped) {
     o.asked = what_was_asked(s.samples);
     o.stopped = r.stop_cause.empty() ? "stopped on request" : r.stop_cause;

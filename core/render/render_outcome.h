@@ -16,6 +16,9 @@ struct RenderOutcome {
   // "64 spp", or "16-920 spp (mean 46.1, target error 0.05)" with the goal and whether it was
   // reached.
   std::string samples;
+  // The image's estimated error: "image error 0.0123 estimated", "image error at most 0.0456"
+  // (one Sobol sequence), or empty where there is none or the goal above already says it.
+  std::string error;
   // What was asked, where a signal stopped the render: " (of 100 asked)", " (of a budget of 64
   // spp)", " (of a cap of 1024 spp)"; empty with only a time limit.
   std::string asked;

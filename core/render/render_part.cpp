@@ -383,7 +383,8 @@ Metadata merged_metadata(const RenderPart& reference, const std::vector<const Re
     } else if (key == field::kRaysTraced) {
       merged.emplace_back(key, rays);
     } else if (key != field::kRenderSeconds && key != field::kSppRequested &&
-               key != field::kStopped) {
+               key != field::kStopped && key != field::kEstimatedImageError &&
+               key != field::kErrorEstimate) {  // a part's estimate is of its share alone
       merged.emplace_back(key, value);
     }
   }

@@ -149,6 +149,13 @@ struct RenderProgress {
   std::atomic<std::uint64_t> rays_at_judgement{0};
 };
 
+// What a render's estimated image error is worth. Calibrated: from two independent replicates
+// (or independent samples), within a few percent of the true error (docs/accuracy.md). Upper
+// bound: one Sobol sequence, whose sample variance overstates its mean's error (1.3-1.6x on the
+// cover at 16-64 spp, more at higher counts, where the sequence gains more). None: a pixel with
+// fewer than two samples, or an error target's render stopped before its first judgement.
+enum class ErrorEstimate { None, Calibrated, UpperBound };
+
 struct RenderResult {
   Film film;  // the mean of the samples completed
   // Their exact sums, for merging shares of a render: the colour's, the spreads for each
@@ -168,9 +175,11 @@ struct RenderResult {
   double build_seconds = 0.0;   // accelerator construction
   double render_seconds = 0.0;  // the sample loop
   std::uint64_t rays_traced = 0;
-  // Where the error-driven modes ended: --image-error's estimated relative RMS error of the
-  // image, and --target-error's count of pixels still above the target at the --spp cap.
+  // The image's estimated relative RMS error (offset 0.01), what it is worth, and
+  // --target-error's count of pixels still above the target at the --spp cap. --image-error's
+  // is its last judgement's; every other render's is taken from its finished sums.
   double estimated_image_error = 0.0;
+  ErrorEstimate error_estimate = ErrorEstimate::None;
   std::uint64_t pixels_above_target = 0;
 };
 

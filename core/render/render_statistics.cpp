@@ -1,5 +1,8 @@
 #include "core/render/render_statistics.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
@@ -10,6 +13,8 @@
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
 #include "core/limits/setting_name.h"
+#include "core/parallel/thread_count.h"
+#include "core/render/sample_allocation.h"
 
 namespace rtiow {
 
@@ -88,6 +93,49 @@ double mean_samples(const RenderResult& result) {
   double total = 0;
   for (const std::uint32_t n : result.pixel_samples) total += n;
   return result.pixel_samples.empty() ? 0.0 : total / double(result.pixel_samples.size());
+}
+
+ImageErrorEstimate estimate_image_error(const RenderResult& result, int threads) {
+  const std::vector<std::uint32_t>& samples = result.pixel_samples;
+  if (samples.empty() || result.sums.spreads.size() != samples.size() ||
+      *std::min_element(samples.begin(), samples.end()) < 2) {
+    return {};  // no spreads kept (a distributed render without variances), or too few samples
+  }
+  // What drew the samples, in the terms the pooled estimate takes.
+  RenderSettings drawn;
+  drawn.width = result.film.width();
+  drawn.height = result.film.height();
+  drawn.first_sample = result.first_sample;
+  drawn.sampler = result.sampler;
+  drawn.estimate_error = result.replicates >= kReplicates;
+  const double rel_mse = with_threads(threads, [&] {
+    return estimated_rel_mse(neighbourhood_relative_variance(drawn, result.sums, samples), samples);
+  });
+  if (!std::isfinite(rel_mse)) return {};
+  return {std::sqrt(rel_mse),
+          replicates(drawn) >= kReplicates ? ErrorEstimate::Calibrated : ErrorEstimate::UpperBound};
+}
+
+std::string to_string(ErrorEstimate kind) {
+  switch (kind) {
+    case ErrorEstimate::Calibrated:
+      return "calibrated";
+    case ErrorEstimate::UpperBound:
+      return "upper bound";
+    case ErrorEstimate::None:
+      break;
+  }
+  return "none";
+}
+
+std::string describe_error_estimate(const RenderResult& result) {
+  char text[64] = "";
+  if (result.error_estimate == ErrorEstimate::Calibrated) {
+    std::snprintf(text, sizeof text, "image error %.3g estimated", result.estimated_image_error);
+  } else if (result.error_estimate == ErrorEstimate::UpperBound) {
+    std::snprintf(text, sizeof text, "image error at most %.3g", result.estimated_image_error);
+  }
+  return text;
 }
 
 }  // namespace rtiow

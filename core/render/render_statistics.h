@@ -29,6 +29,23 @@ std::vector<ExtraChannel> image_channels(const RenderResult& result, bool statis
 
 double mean_samples(const RenderResult& result);
 
+struct ImageErrorEstimate {
+  double error = 0.0;  // relative RMS, offset 0.01
+  ErrorEstimate kind = ErrorEstimate::None;
+};
+
+// The image's estimated error from the result's sums, as --image-error judges a round (each
+// pixel's relative variance pooled from its neighbours, the mean over the image): calibrated
+// with two replicates, an upper bound from one Sobol sequence's sample variance, none where a
+// pixel has fewer than two samples. `threads` as RenderSettings::threads.
+ImageErrorEstimate estimate_image_error(const RenderResult& result, int threads);
+
+// "calibrated", "upper bound" or "none".
+std::string to_string(ErrorEstimate kind);
+
+// "image error 0.0123 estimated", "image error at most 0.0456", or "" when there is none.
+std::string describe_error_estimate(const RenderResult& result);
+
 // Reads back an image written with statistics_channels(): the film and each pixel's variance
 // of the mean. Nothing when the file is missing or unreadable, not `width` x `height`, lacks
 // the channels, or does not carry every (key, value) of `required` as string metadata.

@@ -73,7 +73,8 @@ std::vector<double> neighbourhood_median(int width, int height, const std::vecto
 }
 
 std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
-                                                    const PixelAccumulators& pixels,
+                                                    const PixelSums& sums,
+                                                    const std::vector<std::uint32_t>& samples,
                                                     Pooling pooling) {
   // Each pixel's relative variance per sample scaled to what its mean really has: the
   // sampler's gain over independent samples, from its neighbours' replicates. One sequence has
@@ -81,17 +82,21 @@ std::vector<double> neighbourhood_relative_variance(const RenderSettings& settin
   // a budget only weighs pixels against one another).
   const std::vector<Vec3d> ratio =
       replicates(settings) > 1
-          ? replicate_ratios(settings.width, settings.height, pixels.sums.color,
-                             pixels.sums.spreads, pixels.samples, settings.first_sample,
-                             settings.sampler)
-          : std::vector<Vec3d>(pixels.samples.size(), Vec3d(1, 1, 1));
-  std::vector<double> own(pixels.samples.size());
+          ? replicate_ratios(settings.width, settings.height, sums.color, sums.spreads, samples,
+                             settings.first_sample, settings.sampler)
+          : std::vector<Vec3d>(samples.size(), Vec3d(1, 1, 1));
+  std::vector<double> own(samples.size());
   for_each_pixel(own.size(), [&](std::size_t p) {
-    own[p] = relative_sample_variance(pixels.sums.color[p], pixels.sums.spreads[p],
-                                      pixels.samples[p], ratio[p]);
+    own[p] = relative_sample_variance(sums.color[p], sums.spreads[p], samples[p], ratio[p]);
   });
   return pooling == Pooling::Median ? neighbourhood_median(settings.width, settings.height, own)
                                     : neighbourhood_mean(settings.width, settings.height, own);
+}
+
+std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
+                                                    const PixelAccumulators& pixels,
+                                                    Pooling pooling) {
+  return neighbourhood_relative_variance(settings, pixels.sums, pixels.samples, pooling);
 }
 
 PixelEstimates pooled_estimates(const RenderSettings& settings, const PixelAccumulators& pixels) {

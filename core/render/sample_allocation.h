@@ -35,6 +35,11 @@ enum class Pooling { Mean, Median };
 std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
                                                     const PixelAccumulators& pixels,
                                                     Pooling pooling = Pooling::Mean);
+// The same from a film's sums and counts (a finished render's, a merge's).
+std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
+                                                    const PixelSums& sums,
+                                                    const std::vector<std::uint32_t>& samples,
+                                                    Pooling pooling = Pooling::Mean);
 
 struct PixelEstimates {
   std::vector<double> variance;  // relative variance per sample, pooled
