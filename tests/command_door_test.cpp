@@ -40,11 +40,20 @@ struct CommandRun {
   std::string stderr_text;
 };
 
+// The user rtiow runs as: the test's, or another (nobody, through util-linux's setpriv: the
+// tests run as root, whom no directory's sticky bit or file mode stops).
+enum class RunAs { Tester, Nobody };
+
 // rtiow with an argument vector (no shell here either: the names hold quotes), in `cwd`.
-CommandRun run_in(const fs::path& cwd, const std::vector<std::string>& args, double seconds = 120) {
+CommandRun run_in(const fs::path& cwd, const std::vector<std::string>& args, double seconds = 120,
+                  RunAs as = RunAs::Tester) {
   const fs::path err = fs::path(RTIOW_TEST_OUTPUT_DIR) / (current_test_name() + ".door.stderr");
   std::vector<std::string> full = {"/usr/bin/timeout", "-s", "KILL", std::to_string(int(seconds)),
                                    RTIOW_BINARY};
+  if (as == RunAs::Nobody) {
+    full.insert(full.begin(),
+                {"/usr/bin/setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"});
+  }
   full.insert(full.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (std::string& a : full) argv.push_back(a.data());
@@ -287,6 +296,55 @@ TEST(CommandDoor, EveryCommandsLockNameRefusesWhatRtiowNeverMakes) {
       EXPECT_EQ(slurp(dir / "precious.txt"), kPrecious);
       fs::remove(lock);
     }
+  }
+}
+
+// An output rtiow could not replace at the end is refused before the work (issue 69): another
+// user's file in a sticky directory (rename over it fails there, as /tmp's users find), and a
+// file that is read-only to the user. Run as nobody, since root passes both.
+TEST(CommandDoor, EveryCommandRefusesBeforeTheWorkAnOutputItCouldNotReplace) {
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root, to run rtiow as another user";
+  const fs::path dir = fresh_dir();
+  make_part(dir, "part.exr");
+  ASSERT_EQ(::chmod(dir.c_str(), 01777), 0);  // world-writable and sticky, like /tmp
+  ASSERT_EQ(::chmod((dir / "part.exr").c_str(), 0644), 0);
+  std::vector<Writer> cases = writers();
+  cases.push_back({"render's summary",
+                   "r.json",
+                   {"render", "-q", "--width", "24", "--height", "16", "--spp", "2", "-o",
+                    "mine.png", "--summary-json", "r.json"}});
+  for (const Writer& w : cases) {
+    SCOPED_TRACE(w.label);
+    // The tester's file (root's): another user's, to nobody.
+    write_file(dir / w.name, kPrecious);
+    CommandRun r = run_in(dir, w.args, 30, RunAs::Nobody);
+    EXPECT_EQ(r.exit_code, refusal_code(w)) << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find("another user's file in a sticky directory"), std::string::npos)
+        << r.stderr_text;
+    EXPECT_TRUE(one_line(r.stderr_text)) << r.stderr_text;
+    EXPECT_EQ(slurp(dir / w.name), kPrecious);
+    EXPECT_EQ(leftovers(dir), "");
+    EXPECT_FALSE(fs::exists(dir / "mine.png")) << "rendered before it was refused";
+    fs::remove(dir / w.name);
+    // Nobody's own file, read-only: refused too, and kept.
+    write_file(dir / w.name, kPrecious);
+    ASSERT_EQ(::chown((dir / w.name).c_str(), 65534, 65534), 0);
+    ASSERT_EQ(::chmod((dir / w.name).c_str(), 0444), 0);
+    r = run_in(dir, w.args, 30, RunAs::Nobody);
+    EXPECT_EQ(r.exit_code, refusal_code(w)) << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find("is read-only to you"), std::string::npos) << r.stderr_text;
+    EXPECT_EQ(slurp(dir / w.name), kPrecious);
+    EXPECT_FALSE(fs::exists(dir / "mine.png"));
+    fs::remove(dir / w.name);
+    // Its own writable file: replaced, as always.
+    write_file(dir / w.name, kPrecious);
+    ASSERT_EQ(::chown((dir / w.name).c_str(), 65534, 65534), 0);
+    r = run_in(dir, w.args, 60, RunAs::Nobody);
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    EXPECT_NE(slurp(dir / w.name), kPrecious);
+    EXPECT_EQ(leftovers(dir), "");
+    fs::remove(dir / w.name);
+    fs::remove(dir / "mine.png");
   }
 }
 

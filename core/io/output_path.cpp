@@ -100,10 +100,27 @@ void check_output_path(const std::string& path, const std::vector<std::string>& 
     throw InvalidInput(name + ": directory " + quote_value(parent.string()) +
                        " is not writable: " + std::strerror(errno));
   }
+  const struct stat directory = info;
+  // In a sticky directory (/tmp and its like) only the owner of a name, or of the directory,
+  // may rename over it or remove it: found here, not after the work.
+  struct stat entry {};
+  const uid_t me = ::geteuid();
+  if ((directory.st_mode & S_ISVTX) && me != 0 && directory.st_uid != me &&
+      ::lstat(path.c_str(), &entry) == 0 && entry.st_uid != me) {
+    throw InvalidInput(name +
+                       ": is another user's file in a sticky directory (like /tmp), which "
+                       "only its owner can replace: choose another name");
+  }
   if (::stat(path.c_str(), &info) == 0) {
     if (S_ISDIR(info.st_mode)) throw InvalidInput(name + ": is a directory");
     if (!S_ISREG(info.st_mode)) {
       throw InvalidInput(name + ": is not a regular file (a device, FIFO or socket)");
+    }
+    // Replaced by rename, which would succeed over a read-only file: its mode says to keep it.
+    if ((info.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(path.c_str(), W_OK) != 0) {
+      throw InvalidInput(name +
+                         ": is read-only to you: rtiow does not replace it (make it "
+                         "writable, or choose another name)");
     }
   }
   for (const std::string& input : inputs) {

@@ -1,9 +1,10 @@
 #pragma once
 // Output paths are input too. Before any work, an output must be a path rtiow can write
 // without losing anything: not empty, in an existing writable directory, not a directory
-// or a device itself, not one of the command's input files (compared as files, not as
-// strings), and, for images, one of the formats rtiow writes. Nothing here touches the
-// file system beyond looking.
+// or a device itself, not read-only to the user, not another user's file in a sticky
+// directory (where the final rename would fail), not one of the command's input files
+// (compared as files, not as strings), and, for images, one of the formats rtiow writes.
+// Nothing here touches the file system beyond looking.
 
 #include <string>
 #include <vector>
