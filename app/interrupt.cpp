@@ -19,6 +19,9 @@ volatile std::sig_atomic_t g_signal = 0;
 // line of their own there, and add no empty line to a log.
 volatile std::sig_atomic_t g_terminal = 0;
 volatile std::sig_atomic_t g_quiet = 0;  // a helper: its parent says it
+// Inside a FinalWrite: a second request waits in g_deferred for its end.
+volatile std::sig_atomic_t g_final_write = 0;
+volatile std::sig_atomic_t g_deferred = 0;
 // The standard error rtiow started with, held apart: a library may point descriptor 2 at
 // /dev/null for a while (core/io/oiio_image_backend.cpp), and rtiow's last line must not go
 // there.
@@ -93,6 +96,14 @@ void write_stderr(const char* text) {
 }
 
 void on_request(int signal) {
+  if (g_signal != 0 && g_final_write && !g_quiet) {
+    if (g_deferred == 0) {
+      g_deferred = signal;
+      write_stderr(g_terminal ? "\nrtiow: finishing the write first; then rtiow ends\n"
+                              : "rtiow: finishing the write first; then rtiow ends\n");
+    }
+    return;
+  }
   if (g_signal != 0 || g_quiet) end_at_once(signal);
   g_signal = signal;
   if (g_stop) g_stop->store(true);
@@ -167,6 +178,15 @@ InterruptGuard::~InterruptGuard() {
   }
   set_cancellation_flag(nullptr);
   g_stop = nullptr;
+}
+
+FinalWrite::FinalWrite() {
+  g_final_write = 1;
+}
+
+FinalWrite::~FinalWrite() {
+  g_final_write = 0;
+  if (g_deferred != 0) end_at_once(int(g_deferred));
 }
 
 int InterruptGuard::signal_received() {

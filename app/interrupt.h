@@ -42,6 +42,18 @@ class InterruptGuard {
   struct sigaction previous_[NSIG] {};
 };
 
+// While one lives, the end-at-once of a second request to end waits for its end: the final
+// write of a render (the image renamed into place, then the checkpoint it finishes removed)
+// leaves either the state before it or the state after it, never a finished image beside a
+// checkpoint that says less (issue 69). A fault still ends at once.
+class FinalWrite {
+ public:
+  FinalWrite();
+  ~FinalWrite();  // ends rtiow, in its words, if a second signal came meanwhile
+  FinalWrite(const FinalWrite&) = delete;
+  FinalWrite& operator=(const FinalWrite&) = delete;
+};
+
 // Whether `signal` is one rtiow ends on in its own words (for the tests: every signal whose
 // default action is to end the process, but SIGKILL, SIGSTOP, SIGPIPE and SIGXFSZ).
 bool ends_in_rtiow_words(int signal);

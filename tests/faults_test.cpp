@@ -262,6 +262,83 @@ TEST(Checkpoint, EachSignalAtRandomMomentsResumesToTheSameFile) {
   std::printf("%d of %d signals ended a running render\n", ended_by_signal, trial);
 }
 
+// Two signals during the final write (issue 69): the second waits for the image and the
+// removal of the checkpoint it finishes, so what is left is the finished render and nothing that
+// contradicts it. An EXR of 2000x1333 takes long enough to write (about 0.15 s here) that
+// both land inside it, 30 ms apart (closer, the kernel may deliver them as one).
+TEST(Checkpoint, TwoSignalsDuringTheFinalWriteLeaveTheFinishedImageAndNoCheckpoint) {
+  const fs::path dir = fresh_dir();
+  const std::vector<std::string> request = {"render",         "--scene",      "cover", "--width",
+                                            "2000",           "--spp",        "1",     "-q",
+                                            "--reproducible", "--checkpoint", "0.3"};
+  const fs::path reference = dir / "reference.exr";
+  ASSERT_EQ(run_rtiow(with(request, {"-o", reference.string()})).exit_code, 0);
+  int inside = 0;
+  for (int trial = 0; trial < 3; ++trial) {
+    const std::string name = "twice" + std::to_string(trial) + ".exr";
+    BackgroundRender r(with(request, {"-o", (dir / name).string()}));
+    ASSERT_TRUE(r.wait_until_rendering());
+    std::string image_temp = ".";
+    image_temp.append(name).append(".rtiow-tmp-");
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline && !has_file_starting(dir, image_temp)) {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    r.signal(SIGINT);
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    r.signal(SIGINT);
+    const int code = r.wait(60.0);
+    const std::string err = r.stderr_text();
+    EXPECT_EQ(code, 128 + SIGINT) << err;
+    inside += err.find("finishing the write first") != std::string::npos;
+    // Either state is whole: the finished image without its checkpoint, or the render kept.
+    const bool finished = fs::exists(dir / name) && slurp(dir / name) == slurp(reference);
+    EXPECT_NE(finished, fs::exists(dir / (name + ".rtiow-checkpoint")))
+        << "trial " << trial << ": " << err;
+    EXPECT_FALSE(has_file_starting(dir, "." + name)) << "a temporary or lock left: " << err;
+  }
+  EXPECT_GE(inside, 1) << "no second signal landed inside a final write";
+}
+
+// A render stopped short never replaces an image that was there before it (issue 69): its
+// samples go to the checkpoint (and --resume finishes the new image), or, without one, beside
+// the old image as NAME.partial.EXT; a render that made the file itself replaces its own.
+TEST(Checkpoint, AStoppedRenderLeavesTheImageThatWasThereAsItWas) {
+  const fs::path dir = fresh_dir();
+  const fs::path out = dir / "kept.png";
+  const std::vector<std::string> finished = {"render", "--width",        "120", "--spp",     "8",
+                                             "-q",     "--reproducible", "-o",  out.string()};
+  ASSERT_EQ(run_rtiow(finished).exit_code, 0);
+  const std::string before = slurp(out);
+  const std::vector<std::string> longer = {"render", "--width",        "120", "--spp",     "200000",
+                                           "-q",     "--reproducible", "-o",  out.string()};
+  for (const bool with_checkpoint : {true, false}) {
+    SCOPED_TRACE(with_checkpoint ? "with a checkpoint" : "--checkpoint 0");
+    BackgroundRender r(with(longer, {"--checkpoint", with_checkpoint ? "60" : "0"}));
+    ASSERT_TRUE(r.wait_until_rendering());
+    std::this_thread::sleep_for(std::chrono::milliseconds(400));
+    r.signal(SIGINT);
+    ASSERT_EQ(r.wait(60.0), 128 + SIGINT) << r.stderr_text();
+    const std::string err = r.stderr_text();
+    EXPECT_EQ(slurp(out), before) << "a finished image replaced by less: " << err;
+    EXPECT_NE(err.find("which this render did not finish, is left as it was"), std::string::npos)
+        << err;
+    const fs::path partial = dir / "kept.partial.png";
+    EXPECT_EQ(fs::exists(partial), !with_checkpoint) << err;
+    EXPECT_EQ(fs::exists(dir / "kept.png.rtiow-checkpoint"), with_checkpoint) << err;
+    fs::remove(partial);
+    fs::remove(dir / "kept.png.rtiow-checkpoint");
+  }
+  // Its own preview replaced the file already: the stopped image goes there, as before.
+  BackgroundRender previewed(with(longer, {"--checkpoint", "0", "--preview", "0.1"}));
+  ASSERT_TRUE(previewed.wait_until_rendering());
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));
+  previewed.signal(SIGINT);
+  ASSERT_EQ(previewed.wait(60.0), 128 + SIGINT) << previewed.stderr_text();
+  EXPECT_NE(slurp(out), before);
+  EXPECT_FALSE(fs::exists(dir / "kept.partial.png"));
+}
+
 TEST(Checkpoint, FinishedRenderRefinesToTheFileOfTheLargerCount) {
   const fs::path dir = fresh_dir();
   const std::vector<std::string> base = {"render", "--scene",        "cover", "--width",

@@ -189,17 +189,31 @@ struct ClaimedOutputs {
   std::optional<OutputClaim> summary_json;  // --summary-json
 };
 
-// "rtiow: interrupted: wrote 37 spp (of 100 asked) to cover.png; the render is kept in ..."
+// "rtiow: interrupted: wrote 37 spp (of 100 asked) to cover.png; the render is kept in ...",
+// or, where `left_alone` names a file that was there before this render, "... kept in
+// 'cover.png.rtiow-checkpoint' (...); 'cover.png', which this render did not finish, is left as
+// it was" (`only_in_checkpoint`), or "wrote ... to cover.partial.png; 'cover.png' ... ".
 int report_interrupted(const RenderJob& job, const RenderResult& result,
-                       const CheckpointSession* checkpoint) {
+                       const CheckpointSession* checkpoint, const std::string& left_alone,
+                       bool only_in_checkpoint) {
   const RenderOutcome outcome = describe_outcome(job.settings, result);
-  const std::string kept = checkpoint && checkpoint->holds_the_render()
-                               ? "; the render is kept in " +
-                                     quote_value(checkpoint->kept_at(), kWholePath) + " (" +
-                                     checkpoint->how_to_continue() + " to continue it)"
-                               : "";
-  std::fprintf(stderr, "rtiow: interrupted: wrote %s%s to %s%s\n", outcome.samples.c_str(),
-               outcome.asked.c_str(), one_line(job.output).c_str(), kept.c_str());
+  const std::string continued = checkpoint && checkpoint->holds_the_render()
+                                    ? quote_value(checkpoint->kept_at(), kWholePath) + " (" +
+                                          checkpoint->how_to_continue() + " to continue it)"
+                                    : "";
+  const std::string untouched = left_alone.empty()
+                                    ? ""
+                                    : "; " + quote_value(left_alone, kWholePath) +
+                                          ", which this render did not finish, is left as it was";
+  if (only_in_checkpoint) {
+    std::fprintf(stderr, "rtiow: interrupted: %s%s kept in %s%s\n", outcome.samples.c_str(),
+                 outcome.asked.c_str(), continued.c_str(), untouched.c_str());
+  } else {
+    std::fprintf(stderr, "rtiow: interrupted: wrote %s%s to %s%s%s\n", outcome.samples.c_str(),
+                 outcome.asked.c_str(), one_line(job.output).c_str(),
+                 continued.empty() ? "" : ("; the render is kept in " + continued).c_str(),
+                 untouched.c_str());
+  }
   return 128 + InterruptGuard::signal_received();
 }
 
@@ -239,6 +253,12 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   const std::optional<DisplayAddress> display_address =
       o.display.empty() ? std::nullopt : std::optional(parse_display_address(o.display));
   if (mpi.rank() == 0) note_long_request(job);
+  // Whether the output holds a file already, before anything of this run writes it: a render
+  // stopped short never replaces it (issue 69).
+  std::error_code absent;
+  const bool output_was_there =
+      mpi.rank() == 0 &&
+      std::filesystem::exists(std::filesystem::symlink_status(job.output, absent));
   // Rank 0 writes the output (and, alone, keeps a checkpoint).
   const std::unique_ptr<ClaimedOutputs> claimed =
       mpi.rank() == 0 ? std::make_unique<ClaimedOutputs>(job.output, o.summary_json, o.quiet)
@@ -278,17 +298,35 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
   }
   if (mpi.distributed() && !gather_ranks(mpi, job, result)) return 0;
   if (display) display->show(result.film, pass_channels(result, job.settings.passes));
-  write_or_keep(o, request, job, result, checkpoint.get());
+  // A stopped render leaves a file that was there before it (and that no preview of its own
+  // replaced) as it was: its samples are in the checkpoint, or else in a file beside it.
+  const std::string asked_output = job.output;
+  const bool keep_what_was_there = result.stopped && output_was_there && !preview.wrote_output();
+  const bool kept_in_checkpoint =
+      keep_what_was_there && checkpoint && checkpoint->holds_the_render();
+  std::optional<OutputClaim> partial;
+  if (keep_what_was_there && !kept_in_checkpoint) {
+    job.output = partial_output_path(asked_output);
+    check_output_path(job.output, {asked_output});
+    partial.emplace(job.output);
+  }
+  if (!kept_in_checkpoint) {
+    const FinalWrite final_write;  // a second signal waits for the image and its checkpoint
+    write_or_keep(o, request, job, result, checkpoint.get());
+  }
   if (checkpoint) checkpoint->warn_where_kept();  // even when quiet
   int code = 0;
   if (result.stopped) {
-    code = report_interrupted(job, result, checkpoint.get());
+    code =
+        report_interrupted(job, result, checkpoint.get(),
+                           keep_what_was_there ? asked_output : std::string(), kept_in_checkpoint);
   } else {
     if (!o.quiet) print_summary(job, result, mpi);
     code = interrupted_outside_render("after the render ended; the image is complete");
   }
   if (!o.summary_json.empty()) {
-    write_text_atomically(o.summary_json, render_summary_json(job, result, mpi.size(), code));
+    write_text_atomically(o.summary_json,
+                          render_summary_json(job, result, mpi.size(), code, !kept_in_checkpoint));
   }
   return code;
 }

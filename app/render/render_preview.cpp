@@ -53,6 +53,7 @@ void RenderPreview::write(const RenderState& state) {
                                                     " s; the render goes on");
   try {
     write_image(job_.output, so_far.film, metadata, passes, frame_placement(s));
+    wrote_output_ = true;
   } catch (const std::exception& e) {
     if (!warned_) {
       std::fprintf(stderr, "rtiow: warning: no preview: %s; the render goes on\n",

@@ -28,11 +28,15 @@ class RenderPreview {
   // Replaces the output with `state`'s image, and shows it.
   void write(const RenderState& state);
 
+  // Whether a preview has replaced the output: what was there before is gone already.
+  bool wrote_output() const { return wrote_output_; }
+
  private:
   const RenderJob& job_;
   bool to_file_;
   TevDisplay* display_;
   bool warned_ = false;
+  bool wrote_output_ = false;
 };
 
 }  // namespace rtiow

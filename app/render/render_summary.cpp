@@ -11,13 +11,13 @@
 namespace rtiow {
 
 std::string render_summary_json(const RenderJob& job, const RenderResult& result, int ranks,
-                                int exit_code) {
+                                int exit_code, bool image_written) {
   using json = nlohmann::ordered_json;
   const RenderSettings& s = job.settings;
   const RenderOutcome outcome = describe_outcome(s, result);
   const double seconds = result.render_seconds;
   json j = summary_head("render", exit_code);
-  j["output"] = job.output;
+  j["output"] = image_written ? json(job.output) : json();
   j["scene"] = job.scene.name;
   j["width"] = s.width;
   j["height"] = s.height;

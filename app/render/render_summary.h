@@ -12,7 +12,9 @@
 namespace rtiow {
 
 // The summary as JSON text. `ranks` is 1 outside mpirun; `exit_code` is the command's.
+// `image_written`: false where a stopped render left the output as it was, its samples kept
+// in the checkpoint alone ("output" is then null).
 std::string render_summary_json(const RenderJob& job, const RenderResult& result, int ranks,
-                                int exit_code);
+                                int exit_code, bool image_written = true);
 
 }  // namespace rtiow

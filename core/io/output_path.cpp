@@ -145,6 +145,13 @@ void check_image_output(const std::string& path, const std::vector<std::string>&
   }
 }
 
+std::string partial_output_path(const std::string& output) {
+  fs::path p(output);
+  const std::string extension = p.extension().string();
+  p.replace_filename(p.stem().string() + ".partial" + extension);
+  return p.string();
+}
+
 std::string safe_file_stem(const std::string& scene_name) {
   constexpr std::size_t kMaxStem = 64;
   std::string stem;

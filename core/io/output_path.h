@@ -50,6 +50,10 @@ inline constexpr const char* kCheckpointSuffix = ".rtiow-checkpoint";
 // check_output_path refuses them: the next render of that image would replace or remove them.
 bool is_own_file_name(const std::string& file_name);
 
+// Where a render stopped short writes its image when the output holds a file it did not
+// write: beside it, "cover.png" -> "cover.partial.png" (the extension kept, for the format).
+std::string partial_output_path(const std::string& output);
+
 // check_output_path, and the extension must name an image format (with extra channels
 // when `extra_channels`).
 void check_image_output(const std::string& path, const std::vector<std::string>& inputs,
