@@ -548,10 +548,27 @@ std::vector<Case> part_cases() {
        merge({"huge-header.exr"})},
       {"DiffHeaderClaimsHugeSize",
        4,  // diff's "could not compare" (2 is its FAILURE)
-       "more than a file of",
+       "more than a png file of",
        {"diff", "huge-header.png", "part0.exr"}},
-      {"LikeHeaderClaimsHugeSize", 2, "more than a file of",
+      {"LikeHeaderClaimsHugeSize", 2, "more than a png file of",
        render({"--like", "huge-header.png", "-o", "again.png"})},
+      // Bounded by what the format can decode from the bytes present (issue 69): deflate's
+      // 1032 to 1 for a PNG; a raw PNM's pixels all there; a PNM header found in its first
+      // bytes (the image library read all of a 'P6' and 200 MB of zeros looking for one).
+      {"DiffPngBeyondDeflate",
+       4,
+       "more than a png file of 200",
+       {"diff", "beyond-deflate.png", "part0.exr"}},
+      {"DiffRawPnmShortOfItsPixels",
+       4,
+       "but the file holds",
+       {"diff", "short.ppm", "part0.exr"},
+       {{"short.ppm", "P6\n5000 5000\n255\n" + std::string(100000, '\0')}}},
+      {"LikePnmWithoutHeader",
+       2,
+       "PNM header holds no width",
+       render({"--like", "noheader.ppm", "-o", "again.png"}),
+       {{"noheader.ppm", "P6\n" + std::string(1 << 20, '\0')}}},
       // A file that is no image is refused from its first bytes, whatever its size (1 GiB of
       // zeros took minutes, as every image reader tried it).
       {"DiffZeros", 4, "is not an image rtiow reads", {"diff", "zeros.png", "part0.exr"}},

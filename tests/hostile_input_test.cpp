@@ -112,17 +112,21 @@ std::string png_chunk(const std::string& type, const std::string& data) {
 
 // A valid PNG header (8-bit RGB, checksums right) that says width x height, with one tiny
 // stored deflate block of pixel data.
-std::string png_claiming(std::uint32_t width, std::uint32_t height) {
+// A PNG whose header claims `width` x `height`, `padding` bytes of comment making the file
+// larger (a 10000x10000 claim in 200 KB was read: its 286 MiB were under 2048 times the file).
+std::string png_claiming(std::uint32_t width, std::uint32_t height, std::size_t padding = 0) {
   const std::string header =
       big_endian(width) + big_endian(height) + std::string("\x08\x02\0\0\0", 5);
   const std::string deflate("\x78\x01\x01\x01\x00\xfe\xff\x00\x00\x01\x00\x01", 12);
-  return std::string("\x89PNG\r\n\x1a\n", 8) + png_chunk("IHDR", header) +
+  const std::string comment =
+      padding > 0 ? png_chunk("tEXt", std::string("Comment\0", 8) + std::string(padding, 'x')) : "";
+  return std::string("\x89PNG\r\n\x1a\n", 8) + png_chunk("IHDR", header) + comment +
          png_chunk("IDAT", deflate) + png_chunk("IEND", "");
 }
 
 fs::path fixtures() {
   // Named by version: a build tree keeps the fixtures of an older suite under another name.
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-5";
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-6";
   if (fs::exists(dir / "complete")) return dir;
   const fs::path work =
       fs::path(RTIOW_TEST_OUTPUT_DIR) / ("hostile-fixtures." + std::to_string(getpid()));
@@ -207,6 +211,7 @@ fs::path fixtures() {
   // sums) and a 30000x30000 PNG, each a few KB.
   write_file(work / "huge-header.exr", with_box(with_box(part, "dataWindow"), "displayWindow"));
   write_file(work / "huge-header.png", png_claiming(30000, 30000));
+  write_file(work / "beyond-deflate.png", png_claiming(10000, 10000, 200000));
   write_file(work / "complete", "");
   std::error_code ignored;
   fs::rename(work, dir, ignored);  // another process may have won: its files are the same
@@ -225,7 +230,7 @@ fs::path make_users_directory(const Case& c) {
   fs::create_directories(dir / "bench-dir-clash" / "bench.json");  // where bench writes a file
   const fs::path fixture = fixtures();
   for (const auto& entry : fs::directory_iterator(fixture)) {
-    if (entry.path().extension() == ".exr" || entry.path().filename() == "huge-header.png")
+    if (entry.path().extension() == ".exr" || entry.path().extension() == ".png")
       fs::copy_file(entry.path(), dir / entry.path().filename());
   }
   write_file(dir / "scene.json", kScene);

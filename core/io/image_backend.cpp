@@ -15,6 +15,7 @@
 #include <string>
 #include <system_error>
 
+#include "core/io/image_expansion.h"
 #include "core/io/image_file.h"
 #include "core/io/image_signature.h"
 #include "core/io/input_file.h"
@@ -154,7 +155,7 @@ std::string in_words_of(std::string reason, const std::string& library_name,
        at = reason.find(library_name, at + path.size())) {
     reason.replace(at, library_name.size(), path);
   }
-  return reason;
+  return reason.empty() ? "the image library gives no reason" : reason;
 }
 
 // A reader that holds the file it reads open (the library reopened it by its descriptor's
@@ -195,7 +196,8 @@ std::uint64_t bytes_of(PixelType type) {
 }
 
 // Why the header's declared size is not an image rtiow reads from a file of `file_bytes`, or "".
-std::string why_not_readable(const ImageHeader& header, std::uint64_t file_bytes) {
+std::string why_not_readable(const ImageHeader& header, std::uint64_t file_bytes,
+                             const std::string& format) {
   const auto size = std::to_string(header.width) + "x" + std::to_string(header.height);
   if (header.width < 1 || header.height < 1 || header.width > limits::kMaxImageSide ||
       header.height > limits::kMaxImageSide) {
@@ -216,13 +218,13 @@ std::string why_not_readable(const ImageHeader& header, std::uint64_t file_bytes
   std::uint64_t pixel_bytes = 0;
   for (const PixelType type : header.channel_types) pixel_bytes += bytes_of(type);
   const std::uint64_t declared = pixels * pixel_bytes;
-  const std::uint64_t holdable =
-      std::max(limits::kImageBytesAlwaysRead, file_bytes * limits::kMaxImageExpansion);
+  const std::uint64_t expansion = max_expansion(format, header.string_attribute("compression"));
+  const std::uint64_t holdable = std::max(limits::kImageBytesAlwaysRead, file_bytes * expansion);
   if (declared > holdable) {
     return "its header says " + size + " with " + std::to_string(channels) + " channels (" +
-           std::to_string(declared >> 20) + " MiB of pixels), more than a file of " +
-           std::to_string(file_bytes) + " bytes can hold (at most " +
-           std::to_string(limits::kMaxImageExpansion) + " times its size)";
+           std::to_string(declared >> 20) + " MiB of pixels), more than a " + format + " file of " +
+           std::to_string(file_bytes) + " bytes can hold (at most " + std::to_string(expansion) +
+           " times its size, its format's best compression)";
   }
   return {};
 }
@@ -257,6 +259,10 @@ std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std
     throw InvalidInput(name + ": is not an image rtiow reads: its first bytes are no " +
                        readable_image_formats() + " signature");
   }
+  if (format == "pnm") {  // its header checked here: the library reads on until it finds one
+    const std::string why = why_not_a_pnm_image(file.first_bytes(kPnmHeaderBytes), file.size());
+    if (!why.empty()) throw InvalidInput(name + ": " + why);
+  }
   const std::string library_name = file.name_for_library();
   std::string reason;
   require_spare_descriptors(name);
@@ -265,7 +271,7 @@ std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std
     throw InvalidInput(name +
                        ": cannot read: " + one_line(in_words_of(reason, library_name, path), 200));
   }
-  const std::string why = why_not_readable(in->header(), file.size());
+  const std::string why = why_not_readable(in->header(), file.size(), format);
   if (!why.empty()) throw InvalidInput(name + ": " + why);
   return std::make_unique<CheckedImageReader>(std::move(file), path, std::move(in));
 }

@@ -35,7 +35,8 @@ void preload_image_backend();
 // checked first like any input (core/io/input_file.h, at most `max_bytes`, of `kind`), its
 // format recognised from its first bytes (core/io/image_signature.h) before any image reader
 // sees it, then its header read and its declared size checked against rtiow's image limits
-// and against what the file's size can hold (limits::kMaxImageExpansion), before any pixel
+// and against what the file's size can hold in its format (core/io/image_expansion.h; a
+// PNM header is read by rtiow itself first), before any pixel
 // is allocated. Throws InvalidInput "<name>: <reason>" in one line.
 std::unique_ptr<ImageReader> open_input_image(const std::string& path, const std::string& name,
                                               std::uint64_t max_bytes, const char* what,

@@ -50,13 +50,9 @@ inline constexpr std::size_t kMaxJsonStringBytes = 4096;
 inline constexpr std::uint64_t kMaxPartFileBytes = std::uint64_t(64) << 30;
 
 // Images read (parts, diff's inputs, --like, a cached reference): their header is checked
-// before any pixel is allocated. Compression bounds how many pixels a file of a given size can
-// hold: deflate (PNG, EXR's ZIP, TIFF) expands at most 1032 to 1, run-length and wavelet codes
-// less; so a header that declares more than 2048 times its file's bytes of pixels is a
-// crafted one (a 3.6 KB PNG that says 30000x30000), refused rather than allocated. Below
-// 64 MiB of pixels any header is read: that much is cheap, and a flat image of that size may
-// compress further.
-inline constexpr std::uint64_t kMaxImageExpansion = 2048;
+// before any pixel is allocated, against what a file of its size and format can hold
+// (core/io/image_expansion.h: each format's best compression). Below 64 MiB of pixels any
+// header is read: that much is cheap, and a flat image of that size may compress further.
 inline constexpr std::uint64_t kImageBytesAlwaysRead = std::uint64_t(64) << 20;
 // A part file holds 3 + 36 channels, and 28 more with passes (core/render/render_part.h); no
 // image rtiow reads more.
