@@ -471,6 +471,22 @@ TEST(Cli, AccuracyRefusesAnUnusableCacheBeforeRendering) {
   EXPECT_EQ(r.stderr_text.find("rendering the reference"), std::string::npos) << r.stderr_text;
   EXPECT_EQ(r.stderr_text.find("filesystem error"), std::string::npos) << r.stderr_text;
   EXPECT_FALSE(fs::exists(dir / "accuracy.json"));
+  // The default cache, under an unusable HOME: named as the default, not as an option the user
+  // never gave.
+  const CommandResult by_default = run_rtiow(
+      "accuracy --width 16 --reference-spp 256 --max-spp 64 --fixed-spp 4 --depths 1 "
+      "--repeat 1 --out " +
+          dir.string(),
+      "", {"HOME=/proc/rtiow-no-such-home", "XDG_CACHE_HOME="});
+  EXPECT_EQ(by_default.exit_code, 2) << by_default.stderr_text;
+  EXPECT_NE(by_default.stderr_text.find(
+                "rtiow: error: the default reference cache '/proc/rtiow-no-such-home/.cache/rtiow' "
+                "cannot keep the reference: "),
+            std::string::npos)
+      << by_default.stderr_text;
+  EXPECT_NE(by_default.stderr_text.find("give --cache-dir DIR"), std::string::npos);
+  EXPECT_EQ(by_default.stderr_text.find("rendering the reference"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "accuracy.json"));
 }
 
 TEST(Cli, SphereFieldScenesRenderAndRefuseBadCounts) {

@@ -115,7 +115,7 @@ int run_accuracy(const AccuracyOptions& o) {
   RenderSettings reference_settings = base;
   reference_settings.seed = kReferenceSeed;
   const Reference reference =
-      load_or_render_reference(scene, reference_settings, cache_dir, o.quiet);
+      load_or_render_reference(scene, reference_settings, cache_dir, o.quiet, !o.cache_dir.empty());
   if (!o.quiet && reference.reused) {
     std::fprintf(stderr, "accuracy: reusing the reference %s\n", reference.path.c_str());
   }

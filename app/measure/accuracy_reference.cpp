@@ -38,7 +38,7 @@ std::string reference_key(const Scene& scene, const RenderSettings& settings) {
 }  // namespace
 
 Reference load_or_render_reference(const Scene& scene, const RenderSettings& settings,
-                                   const std::string& cache_dir, bool quiet) {
+                                   const std::string& cache_dir, bool quiet, bool cache_dir_given) {
   const std::string key = reference_key(scene, settings);
   Reference reference;
   reference.path = (fs::path(cache_dir) / ("reference-" + key + ".exr")).string();
@@ -55,8 +55,14 @@ Reference load_or_render_reference(const Scene& scene, const RenderSettings& set
   fs::create_directories(cache_dir, error);
   if (error || ::access(cache_dir.c_str(), W_OK | X_OK) != 0) {
     const int why = error ? error.value() : errno;
-    throw InvalidInput("--cache-dir " + quote_value(cache_dir) +
-                       ": cannot keep the reference there: " + system_error_text(why));
+    // Named as the user gave it: an option, or the default they never typed.
+    if (cache_dir_given) {
+      throw InvalidInput("--cache-dir " + quote_value(cache_dir) +
+                         ": cannot keep the reference there: " + system_error_text(why));
+    }
+    throw InvalidInput("the default reference cache " + quote_value(cache_dir) +
+                       " cannot keep the reference: " + system_error_text(why) +
+                       " (give --cache-dir DIR to keep it elsewhere)");
   }
   if (!quiet) {
     std::fprintf(stderr, "accuracy: rendering the reference (%dx%d, %d spp) into %s\n",

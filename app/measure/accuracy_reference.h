@@ -20,7 +20,9 @@ struct Reference {
 
 // Reads `<cache_dir>/reference-<digest>-<spp>spp.exr` if it matches (scene, settings),
 // otherwise renders it (with a progress line unless `quiet`) and writes it there.
+// `cache_dir_given`: the user named it (--cache-dir), rather than taking the default; a
+// directory that cannot be made is said in their words.
 Reference load_or_render_reference(const Scene& scene, const RenderSettings& settings,
-                                   const std::string& cache_dir, bool quiet);
+                                   const std::string& cache_dir, bool quiet, bool cache_dir_given);
 
 }  // namespace rtiow
