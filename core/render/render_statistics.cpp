@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <new>
 #include <stdexcept>
 
 #include "core/film/replicate_variance.h"
@@ -108,9 +109,15 @@ ImageErrorEstimate estimate_image_error(const RenderResult& result, int threads)
   drawn.first_sample = result.first_sample;
   drawn.sampler = result.sampler;
   drawn.estimate_error = result.replicates >= kReplicates;
-  const double rel_mse = with_threads(threads, [&] {
-    return estimated_rel_mse(neighbourhood_relative_variance(drawn, result.sums, samples), samples);
-  });
+  double rel_mse = 0;
+  try {
+    rel_mse = with_threads(threads, [&] {
+      return estimated_rel_mse(neighbourhood_relative_variance(drawn, result.sums, samples),
+                               samples);
+    });
+  } catch (const std::bad_alloc&) {
+    return {};  // the pooled variances do not fit beside the render: no estimate, nothing lost
+  }
   if (!std::isfinite(rel_mse)) return {};
   return {std::sqrt(rel_mse),
           replicates(drawn) >= kReplicates ? ErrorEstimate::Calibrated : ErrorEstimate::UpperBound};
