@@ -296,6 +296,33 @@ TEST(FileSafety, AFinishedRenderLeavesOnlyWhatWasAskedFor) {
   EXPECT_LT(bytes, std::uintmax_t(32 * 18 * 60 + 1024)) << bytes << " bytes for 576 pixels";
 }
 
+// The output's directory swapped for a link to another mid-render (issue 69): every write and
+// the finished render's removal of its checkpoint go through the directory the claim holds
+// open, so the image and the removal land where the render began, and a file of the same name
+// in the other directory is left alone.
+TEST(FileSafety, ADirectorySwappedMidRenderChangesNothingElsewhere) {
+  const fs::path dir = fresh_dir();
+  const fs::path began = dir / "began", moved = dir / "moved", other = dir / "other";
+  fs::create_directories(began);
+  fs::create_directories(other);
+  write_file(other / "o.png.rtiow-checkpoint", kPrecious);
+  BackgroundRender r({"render", "-q", "--width", "160", "--spp", "400", "--checkpoint", "0.05",
+                      "-o", (began / "o.png").string()});
+  ASSERT_TRUE(r.wait_until_rendering());
+  // Its checkpoint is there (a periodic save), then the directory goes and a link takes it.
+  for (int i = 0; i < 2000 && !fs::exists(began / "o.png.rtiow-checkpoint"); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(fs::exists(began / "o.png.rtiow-checkpoint")) << "no periodic save seen";
+  fs::rename(began, moved);
+  fs::create_directory_symlink("other", began);
+  ASSERT_EQ(r.wait(120.0), 0) << r.stderr_text();
+  EXPECT_EQ(slurp(other / "o.png.rtiow-checkpoint"), kPrecious) << "removed another's file";
+  EXPECT_FALSE(fs::exists(other / "o.png")) << "written through the link";
+  EXPECT_TRUE(fs::exists(moved / "o.png")) << "the image not where the render began";
+  EXPECT_FALSE(fs::exists(moved / "o.png.rtiow-checkpoint")) << "its own checkpoint left";
+}
+
 // ---- Output from libraries is rtiow's or absent; threads above the cores are used.
 
 TEST(FileSafety, MoreThreadsThanCoresPrintNothingWhenQuiet) {

@@ -1,5 +1,6 @@
 #include "app/render/checkpoint_session.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <filesystem>
 
 #include "core/io/atomic_file.h"
+#include "core/io/output_claim.h"
 #include "core/limits/error.h"
 
 namespace rtiow {
@@ -24,9 +26,19 @@ std::string samples_done(const CheckpointSummary& summary) {
   return (least == most ? most : least + "-" + most) + " spp done";
 }
 
-// Removes `path` if it is a file or a link (never a directory's contents).
+// Removes `path` if it is a file or a link (never a directory's contents), through the
+// directory its claim holds open where it has one: a directory renamed or swapped for a link
+// since the claim then loses nothing of another place's (issue 69).
 void remove_file(const std::string& path) {
   struct stat info {};
+  if (const OutputClaim* claim = OutputClaim::find(path)) {
+    const int dir = claim->directory();
+    const char* name = claim->name().c_str();
+    if (::fstatat(dir, name, &info, AT_SYMLINK_NOFOLLOW) == 0 && !S_ISDIR(info.st_mode)) {
+      ::unlinkat(dir, name, 0);
+    }
+    return;
+  }
   if (::lstat(path.c_str(), &info) == 0 && !S_ISDIR(info.st_mode)) ::unlink(path.c_str());
 }
 
