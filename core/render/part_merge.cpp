@@ -1,5 +1,6 @@
 #include "core/render/part_merge.h"
 
+#include <new>
 #include <utility>
 
 #include "core/limits/error.h"
@@ -36,6 +37,8 @@ void record_error_estimate(const MergedRender& merged, Metadata& metadata) {
     whole = merged_result(merged, parse_sampler(sampler), replicates > 1 ? kReplicates : 1);
   } catch (const InvalidInput&) {
     return;
+  } catch (const std::bad_alloc&) {
+    return;  // a copy of the sums does not fit beside them: no estimate, the merge goes on
   }
   const ImageErrorEstimate estimate = estimate_image_error(whole, 0);
   if (estimate.kind == ErrorEstimate::None) return;
