@@ -100,7 +100,7 @@ ImageErrorEstimate estimate_image_error(const RenderResult& result, int threads)
   const std::vector<std::uint32_t>& samples = result.pixel_samples;
   if (samples.empty() || result.sums.spreads.size() != samples.size() ||
       *std::min_element(samples.begin(), samples.end()) < 2) {
-    return {};  // no spreads kept (a distributed render without variances), or too few samples
+    return {};  // no spreads kept (parts of an older rtiow), or a pixel with too few samples
   }
   // What drew the samples, in the terms the pooled estimate takes.
   RenderSettings drawn;
