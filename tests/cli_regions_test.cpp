@@ -33,10 +33,13 @@
 #include "app/progress_status.h"
 #include "core/rtiow.h"
 #include "tests/cli_helpers.h"
+#include "tests/fake_viewer.h"
 
 namespace {
 
 using namespace rtiow::test::cli;
+using rtiow::test::bound_loopback_socket;
+using rtiow::test::FakeTev;
 
 // The region X0,Y0,X1,Y1 of an image of `width` floats a pixel (RGB).
 std::vector<float> region_of(const std::vector<float>& rgb, int width, int x0, int y0, int x1,
@@ -227,58 +230,6 @@ TEST(Cli, PassesAreWrittenBesideTheImageAndCombineLikeIt) {
       << r.stderr_text;
   EXPECT_FALSE(fs::exists(at("passes.png")) || fs::exists(at("typo.exr")));
 }
-
-// The viewer's end of --display: a tev that accepts one connection on 127.0.0.1 and keeps
-// every byte it is sent, until the sender closes (or a minute passes).
-// A TCP socket bound to a free port of 127.0.0.1, listening when `listen` is asked; 0 for the
-// port when that fails.
-int bound_loopback_socket(bool listen, int& port) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t length = sizeof address;
-  const bool bound = ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0 &&
-                     (!listen || ::listen(fd, 1) == 0) &&
-                     ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) == 0;
-  port = bound ? ntohs(address.sin_port) : 0;
-  return fd;
-}
-
-class FakeTev {
- public:
-  FakeTev() {
-    listening_ = bound_loopback_socket(/*listen=*/true, port_);
-    if (port_ == 0) return;
-    reader_ = std::thread([this] {
-      pollfd ready{listening_, POLLIN, 0};
-      if (::poll(&ready, 1, 60000) <= 0) return;
-      const int connection = ::accept(listening_, nullptr, nullptr);
-      if (connection < 0) return;
-      char buffer[1 << 16];
-      for (ssize_t n; (n = ::recv(connection, buffer, sizeof buffer, 0)) > 0;) {
-        bytes_.append(buffer, std::size_t(n));
-      }
-      ::close(connection);
-    });
-  }
-  ~FakeTev() {
-    if (reader_.joinable()) reader_.join();
-    ::close(listening_);
-  }
-  int port() const { return port_; }
-  // Everything received, once the sender has closed.
-  const std::string& received() {
-    if (reader_.joinable()) reader_.join();
-    return bytes_;
-  }
-
- private:
-  int listening_ = -1;
-  int port_ = 0;
-  std::thread reader_;
-  std::string bytes_;
-};
 
 // tev's packets, read as tev reads them: a 32-bit little-endian size (itself included), the
 // type, the fields.

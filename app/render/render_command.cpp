@@ -16,7 +16,6 @@
 #include "app/render/render_options.h"
 #include "app/render/render_preview.h"
 #include "app/render/render_summary.h"
-#include "app/render/tev_display.h"
 #include "core/io/atomic_file.h"
 #include "core/io/image_backend.h"
 #include "core/io/output_claim.h"
@@ -30,6 +29,7 @@
 #include "core/render/render_outcome.h"
 #include "core/render/render_statistics.h"
 #include "core/render/sample_share.h"
+#include "core/session/tev_display.h"
 #include "core/scene/builtin_scenes.h"
 
 namespace rtiow {
@@ -314,6 +314,8 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
     const FinalWrite final_write;  // a second signal waits for the image and its checkpoint
     write_or_keep(o, request, job, result, checkpoint.get());
   }
+  // The viewer gets its last picture after the files, and no longer than it is allowed.
+  if (display) display->finish(progress.stop_requested);
   if (checkpoint) checkpoint->warn_where_kept();  // even when quiet
   int code = 0;
   if (result.stopped) {

@@ -5,7 +5,7 @@
 #include <exception>
 #include <string>
 
-#include "app/render/tev_display.h"
+#include "core/session/tev_display.h"
 #include "core/film/sample_sum.h"
 #include "core/io/image_output.h"
 #include "core/limits/error.h"
