@@ -8,7 +8,7 @@
 #include <string>
 #include <system_error>
 
-#include "app/progress_status.h"
+#include "core/session/progress_status.h"
 
 namespace rtiow {
 namespace {

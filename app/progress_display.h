@@ -1,7 +1,7 @@
 #pragma once
 // Progress on stderr while a render runs: a live line on a terminal, occasional plain
 // lines otherwise (logs, CI). Runs on its own thread and only reads the render's counters;
-// what it shows for each mode is app/progress_status.h's.
+// what it shows for each mode is core/session/progress_status.h's.
 
 #include <chrono>
 #include <condition_variable>

@@ -15,5 +15,6 @@
 #include "core/scene/builtin_scenes.h"     // make_builtin_scene
 #include "core/scene/scene.h"              // Scene, CameraSettings, Background
 #include "core/scene_file/scene_file.h"    // load_scene_file, scene_to_json
+#include "core/session/render_session.h"   // RenderSession: what rtiow render runs
 #include "core/version.h"                  // version
 #include "materials/material.h"            // Lambertian, Metal, Dielectric

@@ -30,7 +30,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/progress_status.h"
+#include "core/session/progress_status.h"
 #include "core/rtiow.h"
 #include "tests/cli_helpers.h"
 

@@ -49,7 +49,8 @@ nlohmann::json read_json(const fs::path& path) {
 TEST(SlowPeers, AViewerThatNeverReadsHoldsNeitherTheRenderNorItsTime) {
   FakeTev viewer(ViewerPace::Never);
   ASSERT_GT(viewer.port(), 0);
-  const fs::path out = output_path("stalled.exr"), summary = output_path("stalled.json");
+  const fs::path dir = empty_output_dir(test_name());
+  const fs::path out = dir / "stalled.exr", summary = dir / "stalled.json";
   const CommandResult r = run_rtiow(displayed_render(viewer.port(), out, summary));
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   EXPECT_TRUE(fs::exists(out));
@@ -58,10 +59,10 @@ TEST(SlowPeers, AViewerThatNeverReadsHoldsNeitherTheRenderNorItsTime) {
                                "': the viewer"),
             std::string::npos)
       << r.stderr_text;
+  // The render's own time (about 1 s here; its previews at every safe point included): before
+  // the change the first picture held it for the viewer's whole 5 s.
   const nlohmann::json s = read_json(summary);
-  // The viewer's 5 s are spent after the render (before the change they were inside it, at its
-  // first safe point).
-  EXPECT_GE(s["seconds"].get<double>() - s["render_seconds"].get<double>(), 4.0) << s.dump();
+  EXPECT_LT(s["render_seconds"].get<double>(), 5.0) << s.dump();
 }
 
 // A viewer that reads 4 KB every half second would take minutes over one picture: it is dropped
@@ -69,7 +70,8 @@ TEST(SlowPeers, AViewerThatNeverReadsHoldsNeitherTheRenderNorItsTime) {
 TEST(SlowPeers, ACrawlingViewerIsDroppedAfterItsAllowance) {
   FakeTev viewer(ViewerPace::Crawling);
   ASSERT_GT(viewer.port(), 0);
-  const fs::path out = output_path("crawled.exr"), summary = output_path("crawled.json");
+  const fs::path dir = empty_output_dir(test_name());
+  const fs::path out = dir / "crawled.exr", summary = dir / "crawled.json";
   BackgroundRender render(words(displayed_render(viewer.port(), out, summary)));
   ASSERT_EQ(render.wait(60), 0) << render.stderr_text();
   EXPECT_TRUE(fs::exists(out));
@@ -83,7 +85,7 @@ TEST(SlowPeers, ACrawlingViewerIsDroppedAfterItsAllowance) {
 TEST(SlowPeers, ASignalIsNotHeldByAStalledViewer) {
   FakeTev viewer(ViewerPace::Never);
   ASSERT_GT(viewer.port(), 0);
-  const fs::path out = output_path("signalled.exr");
+  const fs::path out = empty_output_dir(test_name()) / "signalled.exr";
   BackgroundRender render(
       words("render -q --scene cover --width 600 --height 400 --spp 100000 "
             "--passes albedo,normal,depth --preview 0.001 --display "
@@ -115,7 +117,8 @@ TEST(SlowPeers, ASilentResolverDoesNotHoldTheStart) {
   }
   const fs::path resolv = output_path("silent-resolv.conf");
   std::ofstream(resolv) << "nameserver 127.0.0.77\noptions timeout:5 attempts:3\n";
-  const fs::path out = output_path("unresolved.png"), summary = output_path("unresolved.json");
+  const fs::path dir = empty_output_dir(test_name());
+  const fs::path out = dir / "unresolved.png", summary = dir / "unresolved.json";
   const fs::path err = output_path("unresolved.stderr");
   std::vector<std::string> args = {RTIOW_BINARY,
                                    "render",

@@ -13,6 +13,7 @@
 #include "app/progress_display.h"
 #include "core/io/image_output.h"
 #include "core/limits/error.h"
+#include "core/render/render_identity.h"
 #include "core/render/render_metadata.h"
 #include "core/render/render_part.h"
 #include "core/render/render_statistics.h"

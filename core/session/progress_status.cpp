@@ -1,4 +1,4 @@
-#include "app/progress_status.h"
+#include "core/session/progress_status.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "app/render/checkpoint_session.h"
+#include "core/session/checkpoint_session.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -14,6 +14,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/output_claim.h"
 #include "core/limits/error.h"
+#include "core/limits/setting_name.h"
 
 namespace rtiow {
 namespace {
@@ -85,7 +86,7 @@ void CheckpointSession::refuse_unless_told() {
   try {
     there = read_checkpoint_summary(path_);
   } catch (const InvalidInput& e) {
-    throw InvalidInput(std::string(e.what()) + "; --restart replaces it");
+    throw InvalidInput(std::string(e.what()) + "; " + setting("restart") + " replaces it");
   }
   if (!there) return;
   const std::string differs = identity_mismatch(there->identity, identity_, "the checkpoint's");
@@ -94,13 +95,13 @@ void CheckpointSession::refuse_unless_told() {
     throw InvalidInput("checkpoint " + quote_value(path_) +
                        " holds an unfinished render of this "
                        "request" +
-                       (done.empty() ? "" : " (" + done + ")") +
-                       ": add --resume to continue it, or --restart to discard it and render "
-                       "from the start");
+                       (done.empty() ? "" : " (" + done + ")") + ": add " + setting("resume") +
+                       " to continue it, or " + setting("restart") +
+                       " to discard it and render from the start");
   }
   throw InvalidInput("checkpoint " + quote_value(path_) + " holds another render (" +
-                     (done.empty() ? "" : done + "; ") + differs +
-                     "): add --restart to discard it, or choose another -o");
+                     (done.empty() ? "" : done + "; ") + differs + "): add " + setting("restart") +
+                     " to discard it, or choose another " + setting("output"));
 }
 
 bool CheckpointSession::save_to(const std::string& path, const RenderState& state) {
@@ -161,8 +162,9 @@ void CheckpointSession::image_lost(const RenderState& state) {
 }
 
 std::string CheckpointSession::how_to_continue() const {
-  if (kept_at_ == path_) return "run the same command with --resume";
-  return "move it to " + quote_value(path_, kWholePath) + " and run the same command with --resume";
+  const std::string again = "run the same command with " + setting("resume");
+  if (kept_at_ == path_) return again;
+  return "move it to " + quote_value(path_, kWholePath) + " and " + again;
 }
 
 void CheckpointSession::warn_where_kept() const {

@@ -1,16 +1,16 @@
-#include "app/render/render_preview.h"
+#include "core/session/render_preview.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <string>
 
-#include "core/session/tev_display.h"
 #include "core/film/sample_sum.h"
 #include "core/io/image_output.h"
 #include "core/limits/error.h"
 #include "core/render/first_hit_passes.h"
 #include "core/render/render_metadata.h"
+#include "core/session/tev_display.h"
 
 namespace rtiow {
 
