@@ -35,6 +35,25 @@ if(NOT RTIOW_MPI STREQUAL "OFF")
 endif()
 message(STATUS "rtiow: MPI ${RTIOW_MPI}")
 
+# The Python module: Debian's Python with its development files (python3-dev) and numpy
+# (python3-numpy), and Debian's pybind11 (pybind11-dev). Debian's /usr/bin/python3 is preferred
+# to another python3 first on PATH (a pyenv's has no numpy of Debian's); -DPython3_EXECUTABLE=...
+# builds for another.
+set(RTIOW_PYTHON_FOUND OFF)
+if(RTIOW_PYTHON)
+  if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3)
+  endif()
+  find_package(Python3 COMPONENTS Interpreter Development.Module QUIET)
+  if(Python3_FOUND)
+    find_package(pybind11 CONFIG QUIET)
+  endif()
+  if(Python3_FOUND AND pybind11_FOUND)
+    set(RTIOW_PYTHON_FOUND ON)
+  endif()
+endif()
+message(STATUS "rtiow: Python module ${RTIOW_PYTHON_FOUND}")
+
 # Debian 12's OpenImageIO config lists /usr/include/opencv4 among its include directories
 # although nothing we use needs OpenCV; drop include directories that do not exist rather
 # than pull in libopencv-dev.

@@ -56,6 +56,18 @@ run(${prefix}/bin/rtiow render -q --scene cover --width 16 --height 9 --spp 1
 if(NOT EXISTS ${WORK_DIR}/cover.png)
   message(FATAL_ERROR "the installed rtiow wrote no image")
 endif()
+# The installed Python module (where it is built): Debian's Python finds it in the prefix's
+# lib/python3/dist-packages, and it finds the image backend in the prefix's lib/ (an EXR).
+if(PYTHON)
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/lib/python3/dist-packages
+      PYTHONDONTWRITEBYTECODE=1 ${PYTHON} -c
+      # One expression: a semicolon would split the argument in CMake's list.
+      "__import__('rtiow').render(__import__('rtiow').builtin_scene(), width=16, spp=1).write('${WORK_DIR}/python.exr')")
+  if(NOT EXISTS ${WORK_DIR}/python.exr)
+    message(FATAL_ERROR "the installed Python module wrote no image")
+  endif()
+  message(STATUS "the installed Python module rendered and wrote an EXR")
+endif()
 # The example sets no C++ standard (the target carries cxx_std_20), and its find_package(rtiow)
 # must configure without a warning (OpenImageIO's package, which warns about a Python module of
 # Imath on Debian, is not looked for).

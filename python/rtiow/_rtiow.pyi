@@ -1,0 +1,85 @@
+"""Type stubs of rtiow's compiled part (python/rtiow_module.cpp), for editors and type checkers."""
+
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class InvalidInput(ValueError):
+    """rtiow's one-line refusal of an input (a bad option, a scene file, an image)."""
+
+class Scene:
+    """A scene: spheres, their materials, a camera and a sky."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def spheres(self) -> int: ...
+
+class Render:
+    """A finished render."""
+
+    @property
+    def image(self) -> npt.NDArray[np.float32]:
+        """height x width x 3, linear, over the render's own memory."""
+    @property
+    def spp(self) -> npt.NDArray[np.uint32]:
+        """Each pixel's sample count, height x width."""
+    @property
+    def variance(self) -> Optional[npt.NDArray[np.float32]]:
+        """The variance of each pixel's mean where the render kept two replicates, else None."""
+    @property
+    def passes(self) -> Dict[str, npt.NDArray[np.float32]]:
+        """The first-hit passes asked, by channel name."""
+    @property
+    def summary(self) -> Dict[str, Any]:
+        """What --summary-json says of the render."""
+    def write(self, path: str, reproducible: bool = False) -> None:
+        """Writes the image with rtiow's metadata, as `rtiow render -o` does."""
+
+ImageLike = Union[str, Render]
+
+def builtin_scene(name: str = "cover", scene_seed: int = ...) -> Scene: ...
+def builtin_scenes() -> List[str]: ...
+def load_scene(path: str) -> Scene: ...
+def render(
+    scene: Scene,
+    *,
+    progress: Optional[Callable[[float], Any]] = None,
+    width: int = ...,
+    height: int = ...,
+    spp: int = ...,
+    seed: int = ...,
+    sampler: str = ...,
+    depth: int = ...,
+    time_limit: float = ...,
+    image_error: float = ...,
+    target_error: float = ...,
+    adaptive: bool = ...,
+    min_spp: int = ...,
+    passes: Union[str, Sequence[str]] = ...,
+    crop: Union[str, Tuple[int, int, int, int]] = ...,
+    stats_channels: bool = ...,
+    roulette: Union[bool, str] = ...,
+    threads: int = ...,
+    accel: str = ...,
+    lookfrom: Union[str, Sequence[float]] = ...,
+    lookat: Union[str, Sequence[float]] = ...,
+    vup: Union[str, Sequence[float]] = ...,
+    vfov: float = ...,
+    aperture: float = ...,
+    focus_distance: float = ...,
+    fresnel: str = ...,
+) -> Render: ...
+def diff(
+    test: Union[ImageLike, Sequence[ImageLike]],
+    reference: ImageLike,
+    *,
+    alpha: float = 0.01,
+    block: int = 16,
+    fail: float = 1e-6,
+    fail_percent: float = 0.0,
+) -> Dict[str, Any]: ...
+def read_image(path: str) -> npt.NDArray[np.float32]: ...

@@ -1,0 +1,341 @@
+// The compiled part of the Python module `rtiow` (rtiow._rtiow): scenes, renders and image
+// comparison from the library (core/rtiow.h), in Python's words with the command line's names:
+// a render's keyword arguments are `rtiow render`'s long options (`--time-limit` is
+// `time_limit`), and its messages name them so (core/limits/setting_name.h's library spelling).
+// A render runs on a thread of its own with the GIL released; the caller's thread wakes every
+// 50 ms to look for a signal (Ctrl-C stops the render and raises KeyboardInterrupt) and to call
+// the progress callback. Images are numpy arrays over the result's own memory, not copies.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/compare/image_diff.h"
+#include "core/io/output_path.h"
+#include "core/limits/error.h"
+#include "core/limits/nearest_name.h"
+#include "core/render/render_outcome.h"
+#include "core/render/render_statistics.h"
+#include "core/rtiow.h"
+#include "core/session/progress_status.h"
+#include "python/render_options.h"
+
+namespace py = pybind11;
+
+namespace rtiow::python {
+namespace {
+
+// A finished render with what it was a render of, so it can describe and write itself.
+struct Render {
+  Scene scene;
+  RenderSettings settings;
+  RenderResult result;
+  bool stats_channels = false;
+};
+
+// Runs `settings` on its own thread while this one, holding the GIL between naps, checks for
+// signals and reports progress. A signal (or an exception from the callback) stops the render
+// at its next safe point, then is raised here.
+RenderResult render_watched(const Scene& scene, const RenderSettings& settings,
+                            const py::object& progress_callback) {
+  RenderProgress progress;
+  progress.stop_cause = "interrupted by a signal";
+  RenderResult result;
+  std::exception_ptr failure;
+  std::mutex mutex;
+  std::condition_variable ended;
+  bool done = false;
+  std::optional<py::error_already_set> raised;
+  const std::uint64_t pixels =
+      std::uint64_t(film_width(settings)) * std::uint64_t(film_height(settings));
+  const auto start = std::chrono::steady_clock::now();
+  {
+    py::gil_scoped_release released;
+    std::thread worker([&] {
+      try {
+        result = render(scene, settings, &progress);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      const std::lock_guard lock(mutex);
+      done = true;
+      ended.notify_all();
+    });
+    for (;;) {
+      {
+        std::unique_lock lock(mutex);
+        if (ended.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; })) break;
+      }
+      if (raised) continue;  // stopping: wait for the render's safe point
+      const py::gil_scoped_acquire held;
+      if (PyErr_CheckSignals() != 0) {
+        raised.emplace();  // fetches KeyboardInterrupt (or what the handler raised)
+        progress.stop_requested = true;
+        continue;
+      }
+      if (progress_callback.is_none()) continue;
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const ProgressStatus status = progress_status(settings, pixels, snapshot(progress, elapsed));
+      try {
+        progress_callback(status.fraction >= 0.0 ? status.fraction : 0.0);
+      } catch (py::error_already_set& e) {
+        raised.emplace(std::move(e));
+        progress.stop_requested = true;
+      }
+    }
+    worker.join();
+  }
+  if (raised) throw std::move(*raised);
+  if (failure) std::rethrow_exception(failure);
+  if (!progress_callback.is_none()) progress_callback(1.0);
+  return result;
+}
+
+std::shared_ptr<Render> render_scene(const Scene& scene, const py::object& progress,
+                                     const py::kwargs& options) {
+  const ParsedOptions parsed = parse_render_options(options);
+  ResolvedRender resolved = resolve(scene, parsed.request);
+  validate(resolved.scene, resolved.settings);
+  auto out = std::make_shared<Render>();
+  out->result = render_watched(resolved.scene, resolved.settings, progress);
+  out->scene = std::move(resolved.scene);
+  out->settings = resolved.settings;
+  out->stats_channels = parsed.request.estimate_error;
+  return out;
+}
+
+// The film as an array of height x width x 3 float32 over the render's own memory.
+py::array image_of(const std::shared_ptr<Render>& render) {
+  const Film& film = render->result.film;
+  static_assert(sizeof(Color) == 3 * sizeof(float), "a Color is three packed floats");
+  const auto h = py::ssize_t(film.height()), w = py::ssize_t(film.width());
+  return py::array_t<float>(
+      {h, w, py::ssize_t(3)},
+      {w * py::ssize_t(sizeof(Color)), py::ssize_t(sizeof(Color)), py::ssize_t(sizeof(float))},
+      &film.pixels().data()->x, py::cast(render));
+}
+
+py::array samples_of(const std::shared_ptr<Render>& render) {
+  const Film& film = render->result.film;
+  const auto h = py::ssize_t(film.height()), w = py::ssize_t(film.width());
+  return py::array_t<std::uint32_t>({h, w}, render->result.pixel_samples.data(), py::cast(render));
+}
+
+// The variance of each pixel's mean, per channel: only where the render kept two independent
+// replicates, whose spread is an honest estimate (RenderSettings::estimate_error).
+py::object variance_of(const Render& render) {
+  if (render.result.replicates != kReplicates) return py::none();
+  const std::vector<Vec3d> variances = pixel_mean_variances(render.result);
+  const auto h = py::ssize_t(render.result.film.height());
+  const auto w = py::ssize_t(render.result.film.width());
+  py::array_t<float> out({h, w, py::ssize_t(3)});
+  float* v = out.mutable_data();
+  for (std::size_t p = 0; p < variances.size(); ++p) {
+    v[3 * p] = float(variances[p].x), v[3 * p + 1] = float(variances[p].y);
+    v[3 * p + 2] = float(variances[p].z);
+  }
+  return out;
+}
+
+py::dict passes_of(const Render& render) {
+  py::dict out;
+  const auto h = py::ssize_t(render.result.film.height());
+  const auto w = py::ssize_t(render.result.film.width());
+  for (const ExtraChannel& c : pass_channels(render.result, render.settings.passes)) {
+    py::array_t<float> values({h, w});
+    std::copy(c.values.begin(), c.values.end(), values.mutable_data());
+    out[py::str(c.name)] = values;
+  }
+  return out;
+}
+
+// What `--summary-json` says of a render, for a script.
+py::dict summary_of(const Render& render) {
+  const RenderResult& r = render.result;
+  const RenderSettings& s = render.settings;
+  const RenderOutcome outcome = describe_outcome(s, r);
+  py::dict spp;
+  spp["least"] = outcome.least, spp["mean"] = outcome.mean, spp["most"] = outcome.most;
+  py::dict error;
+  error["estimated"] = r.error_estimate == ErrorEstimate::None
+                           ? py::object(py::none())
+                           : py::object(py::float_(r.estimated_image_error));
+  error["estimate"] = r.error_estimate == ErrorEstimate::None
+                          ? py::object(py::none())
+                          : py::object(py::str(to_string(r.error_estimate)));
+  py::dict d;
+  d["scene"] = render.scene.name;
+  d["width"] = s.width, d["height"] = s.height;
+  d["crop"] = s.crop ? py::object(py::str(to_string(*s.crop))) : py::object(py::none());
+  d["samples"] = outcome.samples;
+  d["spp"] = spp;
+  d["depth"] = s.max_depth;
+  d["seed"] = s.seed;
+  d["sampler"] = to_string(s.sampler);
+  d["accelerator"] = to_string(s.accel);
+  d["render_seconds"] = r.render_seconds;
+  d["rays"] = r.rays_traced;
+  d["mrays_per_second"] =
+      r.render_seconds > 0 ? double(r.rays_traced) / r.render_seconds * 1e-6 : 0.0;
+  d["error"] = error;
+  d["stopped"] = r.stopped ? py::object(py::str(r.stop_cause)) : py::object(py::none());
+  d["time_limited"] = r.time_limited;
+  return d;
+}
+
+void write_render(const Render& render, const std::string& path, bool reproducible) {
+  const py::gil_scoped_release released;
+  check_image_output(path, {}, render.stats_channels || render.settings.passes.any());
+  write_image(path, render.result.film,
+              render_metadata(render.scene, render.settings, render.result, reproducible),
+              image_channels(render.result, render.stats_channels, render.settings.passes),
+              frame_placement(render.settings));
+}
+
+// An image to compare: a file, or a render (with its variances where it has them).
+DiffInput diff_input_of(const py::handle& image) {
+  if (py::isinstance<py::str>(image)) return read_diff_input(image.cast<std::string>());
+  const auto render = image.cast<std::shared_ptr<Render>>();
+  DiffInput input = diff_input(render->result.film);
+  if (render->result.replicates == kReplicates) {
+    const std::vector<Vec3d> variances = pixel_mean_variances(render->result);
+    input.variance.reserve(variances.size() * 3);
+    for (const Vec3d& v : variances) {
+      input.variance.insert(input.variance.end(), {float(v.x), float(v.y), float(v.z)});
+    }
+  }
+  return input;
+}
+
+py::dict compare(const py::object& test, const py::object& reference, double alpha, int block,
+                 double fail, double fail_percent) {
+  const DiffInput ref = diff_input_of(reference);
+  std::vector<DiffInput> tests;
+  if (py::isinstance<py::list>(test) || py::isinstance<py::tuple>(test)) {
+    for (const py::handle& t : test) tests.push_back(diff_input_of(t));
+  } else {
+    tests.push_back(diff_input_of(test));
+  }
+  if (tests.empty()) throw InvalidInput("diff: no test image");
+  for (const DiffInput& t : tests) check_comparable(t, ref);
+  py::dict out;
+  DiffVerdict verdict;
+  std::string description;
+  const bool variances = !ref.variance.empty() && !tests[0].variance.empty();
+  if (tests.size() > 1 || variances) {
+    const NoiseDiff d = tests.size() > 1 ? seeds_diff(tests, ref, block, alpha)
+                                         : noise_diff(tests[0], ref, block, alpha);
+    out["mode"] = tests.size() > 1 ? "seeds" : "noise";
+    out["worst_block_z"] = d.worst_block_z, out["failing_blocks"] = d.failing_blocks;
+    out["image_z"] = d.image_z;
+    verdict = d.verdict, description = describe(d);
+  } else {
+    PlainThresholds t;
+    t.fail = fail, t.fail_percent = fail_percent, t.warn = fail, t.warn_percent = fail_percent;
+    const PlainDiff d = plain_diff(tests[0], ref, t);
+    out["mode"] = "plain";
+    out["max_error"] = d.max_error, out["rms_error"] = d.rms_error;
+    out["fail_percent"] = d.fail_percent;
+    verdict = d.verdict, description = describe(d, t);
+  }
+  const NonFinite bad = find_non_finite(tests.size() > 1 ? mean_image(tests) : tests[0], ref);
+  if (bad.pixels > 0) verdict = DiffVerdict::Fail;
+  out["verdict"] = to_string(verdict);
+  out["passed"] = verdict != DiffVerdict::Fail;
+  out["description"] = description;
+  return out;
+}
+
+py::array read_image(const std::string& path) {
+  DiffInput input = read_diff_input(path);
+  py::array_t<float> out({py::ssize_t(input.height), py::ssize_t(input.width), py::ssize_t(3)});
+  std::copy(input.rgb.begin(), input.rgb.end(), out.mutable_data());
+  return out;
+}
+
+}  // namespace
+}  // namespace rtiow::python
+
+PYBIND11_MODULE(_rtiow, m) {
+  using namespace rtiow;
+  using namespace rtiow::python;
+  m.doc() = "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend";
+  // rtiow's one-line refusals are ValueErrors; every other failure is a RuntimeError.
+  py::register_exception<InvalidInput>(m, "InvalidInput", PyExc_ValueError).attr("__doc__") =
+      "rtiow's one-line refusal of an input (a bad option, a scene file, an "
+      "image): a ValueError.";
+
+  py::class_<Scene>(m, "Scene", "A scene: spheres, their materials, a camera and a sky.")
+      .def_property_readonly("name", [](const Scene& s) { return s.name; })
+      .def_property_readonly(
+          "spheres", [](const Scene& s) { return s.spheres.size(); }, "How many spheres it holds.")
+      .def("__repr__", [](const Scene& s) {
+        return "<rtiow.Scene '" + s.name + "', " + std::to_string(s.spheres.size()) + " spheres>";
+      });
+
+  m.def(
+      "builtin_scene",
+      [](const std::string& name, std::uint64_t scene_seed) {
+        return make_builtin_scene(name, scene_seed);
+      },
+      py::arg("name") = "cover", py::arg("scene_seed") = kDefaultSceneSeed,
+      "A built-in scene (see builtin_scenes()); scene_seed lays out the random ones.");
+  m.def(
+      "builtin_scenes",
+      [] {
+        std::vector<std::string> names;
+        for (const auto& s : builtin_scenes()) names.push_back(s.name);
+        return names;
+      },
+      "The built-in scenes' names.");
+  m.def(
+      "load_scene", [](const std::string& path) { return load_scene_file(path); }, py::arg("path"),
+      "A scene file (JSON, docs/scene-format.md).");
+
+  py::class_<Render, std::shared_ptr<Render>>(
+      m, "Render",
+      "A finished render: its image and sample counts as numpy arrays, and its summary.")
+      .def_property_readonly("image", &image_of,
+                             "The image: height x width x 3 float32, linear (no copy).")
+      .def_property_readonly("spp", &samples_of,
+                             "Each pixel's sample count: height x width uint32 (no copy).")
+      .def_property_readonly(
+          "variance", [](const Render& r) { return variance_of(r); },
+          "The variance of each pixel's mean (height x width x 3), where the render kept two "
+          "replicates (stats_channels, the error targets, the independent sampler); else None.")
+      .def_property_readonly(
+          "passes", [](const Render& r) { return passes_of(r); },
+          "The first-hit passes asked (passes=...), by channel name: height x width float32.")
+      .def_property_readonly(
+          "summary", [](const Render& r) { return summary_of(r); },
+          "What --summary-json says of the render.")
+      .def("write", &write_render, py::arg("path"), py::arg("reproducible") = false,
+           "Writes the image (and its channels) with rtiow's metadata, as rtiow render -o does.");
+
+  m.def("render", &render_scene, py::arg("scene"), py::kw_only(), py::arg("progress") = py::none(),
+        "Renders `scene`. Keyword arguments are rtiow render's long options with underscores "
+        "(width, height, spp, seed, sampler, depth, time_limit, image_error, target_error, "
+        "adaptive, min_spp, passes, crop, stats_channels, roulette, threads, accel, lookfrom, "
+        "lookat, vup, vfov, aperture, focus_distance, fresnel); progress(fraction) is called "
+        "about every 50 ms. Ctrl-C stops the render and raises KeyboardInterrupt.");
+  m.def("diff", &compare, py::arg("test"), py::arg("reference"), py::kw_only(),
+        py::arg("alpha") = 0.01, py::arg("block") = 16, py::arg("fail") = 1e-6,
+        py::arg("fail_percent") = 0.0,
+        "Compares a test image (a path or a Render; a list of renders with other seeds) with a "
+        "reference, as rtiow diff does: noise-aware where both have variances, by seeds for a "
+        "list, else plain. Returns a dict with 'passed', 'verdict' and the figures.");
+  m.def("read_image", &read_image, py::arg("path"),
+        "An image file's R, G, B as height x width x 3 float32 (linear files as stored).");
+  m.attr("__version__") = rtiow::version();
+}
