@@ -257,6 +257,31 @@ py::dict compare(const py::object& test, const py::object& reference, double alp
   return out;
 }
 
+// A scene from a dict in the scene file's words (docs/scene-format.md), as Mitsuba's load_dict
+// takes one: written as JSON (numpy arrays as lists) and read by the scene file's reader, so it
+// gets every check a file gets, each error naming its place ("/spheres/3/radius").
+Scene scene_from_dict(const py::dict& description) {
+  const py::module_ json = py::module_::import("json");
+  const py::object as_list =
+      py::module_::import("builtins")
+          .attr("eval")(
+              "lambda o: o.tolist() if hasattr(o, 'tolist') else "
+              "(_ for _ in ()).throw(TypeError(f'{type(o).__name__} is not a JSON value'))");
+  std::string text;
+  try {
+    text =
+        json.attr("dumps")(description, py::arg("allow_nan") = false, py::arg("default") = as_list)
+            .cast<std::string>();
+  } catch (py::error_already_set& e) {
+    throw InvalidInput("scene dict: " + std::string(py::str(e.value())));
+  }
+  return parse_scene(text, "scene dict");
+}
+
+py::dict scene_to_dict(const Scene& scene) {
+  return py::module_::import("json").attr("loads")(scene_to_json(scene));
+}
+
 py::array read_image(const std::string& path) {
   DiffInput input = read_diff_input(path);
   py::array_t<float> out({py::ssize_t(input.height), py::ssize_t(input.width), py::ssize_t(3)});
@@ -280,6 +305,9 @@ PYBIND11_MODULE(_rtiow, m) {
       .def_property_readonly("name", [](const Scene& s) { return s.name; })
       .def_property_readonly(
           "spheres", [](const Scene& s) { return s.spheres.size(); }, "How many spheres it holds.")
+      .def("to_dict", &scene_to_dict,
+           "The scene in the scene file's words (docs/scene-format.md), as a dict: "
+           "rtiow.scene(d) gives it back, and json.dump(d, f) writes a scene file.")
       .def("__repr__", [](const Scene& s) {
         return "<rtiow.Scene '" + s.name + "', " + std::to_string(s.spheres.size()) + " spheres>";
       });
@@ -302,6 +330,9 @@ PYBIND11_MODULE(_rtiow, m) {
   m.def(
       "load_scene", [](const std::string& path) { return load_scene_file(path); }, py::arg("path"),
       "A scene file (JSON, docs/scene-format.md).");
+  m.def("scene", &scene_from_dict, py::arg("description"),
+        "A scene built in Python: a dict in the scene file's words (docs/scene-format.md: "
+        "camera, image, background, materials, spheres), checked as a file is.");
 
   py::class_<Render, std::shared_ptr<Render>>(
       m, "Render",

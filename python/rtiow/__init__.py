@@ -22,6 +22,7 @@ from ._rtiow import (  # noqa: F401
     load_scene,
     read_image,
     render,
+    scene,
 )
 
 __all__ = [
@@ -34,4 +35,5 @@ __all__ = [
     "load_scene",
     "read_image",
     "render",
+    "scene",
 ]

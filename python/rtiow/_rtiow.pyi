@@ -17,6 +17,8 @@ class Scene:
     def name(self) -> str: ...
     @property
     def spheres(self) -> int: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """The scene in the scene file's words; rtiow.scene(d) gives it back."""
 
 class Render:
     """A finished render."""
@@ -44,6 +46,8 @@ ImageLike = Union[str, Render]
 def builtin_scene(name: str = "cover", scene_seed: int = ...) -> Scene: ...
 def builtin_scenes() -> List[str]: ...
 def load_scene(path: str) -> Scene: ...
+def scene(description: Dict[str, Any]) -> Scene:
+    """A scene from a dict in the scene file's words (docs/scene-format.md)."""
 def render(
     scene: Scene,
     *,
