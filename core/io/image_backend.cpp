@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <thread>
 
 #include "core/io/image_expansion.h"
 #include "core/io/image_file.h"
@@ -21,7 +22,7 @@
 #include "core/io/input_file.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
-#include "core/parallel/thread_limit.h"
+#include "core/parallel/thread_probe.h"
 
 #ifndef RTIOW_LIBDIR_FROM_BINDIR
 #define RTIOW_LIBDIR_FROM_BINDIR "../lib"
@@ -89,15 +90,25 @@ Loaded linked() {
   return {};
 }
 
+// The image library starts threads as it loads (log4cplus's pool, 4 on 2 cores, under
+// OpenImageIO's DICOM reader; OpenEXR's, one per core) and, when one cannot start, ends the
+// process from inside the loader or hangs joining the others, where nothing can catch it
+// (issue 69). So as many as that are tried first (one more for a load on a thread of its
+// own): why they cannot all start, or "".
+std::string threads_shortfall(bool in_background = false) {
+  const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+  const int needed = std::max(4, cores) + cores + 1 + (in_background ? 1 : 0);
+  int error = 0;
+  const int started = threads_that_can_start_together(needed, &error);
+  if (started == needed) return "";
+  return "cannot read or write images: the image library starts " + std::to_string(needed) +
+         " threads as it loads, and " + std::to_string(started) +
+         " could start now: " + system_error_text(error);
+}
+
 Loaded load() {
   if (Loaded found = linked(); found.backend) return found;
-  // The image library starts a thread as it loads and, when it cannot, throws through the
-  // loader, where nothing can catch it: tried first, and said.
-  if (!a_thread_can_start()) {
-    return {nullptr, std::string("cannot read or write images: the image library starts threads "
-                                 "as it loads, and none can start now: ") +
-                         system_error_text(EAGAIN)};
-  }
+  if (std::string why = threads_shortfall(); !why.empty()) return {nullptr, why};
   const std::string local = beside_program();
   std::string looked;
   if (!local.empty()) {
@@ -130,7 +141,9 @@ void preload_image_backend() {
     // backend is reported before a render rather than after it.
     std::error_code error;
     const bool beside = std::filesystem::exists(beside_program(), error);
-    const auto policy = beside && !linked().backend ? std::launch::async : std::launch::deferred;
+    // Threads short: loaded (and refused) now, before the work, not at its end.
+    const bool in_background = beside && !linked().backend && threads_shortfall(true).empty();
+    const auto policy = in_background ? std::launch::async : std::launch::deferred;
     try {
       loading = std::async(policy, load).share();
     } catch (const std::system_error&) {

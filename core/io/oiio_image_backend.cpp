@@ -7,12 +7,15 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
+#include "core/parallel/thread_probe.h"
 
 namespace rtiow {
 namespace {
@@ -196,6 +199,18 @@ bool decodes(const std::string& path, const std::vector<unsigned char>& bytes,
 
 class OiioImageBackend final : public ImageBackend {
  public:
+  // OpenImageIO's pool and OpenEXR's start their threads the first time a file wants them, and a
+  // pool that cannot start them all ends the process (a running thread destroyed) or hangs
+  // joining them (issue 69). Where the threads both would take (one per core each, and a
+  // spare) cannot all start now, the library does its work on the calling thread alone.
+  OiioImageBackend() {
+    const int pools = 2 * int(std::max(1u, std::thread::hardware_concurrency())) + 1;
+    if (threads_that_can_start_together(pools) < pools) {
+      OIIO::attribute("threads", 1);
+      OIIO::attribute("exr_threads", -1);
+    }
+  }
+
   bool encode(const std::string& path, const ImageHeader& header, const void* pixels,
               std::vector<unsigned char>& bytes, std::string& reason) const override {
     const QuietStderr quiet;
