@@ -30,8 +30,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/session/progress_status.h"
 #include "core/rtiow.h"
+#include "core/session/progress_status.h"
 #include "tests/cli_helpers.h"
 #include "tests/fake_viewer.h"
 
@@ -145,6 +145,42 @@ TEST(Cli, ACropRendersTheWholeImagesPixelsInEveryWayARenderIsMade) {
 // --passes: the albedo, normal and depth channels beside an EXR's image, which they leave as it
 // was; merged from parts, resumed from a checkpoint and repeated with --like to the same bytes
 // as one render; refused where no channel fits, and a checkpoint without them is not resumed.
+// A crop costs its region, not the frame (issue 69): a 16x16 crop of a 40000x40000 frame, which
+// no machine here could hold whole, renders; and crops that tile a frame, each an .exr whose data
+// window is its region, assemble with oiiotool (docs/usage.md) into the whole render's pixels.
+TEST(Cli, CropsOfAnyFrameTileItAndAssembleIntoTheWholeRender) {
+  const fs::path dir = empty_output_dir(test_name());
+  CommandResult r = run_rtiow(
+      "render -q --scene cover --width 40000 --height 40000 --crop 20000,20000,20016,20016 --spp 2 "
+      "-o " +
+      (dir / "far.exr").string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  int width = 0, height = 0;
+  EXPECT_EQ(exr_pixels(dir / "far.exr", width, height).size(), 16u * 16u * 3u);
+  // The whole frame, and three crops that tile it.
+  r = run_rtiow("render -q --scene cover --width 64 --spp 4 --passes depth -o " +
+                (dir / "whole.exr").string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  std::vector<std::string> assemble = {"/usr/bin/oiiotool"};
+  for (const std::string crop : {"0,0,64,20", "0,20,30,43", "30,20,64,43"}) {
+    const fs::path part = dir / ("crop-" + crop + ".exr");
+    r = run_rtiow("render -q --scene cover --width 64 --spp 4 --passes depth --crop " + crop +
+                  " -o " + part.string());
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    assemble.push_back(part.string());
+    if (assemble.size() > 2) assemble.push_back("--add");
+  }
+  assemble.insert(assemble.end(), {"-o", (dir / "assembled.exr").string()});
+  rtiow::test::Launch oiiotool;
+  oiiotool.argv = assemble;
+  ASSERT_EQ(rtiow::test::launch(oiiotool), 0);
+  int w = 0, h = 0;
+  EXPECT_EQ(exr_pixels(dir / "assembled.exr", w, h), exr_pixels(dir / "whole.exr", width, height));
+  EXPECT_EQ(w, 64);
+  EXPECT_EQ(h, 43);
+  EXPECT_EQ(exr_channel(dir / "assembled.exr", "Z"), exr_channel(dir / "whole.exr", "Z"));
+}
+
 TEST(Cli, PassesAreWrittenBesideTheImageAndCombineLikeIt) {
   const fs::path dir = empty_output_dir("passes");
   const auto at = [&](const std::string& name) { return (dir / name).string(); };

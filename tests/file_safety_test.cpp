@@ -323,6 +323,37 @@ TEST(FileSafety, ADirectorySwappedMidRenderChangesNothingElsewhere) {
   EXPECT_FALSE(fs::exists(moved / "o.png.rtiow-checkpoint")) << "its own checkpoint left";
 }
 
+// A cleaner of temporary files removes both lock files while a render runs (issue 69): a
+// second render of the same output is still refused before any work, and the first finishes
+// as if nothing had happened.
+TEST(FileSafety, ALockHoldsWhenACleanerRemovesItsFile) {
+  const fs::path dir = fresh_dir();
+  const fs::path out = dir / "o.png";
+  BackgroundRender first({"render", "-q", "--width", "160", "--spp", "200", "-o", out.string()});
+  ASSERT_TRUE(first.wait_until_rendering());
+  for (const char* lock : {".o.png.rtiow-lock", ".o.png.rtiow-checkpoint.rtiow-lock"}) {
+    ASSERT_TRUE(fs::remove(dir / lock)) << lock;
+  }
+  rtiow::test::Launch second;
+  second.argv = {RTIOW_BINARY, "render", "-q", "--width", "16", "--spp", "1", "-o", out.string()};
+  const fs::path err = dir / "second.stderr";
+  second.stderr_path = err.string();
+  EXPECT_EQ(rtiow::test::launch(second), 2);
+  EXPECT_NE(slurp(err).find("another rtiow is writing it (its lock file was removed)"),
+            std::string::npos)
+      << slurp(err);
+  ASSERT_EQ(first.wait(120.0), 0) << first.stderr_text();
+  // The image is the first render's: its PNG header says 160 wide (big-endian, bytes 16-19).
+  const std::string png = slurp(out);
+  ASSERT_GE(png.size(), 24u);
+  const auto byte = [&](std::size_t i) {
+    return std::uint32_t(static_cast<unsigned char>(png[i]));
+  };
+  EXPECT_EQ(byte(16) << 24 | byte(17) << 16 | byte(18) << 8 | byte(19), 160u);
+  // Once the first has ended, the output is free again.
+  EXPECT_EQ(rtiow::test::launch(second), 0) << slurp(err);
+}
+
 // ---- Output from libraries is rtiow's or absent; threads above the cores are used.
 
 TEST(FileSafety, MoreThreadsThanCoresPrintNothingWhenQuiet) {

@@ -2,17 +2,22 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cstddef>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <vector>
 
 #include "core/io/atomic_file.h"
+#include "core/io/checksum.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 
@@ -42,6 +47,39 @@ std::string read_pid(int fd) {
 
 // Whether `fd` is what the name `name` in `dir_fd` still is: a lock whose holder removed it
 // between our open and our lock is not the lock any more.
+// The lock a cleaner cannot take away: an abstract socket (Linux; no file, released with the
+// process) bound to a name of the output's directory (device, inode) and its name. Its fd, or
+// -1 with `error` set (EADDRINUSE: another rtiow holds it).
+int bind_lock_name(int dir_fd, const std::string& name, int& error) {
+  struct stat dir {};
+  if (::fstat(dir_fd, &dir) != 0) {
+    error = errno;
+    return -1;
+  }
+  Checksum digest;
+  digest.update(name.data(), name.size());
+  char abstract[96];
+  const int length =
+      std::snprintf(abstract, sizeof abstract, "%crtiow-output-lock:%llx:%llx:%016llx", '\0',
+                    (unsigned long long)dir.st_dev, (unsigned long long)dir.st_ino,
+                    (unsigned long long)digest.value());
+  sockaddr_un address{};
+  address.sun_family = AF_UNIX;
+  std::memcpy(address.sun_path, abstract, std::size_t(length));
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) {
+    error = errno;
+    return -1;
+  }
+  const auto size = socklen_t(offsetof(sockaddr_un, sun_path) + std::size_t(length));
+  if (::bind(fd, reinterpret_cast<const sockaddr*>(&address), size) != 0) {
+    error = errno;
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
 bool still_named(int dir_fd, const std::string& name, int fd) {
   struct stat held {
   }, named{};
@@ -160,6 +198,21 @@ OutputClaim::OutputClaim(const std::string& path)
       ::close(fd);  // locked a file its holder had just removed: take the new one
       continue;
     }
+    // The file's lock holds only while its name does: a cleaner that removes it (as one of
+    // /tmp does) would let a second rtiow take a new one. The name's socket holds regardless.
+    int error = 0;
+    name_lock_fd_ = bind_lock_name(dir_fd_, name_, error);
+    if (name_lock_fd_ < 0) {
+      ::close(fd);
+      ::close(dir_fd_);
+      if (error == EADDRINUSE) {
+        throw InvalidInput("output " + quote_value(path) +
+                           ": another rtiow is writing it (its lock file was removed); wait for "
+                           "it to end, or choose another name");
+      }
+      throw std::runtime_error("cannot take the lock of output " + quote_value(path) + ": " +
+                               system_error_text(error));
+    }
     lock_fd_ = fd;
     removed_on_abort_ = std::make_unique<RemovedOnAbort>(dir_fd_, lock_name_);
     const std::string pid = std::to_string(::getpid()) + "\n";
@@ -184,6 +237,7 @@ OutputClaim::~OutputClaim() {
   // still ours.
   if (still_named(dir_fd_, lock_name_, lock_fd_)) ::unlinkat(dir_fd_, lock_name_.c_str(), 0);
   removed_on_abort_.reset();
+  ::close(name_lock_fd_);
   ::close(lock_fd_);
   ::close(dir_fd_);
 }

@@ -16,7 +16,10 @@
 // others may write, so it is input like any other: created exclusively, and a file already
 // there is used only if it is a regular file of this user with one link; anything else (a
 // link, a directory, a FIFO, another user's file) is refused with why. The lock never fails
-// open: a command that cannot take it does not start.
+// open: a command that cannot take it does not start. A cleaner of temporary files may remove
+// the lock file while its holder runs, so the claim holds a second lock that no file carries:
+// an abstract socket (Linux) named after the output's directory and name, freed with the
+// process; a command whose lock file was taken away still keeps out a second one.
 
 #include <memory>
 #include <string>
@@ -49,6 +52,7 @@ class OutputClaim {
   std::string path_, name_, lock_name_;
   int dir_fd_ = -1;
   int lock_fd_ = -1;
+  int name_lock_fd_ = -1;  // the lock a cleaner cannot remove (output_claim.cpp)
   int removed_ = 0;
   std::unique_ptr<RemovedOnAbort> removed_on_abort_;
 };

@@ -197,6 +197,11 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   return result;
 }
 
+// What a film pixel and its accumulators take.
+std::uint64_t film_bytes_per_pixel(const RenderSettings& s) {
+  return kBytesPerPixel + (s.passes.any() ? sizeof(FirstHitSum) + 7 * sizeof(float) : 0);
+}
+
 }  // namespace
 
 std::string to_string(const PixelRegion& region) {
@@ -217,9 +222,11 @@ AccelKind parse_accel(const std::string& name) {
 }
 
 void validate(const RenderSettings& s) {
-  // Refuse before allocating what the machine cannot hold: the film and its accumulators.
-  check_image_size(s.width, s.height,
-                   kBytesPerPixel + (s.passes.any() ? sizeof(FirstHitSum) + 7 * sizeof(float) : 0));
+  // Refuse before allocating what the machine cannot hold: the film and its accumulators, which
+  // are a crop's region alone (issue 69: a 16x16 crop of a frame too large to hold renders, so
+  // crops tile any frame rtiow accepts). The frame's sides and pixel count are bounded still:
+  // its pixels key the samples.
+  check_image_size(s.width, s.height, s.crop ? 0 : film_bytes_per_pixel(s));
   validate_budget(s.samples, s.time_limit_seconds);
   if (s.max_depth < 0 || s.max_depth > limits::kMaxDepth) {
     throw InvalidInput("depth must be from 0 to " + std::to_string(limits::kMaxDepth) + ", got " +
@@ -242,6 +249,7 @@ void validate(const RenderSettings& s) {
     throw InvalidInput("a share of a render (its first sample above 0) has a fixed sample count");
   }
   validate_crop(s);
+  if (s.crop) check_image_size(film_width(s), film_height(s), film_bytes_per_pixel(s));
 }
 
 void validate(const Scene& scene, const RenderSettings& settings) {
