@@ -197,10 +197,14 @@ const std::map<std::string, Setter>& setters() {
 
 ParsedOptions parse_render_options(const py::kwargs& options) {
   ParsedOptions parsed;
-  std::vector<std::string> known;
+  std::vector<std::string> known = {"part", "sample_range"};
   for (const auto& [name, setter] : setters()) known.push_back(name);
   for (const auto& [key, value] : options) {
     const std::string name = key.cast<std::string>();
+    if (name == "part" || name == "sample_range") {  // the share: applied after resolve()
+      (name == "part" ? parsed.part : parsed.sample_range) = text(name, value);
+      continue;
+    }
     const auto found = setters().find(name);
     if (found == setters().end()) {
       throw InvalidInput("render() has no option " + quote_value(name) + did_you_mean(name, known));

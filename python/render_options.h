@@ -7,12 +7,17 @@
 
 #include <pybind11/pybind11.h>
 
+#include <string>
+
 #include "core/render/render_request.h"
 
 namespace rtiow::python {
 
 struct ParsedOptions {
   RenderRequest request;
+  // A share of the samples (as --part "i/n" or --sample-range "A:B"), at most one: the render
+  // is then written as a part file, which rtiow.merge() (or rtiow merge) adds up.
+  std::string part, sample_range;
 };
 
 ParsedOptions parse_render_options(const pybind11::kwargs& options);

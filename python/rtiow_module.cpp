@@ -21,11 +21,13 @@
 #include <vector>
 
 #include "core/compare/image_diff.h"
+#include "core/io/output_claim.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/limits/nearest_name.h"
 #include "core/render/render_outcome.h"
 #include "core/render/render_statistics.h"
+#include "core/render/sample_share.h"
 #include "core/rtiow.h"
 #include "core/session/progress_status.h"
 #include "python/render_options.h"
@@ -41,6 +43,8 @@ struct Render {
   RenderSettings settings;
   RenderResult result;
   bool stats_channels = false;
+  bool share = false;               // a share of the samples: written as a part file
+  std::uint64_t samples_asked = 0;  // the whole job's count, which the shares are cut from
 };
 
 // Runs `settings` on its own thread while this one, holding the GIL between naps, checks for
@@ -106,8 +110,23 @@ std::shared_ptr<Render> render_scene(const Scene& scene, const py::object& progr
                                      const py::kwargs& options) {
   const ParsedOptions parsed = parse_render_options(options);
   ResolvedRender resolved = resolve(scene, parsed.request);
-  validate(resolved.scene, resolved.settings);
   auto out = std::make_shared<Render>();
+  if (const auto* fixed = std::get_if<FixedSamples>(&resolved.settings.samples)) {
+    out->samples_asked = std::uint64_t(fixed->per_pixel);
+  }
+  if (!parsed.part.empty() || !parsed.sample_range.empty()) {
+    if (!parsed.part.empty() && !parsed.sample_range.empty()) {
+      throw InvalidInput("give " + setting("sample_range") + " or " + setting("part") +
+                         ", not both");
+    }
+    const std::string what = parsed.part.empty() ? "sample_range" : "part";
+    const std::uint64_t total = shareable_samples(resolved.settings, setting(what));
+    restrict_to(parsed.part.empty() ? parse_sample_range(parsed.sample_range, total)
+                                    : parse_part(parsed.part, total),
+                resolved.settings);
+    out->share = true;
+  }
+  validate(resolved.scene, resolved.settings);
   out->result = render_watched(resolved.scene, resolved.settings, progress);
   out->scene = std::move(resolved.scene);
   out->settings = resolved.settings;
@@ -196,11 +215,33 @@ py::dict summary_of(const Render& render) {
 
 void write_render(const Render& render, const std::string& path, bool reproducible) {
   const py::gil_scoped_release released;
-  check_image_output(path, {}, render.stats_channels || render.settings.passes.any());
-  write_image(path, render.result.film,
-              render_metadata(render.scene, render.settings, render.result, reproducible),
+  const bool channels = render.share || render.stats_channels || render.settings.passes.any();
+  check_image_output(path, {}, channels);
+  Metadata metadata = render_metadata(render.scene, render.settings, render.result, reproducible);
+  if (render.share) {  // a part file, as rtiow render --part writes it
+    write_part(path, make_part(render.scene, render.settings, render.samples_asked, render.result,
+                               metadata));
+    return;
+  }
+  write_image(path, render.result.film, metadata,
               image_channels(render.result, render.stats_channels, render.settings.passes),
               frame_placement(render.settings));
+}
+
+// rtiow merge: the part files added into the image one render of all their samples gives.
+void merge_files(const std::vector<std::string>& parts, const std::string& output,
+                 bool stats_channels) {
+  const py::gil_scoped_release released;
+  check_image_output(output, parts);
+  const ImageFormat* format = image_format(output);
+  if (stats_channels && format && !format->extra_channels) {
+    throw InvalidInput(setting("stats_channels") + ": output " + quote_value(output) +
+                       " must be .exr to hold the spp and variance channels");
+  }
+  const OutputClaim claim(output);
+  const MergedImage merged =
+      merge_part_files(parts, {stats_channels, format && format->extra_channels});
+  write_image(output, merged.film, merged.metadata, merged.channels, merged.placement);
 }
 
 // An image to compare: a file, or a render (with its variances where it has them).
@@ -358,7 +399,8 @@ PYBIND11_MODULE(_rtiow, m) {
         "Renders `scene`. Keyword arguments are rtiow render's long options with underscores "
         "(width, height, spp, seed, sampler, depth, time_limit, image_error, target_error, "
         "adaptive, min_spp, passes, crop, stats_channels, roulette, threads, accel, lookfrom, "
-        "lookat, vup, vfov, aperture, focus_distance, fresnel); progress(fraction) is called "
+        "lookat, vup, vfov, aperture, focus_distance, fresnel, part, sample_range); "
+        "progress(fraction) is called "
         "about every 50 ms. Ctrl-C stops the render and raises KeyboardInterrupt.");
   m.def("diff", &compare, py::arg("test"), py::arg("reference"), py::kw_only(),
         py::arg("alpha") = 0.01, py::arg("block") = 16, py::arg("fail") = 1e-6,
@@ -366,6 +408,10 @@ PYBIND11_MODULE(_rtiow, m) {
         "Compares a test image (a path or a Render; a list of renders with other seeds) with a "
         "reference, as rtiow diff does: noise-aware where both have variances, by seeds for a "
         "list, else plain. Returns a dict with 'passed', 'verdict' and the figures.");
+  m.def("merge", &merge_files, py::arg("parts"), py::arg("output"), py::kw_only(),
+        py::arg("stats_channels") = false,
+        "Adds part files (renders with part= or sample_range=, written) into the image one "
+        "render of all their samples gives, as rtiow merge does; checks they belong together.");
   m.def("read_image", &read_image, py::arg("path"),
         "An image file's R, G, B as height x width x 3 float32 (linear files as stored).");
   m.attr("__version__") = rtiow::version();

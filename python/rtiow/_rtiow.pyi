@@ -76,7 +76,11 @@ def render(
     aperture: float = ...,
     focus_distance: float = ...,
     fresnel: str = ...,
+    part: str = ...,
+    sample_range: str = ...,
 ) -> Render: ...
+def merge(parts: Sequence[str], output: str, *, stats_channels: bool = False) -> None:
+    """Adds part files into the image one render of all their samples gives (rtiow merge)."""
 def diff(
     test: Union[ImageLike, Sequence[ImageLike]],
     reference: ImageLike,
