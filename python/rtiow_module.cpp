@@ -330,18 +330,8 @@ py::array read_image(const std::string& path) {
   return out;
 }
 
-}  // namespace
-}  // namespace rtiow::python
-
-PYBIND11_MODULE(_rtiow, m) {
-  using namespace rtiow;
-  using namespace rtiow::python;
-  m.doc() = "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend";
-  // rtiow's one-line refusals are ValueErrors; every other failure is a RuntimeError.
-  py::register_exception<InvalidInput>(m, "InvalidInput", PyExc_ValueError).attr("__doc__") =
-      "rtiow's one-line refusal of an input (a bad option, a scene file, an "
-      "image): a ValueError.";
-
+// Scenes: built in, from files, from dicts.
+void bind_scenes(py::module_& m) {
   py::class_<Scene>(m, "Scene", "A scene: spheres, their materials, a camera and a sky.")
       .def_property_readonly("name", [](const Scene& s) { return s.name; })
       .def_property_readonly(
@@ -374,7 +364,10 @@ PYBIND11_MODULE(_rtiow, m) {
   m.def("scene", &scene_from_dict, py::arg("description"),
         "A scene built in Python: a dict in the scene file's words (docs/scene-format.md: "
         "camera, image, background, materials, spheres), checked as a file is.");
+}
 
+// A render and what it gives.
+void bind_renders(py::module_& m) {
   py::class_<Render, std::shared_ptr<Render>>(
       m, "Render",
       "A finished render: its image and sample counts as numpy arrays, and its summary.")
@@ -402,6 +395,10 @@ PYBIND11_MODULE(_rtiow, m) {
         "lookat, vup, vfov, aperture, focus_distance, fresnel, part, sample_range); "
         "progress(fraction) is called "
         "about every 50 ms. Ctrl-C stops the render and raises KeyboardInterrupt.");
+}
+
+// Images: compared, merged from parts, read.
+void bind_images(py::module_& m) {
   m.def("diff", &compare, py::arg("test"), py::arg("reference"), py::kw_only(),
         py::arg("alpha") = 0.01, py::arg("block") = 16, py::arg("fail") = 1e-6,
         py::arg("fail_percent") = 0.0,
@@ -414,5 +411,21 @@ PYBIND11_MODULE(_rtiow, m) {
         "render of all their samples gives, as rtiow merge does; checks they belong together.");
   m.def("read_image", &read_image, py::arg("path"),
         "An image file's R, G, B as height x width x 3 float32 (linear files as stored).");
+}
+}  // namespace
+}  // namespace rtiow::python
+
+PYBIND11_MODULE(_rtiow, m) {
+  using namespace rtiow;
+  using namespace rtiow::python;
+  m.doc() = "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend";
+  // rtiow's one-line refusals are ValueErrors; every other failure is a RuntimeError.
+  py::register_exception<InvalidInput>(m, "InvalidInput", PyExc_ValueError).attr("__doc__") =
+      "rtiow's one-line refusal of an input (a bad option, a scene file, an "
+      "image): a ValueError.";
+
+  bind_scenes(m);
+  bind_renders(m);
+  bind_images(m);
   m.attr("__version__") = rtiow::version();
 }
