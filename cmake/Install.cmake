@@ -8,7 +8,7 @@ include(CMakePackageConfigHelpers)
 
 set_target_properties(rtiow_core PROPERTIES EXPORT_NAME rtiow OUTPUT_NAME rtiow)
 install(TARGETS rtiow RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(FILES app/measure/bench_plot.py app/measure/accuracy_plot.py
+install(FILES core/measure/bench_plot.py core/measure/accuracy_plot.py
         DESTINATION ${CMAKE_INSTALL_DATADIR}/rtiow)
 install(TARGETS rtiow_core EXPORT rtiowTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # The image backend: the rtiow executable loads the shared one from lib/ beside its bin/ when

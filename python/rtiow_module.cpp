@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/compare/image_comparison.h"
 #include "core/compare/image_diff.h"
 #include "core/io/output_claim.h"
 #include "core/io/output_path.h"
@@ -269,32 +270,23 @@ py::dict compare(const py::object& test, const py::object& reference, double alp
     tests.push_back(diff_input_of(test));
   }
   if (tests.empty()) throw InvalidInput("diff: no test image");
-  for (const DiffInput& t : tests) check_comparable(t, ref);
+  ComparisonSettings settings;
+  settings.alpha = alpha, settings.block = block;
+  PlainThresholds& t = settings.thresholds;
+  t.fail = fail, t.fail_percent = fail_percent, t.warn = fail, t.warn_percent = fail_percent;
+  const ImageComparison c = compare_images(ref, tests, settings);
   py::dict out;
-  DiffVerdict verdict;
-  std::string description;
-  const bool variances = !ref.variance.empty() && !tests[0].variance.empty();
-  if (tests.size() > 1 || variances) {
-    const NoiseDiff d = tests.size() > 1 ? seeds_diff(tests, ref, block, alpha)
-                                         : noise_diff(tests[0], ref, block, alpha);
-    out["mode"] = tests.size() > 1 ? "seeds" : "noise";
-    out["worst_block_z"] = d.worst_block_z, out["failing_blocks"] = d.failing_blocks;
-    out["image_z"] = d.image_z;
-    verdict = d.verdict, description = describe(d);
+  out["mode"] = c.mode;
+  if (c.noise) {
+    out["worst_block_z"] = c.noise->worst_block_z, out["failing_blocks"] = c.noise->failing_blocks;
+    out["image_z"] = c.noise->image_z;
   } else {
-    PlainThresholds t;
-    t.fail = fail, t.fail_percent = fail_percent, t.warn = fail, t.warn_percent = fail_percent;
-    const PlainDiff d = plain_diff(tests[0], ref, t);
-    out["mode"] = "plain";
-    out["max_error"] = d.max_error, out["rms_error"] = d.rms_error;
-    out["fail_percent"] = d.fail_percent;
-    verdict = d.verdict, description = describe(d, t);
+    out["max_error"] = c.plain->max_error, out["rms_error"] = c.plain->rms_error;
+    out["fail_percent"] = c.plain->fail_percent;
   }
-  const NonFinite bad = find_non_finite(tests.size() > 1 ? mean_image(tests) : tests[0], ref);
-  if (bad.pixels > 0) verdict = DiffVerdict::Fail;
-  out["verdict"] = to_string(verdict);
-  out["passed"] = verdict != DiffVerdict::Fail;
-  out["description"] = description;
+  out["verdict"] = to_string(c.verdict);
+  out["passed"] = c.verdict != DiffVerdict::Fail;
+  out["description"] = c.description;
   return out;
 }
 

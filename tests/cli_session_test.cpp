@@ -31,9 +31,9 @@
 #include <thread>
 #include <vector>
 
-#include "app/progress_display.h"
-#include "core/session/progress_status.h"
 #include "core/rtiow.h"
+#include "core/session/progress_display.h"
+#include "core/session/progress_status.h"
 #include "tests/cli_helpers.h"
 
 namespace {

@@ -1,9 +1,9 @@
-// A measurement whose own times cannot be right says so (app/measure/timing_warnings.h): more
+// A measurement whose own times cannot be right says so (core/measure/timing_warnings.h): more
 // threads slower than one, a shallower depth limit slower than the deepest.
 
 #include <gtest/gtest.h>
 
-#include "app/measure/timing_warnings.h"
+#include "core/measure/timing_warnings.h"
 
 namespace {
 

@@ -1,54 +1,21 @@
 #include "app/measure/accuracy_command.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "app/cli_checks.h"
-#include "app/measure/accuracy_fits.h"
-#include "app/measure/accuracy_options.h"
-#include "app/measure/accuracy_reference.h"
-#include "app/measure/accuracy_report.h"
-#include "app/measure/accuracy_runs.h"
-#include "app/measure/figure_outputs.h"
-#include "app/measure/measure_summary.h"
 #include "app/measure/quick_run.h"
-#include "core/io/atomic_file.h"
-#include "core/io/output_claim.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
-#include "core/parallel/thread_count.h"
-#include "core/render/render.h"
-#include "core/render/render_request.h"
-#include "core/scene/builtin_scenes.h"
+#include "core/measure/accuracy_options.h"
+#include "core/measure/accuracy_study.h"
 
 namespace rtiow {
 namespace {
-
-namespace fs = std::filesystem;
-using json = nlohmann::json;
-
-// The seed of the reference: far from the seeds users pick, so the measured renders are
-// independent of it.
-constexpr std::uint64_t kReferenceSeed = 0x5eed0000acc0ull;
-
-std::string default_cache_dir() {
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
-    return (fs::path(xdg) / "rtiow").string();
-  }
-  if (const char* home = std::getenv("HOME"); home && *home) {
-    return (fs::path(home) / ".cache" / "rtiow").string();
-  }
-  return ".rtiow-cache";
-}
 
 // Every option checked before the reference (minutes of rendering) is made. The sample
 // counts' limits depend on each other, so every one broken is named in the one line.
@@ -91,70 +58,8 @@ void check_options(const AccuracyOptions& o) {
   }
 }
 
-// The measured renders' request: the scene's depth and aspect ratio at the given width, the
-// book's independent sampler (the reference's and the comparisons').
-RenderRequest base_request(const AccuracyOptions& o) {
-  RenderRequest r;
-  r.width = o.width;
-  r.threads = o.threads;
-  r.seed = o.seed;
-  r.sampler = SamplerKind::Independent;
-  r.spp = o.reference_spp;
-  return r;
-}
-
-int run_accuracy(const AccuracyOptions& o) {
-  check_options(o);
-  const Scene scene = make_builtin_scene(o.scene, o.scene_seed);
-  const RenderSettings base = resolve(scene, base_request(o)).settings;
-  const std::unique_ptr<OutputClaim> summary = claim_summary(o.summary_json);
-  const FigureOutputs outputs(o.out_dir, {"accuracy.json", "accuracy.csv", "accuracy.png"},
-                              "--out");
-  const std::string cache_dir = o.cache_dir.empty() ? default_cache_dir() : o.cache_dir;
-
-  RenderSettings reference_settings = base;
-  reference_settings.seed = kReferenceSeed;
-  const Reference reference =
-      load_or_render_reference(scene, reference_settings, cache_dir, o.quiet, !o.cache_dir.empty());
-  if (!o.quiet && reference.reused) {
-    std::fprintf(stderr, "accuracy: reusing the reference %s\n", reference.path.c_str());
-  }
-
-  json r = {{"scene", scene.name},
-            {"width", base.width},
-            {"height", base.height},
-            {"depth", base.max_depth},
-            {"seed", o.seed},
-            {"reference_spp", o.reference_spp},
-            {"reference_seed", kReferenceSeed},
-            {"reference_path", reference.path},
-            {"reference_reused", reference.reused},
-            {"fixed_spp", o.fixed_spp},
-            {"max_spp", o.max_spp},
-            {"repeat", o.repeat},
-            {"threads", thread_count(o.threads)}};
-  run_sweeps(o, scene, base_request(o), reference.image, r);
-
-  r["summary"] = summarise(r, o);
-  print_table(r);
-  const MeasureFiles files = write_figures(o, r);
-  if (summary) write_text_atomically(o.summary_json, accuracy_summary_json(r, files));
-  return 0;
-}
-
-}  // namespace
-
-std::function<int()> add_accuracy_command(CLI::App& app) {
-  auto options = std::make_shared<AccuracyOptions>();
-  AccuracyOptions& o = *options;
-  CLI::App* cmd = app.add_subcommand(
-      "accuracy",
-      "Measure speed against accuracy on a scene: error against a cached high-spp reference "
-      "for spp 1..N with each sampler, adaptive sampling (budget, image error, target error), "
-      "the time to the book's quality (against the book's estimator: independent sampling "
-      "without Russian roulette), the depth limit, the intersector and the Fresnel "
-      "model; prints tables, writes JSON, CSV and a PNG plot (about 2 minutes on a 2-core "
-      "machine, the reference cached after the first run; --quick: a few seconds)");
+// What is swept: the scene, its size, the sample counts and the settings compared.
+void add_sweep_options(CLI::App* cmd, AccuracyOptions& o) {
   cmd->add_option("--scene", o.scene, "Built-in scene")->capture_default_str();
   cmd->add_option("--scene-seed", o.scene_seed, "Seed of the scene's random layout")
       ->check(kNotNegative)
@@ -183,6 +88,10 @@ std::function<int()> add_accuracy_command(CLI::App& app) {
                   "The spp whose independent-sampling error is the goal of the time-to-quality "
                   "headline (the book's final render: 500), at least 16")
       ->capture_default_str();
+}
+
+// How the measurements run and where their figures go.
+void add_run_options(CLI::App* cmd, AccuracyOptions& o) {
   cmd->add_option("--seed", o.seed, "Seed of the measured renders")
       ->check(kNotNegative)
       ->capture_default_str();
@@ -201,6 +110,23 @@ std::function<int()> add_accuracy_command(CLI::App& app) {
   cmd->add_flag("--quick", o.quick,
                 "A short run for a first look: 80 px wide, a reference of 1024 spp, spp up to "
                 "256, fewer depths and targets, one run each (options given still apply)");
+}
+
+}  // namespace
+
+std::function<int()> add_accuracy_command(CLI::App& app) {
+  auto options = std::make_shared<AccuracyOptions>();
+  AccuracyOptions& o = *options;
+  CLI::App* cmd = app.add_subcommand(
+      "accuracy",
+      "Measure speed against accuracy on a scene: error against a cached high-spp reference "
+      "for spp 1..N with each sampler, adaptive sampling (budget, image error, target error), "
+      "the time to the book's quality (against the book's estimator: independent sampling "
+      "without Russian roulette), the depth limit, the intersector and the Fresnel "
+      "model; prints tables, writes JSON, CSV and a PNG plot (about 2 minutes on a 2-core "
+      "machine, the reference cached after the first run; --quick: a few seconds)");
+  add_sweep_options(cmd, o);
+  add_run_options(cmd, o);
   return [options, cmd] {
     if (!cmd->parsed()) return -1;
     if (options->quick) {
@@ -214,6 +140,7 @@ std::function<int()> add_accuracy_command(CLI::App& app) {
                              {"--image-errors", "0.1,0.05"},
                              {"--repeat", "1"}});
     }
+    check_options(*options);
     return run_accuracy(*options);
   };
 }

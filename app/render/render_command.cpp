@@ -10,10 +10,8 @@
 
 #include "app/interrupt.h"
 #include "app/mpi_session.h"
-#include "app/progress_display.h"
 #include "app/render/image_request.h"
 #include "app/render/render_options.h"
-#include "app/render/render_summary.h"
 #include "core/io/atomic_file.h"
 #include "core/io/image_backend.h"
 #include "core/io/output_claim.h"
@@ -29,8 +27,10 @@
 #include "core/render/sample_share.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/session/checkpoint_session.h"
+#include "core/session/progress_display.h"
 #include "core/session/render_preview.h"
 #include "core/session/render_session.h"
+#include "core/session/render_summary.h"
 #include "core/session/session_report.h"
 #include "core/session/tev_display.h"
 

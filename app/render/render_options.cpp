@@ -104,6 +104,30 @@ CLI::Option* add_image_options(CLI::App* cmd, RenderOptions& o) {
   return output_option;
 }
 
+// Adaptive sampling: an error target per pixel or for the image, or a budget.
+void add_adaptive_options(CLI::App* cmd, RenderOptions& o) {
+  cmd->add_option("--target-error", o.target_error,
+                  "Adaptive sampling: each pixel stops once its relative standard error is below "
+                  "this (e.g. 0.05); --spp is then the most a pixel takes (default " +
+                      std::to_string(kDefaultErrorDrivenMaxSpp) + ")")
+      ->check(kFinitePositive);
+  cmd->add_option("--image-error", o.image_error,
+                  "Adaptive sampling: stop once the image's estimated relative RMS error is "
+                  "below this (e.g. 0.02; it aims at 0.92 of it), giving each pixel samples in "
+                  "proportion to "
+                  "sqrt(variance / cost); --spp is then the most a pixel takes (default " +
+                      std::to_string(kDefaultErrorDrivenMaxSpp) + ")")
+      ->check(kFinitePositive);
+  cmd->add_flag("--adaptive", o.adaptive,
+                "Adaptive sampling on a budget: the time of --spp uniform samples (or "
+                "--time-limit), spread over the pixels in proportion to sqrt(variance / cost), "
+                "which gives the lowest image error for the time");
+  cmd->add_option("--min-spp", o.min_spp,
+                  "Adaptive sampling: samples every pixel takes before it may stop, at least 2 "
+                  "(default " +
+                      std::to_string(kDefaultLeastSamples) + ")");
+}
+
 void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--spp", o.spp, "Samples per pixel (default: the scene's)");
   cmd->add_option("--depth", o.depth,
@@ -136,26 +160,7 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                   "estimator: for comparisons with the book's program ray for ray)")
       ->check(CLI::IsMember({roulette_name(true), roulette_name(false)}))
       ->capture_default_str();
-  cmd->add_option("--target-error", o.target_error,
-                  "Adaptive sampling: each pixel stops once its relative standard error is below "
-                  "this (e.g. 0.05); --spp is then the most a pixel takes (default " +
-                      std::to_string(kDefaultErrorDrivenMaxSpp) + ")")
-      ->check(kFinitePositive);
-  cmd->add_option("--image-error", o.image_error,
-                  "Adaptive sampling: stop once the image's estimated relative RMS error is "
-                  "below this (e.g. 0.02; it aims at 0.92 of it), giving each pixel samples in "
-                  "proportion to "
-                  "sqrt(variance / cost); --spp is then the most a pixel takes (default " +
-                      std::to_string(kDefaultErrorDrivenMaxSpp) + ")")
-      ->check(kFinitePositive);
-  cmd->add_flag("--adaptive", o.adaptive,
-                "Adaptive sampling on a budget: the time of --spp uniform samples (or "
-                "--time-limit), spread over the pixels in proportion to sqrt(variance / cost), "
-                "which gives the lowest image error for the time");
-  cmd->add_option("--min-spp", o.min_spp,
-                  "Adaptive sampling: samples every pixel takes before it may stop, at least 2 "
-                  "(default " +
-                      std::to_string(kDefaultLeastSamples) + ")");
+  add_adaptive_options(cmd, o);
   cmd->add_flag("--stats-channels", o.stats_channels,
                 "Add per-pixel channels to an .exr output: spp and the variance of the pixel's "
                 "mean (variance.R/G/B). For that estimate the samples alternate between two "

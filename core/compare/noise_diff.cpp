@@ -150,6 +150,55 @@ NoiseDiff noise_diff(const DiffInput& test, const DiffInput& reference, int bloc
   return d;
 }
 
+namespace {
+
+// The spread of k renders' sums: their mean, and the variance of that mean.
+std::pair<double, double> mean_and_variance(const std::vector<double>& sums) {
+  const auto k = double(sums.size());
+  double mean = 0, squares = 0;
+  for (double s : sums) mean += s / k;
+  for (double s : sums) squares += (s - mean) * (s - mean);
+  return {mean, squares / (k - 1) / k};
+}
+
+// Block (i, j) of several renders against the reference: each render's sum of differences
+// (into `sums`), the reference's variance, the rounding bound and the channels counted.
+struct SeedsBlock {
+  double reference_variance = 0, rounding = 0, count = 0;
+};
+
+SeedsBlock sum_seeds_block(const std::vector<DiffInput>& tests, const DiffInput& reference,
+                           int block_size, int i, int j, std::vector<double>& sums) {
+  std::fill(sums.begin(), sums.end(), 0.0);
+  SeedsBlock b;
+  const bool reference_has_variance = !reference.variance.empty();
+  for_each_block_pixel(reference.width, reference.height, block_size, i, j, [&](std::size_t p) {
+    // A pixel counts in every render or in none, so the k sums are alike.
+    if (!finite_pixel(reference, p)) return;
+    for (const DiffInput& test : tests) {
+      if (!finite_pixel(test, p)) return;
+    }
+    double deviation = 0;  // the reference's, summed over its correlated channels
+    if (reference_has_variance) {
+      for (std::size_t c = 0; c < 3; ++c) {
+        deviation += std::sqrt(double(reference.variance[3 * p + c]));
+      }
+    }
+    if (!std::isfinite(deviation)) return;  // a reference pixel of fewer than 2 samples
+    for (std::size_t r = 0; r < tests.size(); ++r) {
+      for (std::size_t c = 0; c < 3; ++c) {
+        sums[r] += double(tests[r].rgb[3 * p + c]) - double(reference.rgb[3 * p + c]);
+      }
+    }
+    b.reference_variance += deviation * deviation;
+    b.rounding += rounding_bound(tests[0], reference, p);
+    b.count += 3;
+  });
+  return b;
+}
+
+}  // namespace
+
 NoiseDiff seeds_diff(const std::vector<DiffInput>& tests, const DiffInput& reference,
                      int block_size, double alpha) {
   if (tests.size() < 2) {
@@ -162,53 +211,22 @@ NoiseDiff seeds_diff(const std::vector<DiffInput>& tests, const DiffInput& refer
   d.renders = int(k);
   d.block_critical_z = student_t_critical_value(block_level(d), dof);
   d.image_critical_z = student_t_critical_value(image_level(alpha), dof);
-  const bool reference_has_variance = !reference.variance.empty();
-  // The spread of k sums: their mean, and the variance of that mean.
-  const auto mean_and_variance = [k](const std::vector<double>& sums) {
-    double mean = 0, squares = 0;
-    for (double s : sums) mean += s / double(k);
-    for (double s : sums) squares += (s - mean) * (s - mean);
-    return std::pair{mean, squares / double(k - 1) / double(k)};
-  };
   const int per_row = (reference.width + block_size - 1) / block_size;
   const int rows = (reference.height + block_size - 1) / block_size;
   std::vector<double> image_sums(k, 0.0), sums(k);
   double image_reference_variance = 0, image_count = 0, image_rounding = 0;
   for (int j = 0; j < rows; ++j) {
     for (int i = 0; i < per_row; ++i) {
-      std::fill(sums.begin(), sums.end(), 0.0);
-      double reference_variance = 0, count = 0, rounding = 0;
-      for_each_block_pixel(reference.width, reference.height, block_size, i, j, [&](std::size_t p) {
-        // A pixel counts in every render or in none, so the k sums are alike.
-        if (!finite_pixel(reference, p)) return;
-        for (const DiffInput& test : tests) {
-          if (!finite_pixel(test, p)) return;
-        }
-        double deviation = 0;  // the reference's, summed over its correlated channels
-        if (reference_has_variance) {
-          for (std::size_t c = 0; c < 3; ++c) {
-            deviation += std::sqrt(double(reference.variance[3 * p + c]));
-          }
-        }
-        if (!std::isfinite(deviation)) return;  // a reference pixel of fewer than 2 samples
-        for (std::size_t r = 0; r < k; ++r) {
-          for (std::size_t c = 0; c < 3; ++c) {
-            sums[r] += double(tests[r].rgb[3 * p + c]) - double(reference.rgb[3 * p + c]);
-          }
-        }
-        reference_variance += deviation * deviation;
-        rounding += rounding_bound(tests[0], reference, p);
-        count += 3;
-      });
+      const SeedsBlock b = sum_seeds_block(tests, reference, block_size, i, j, sums);
       const auto [mean, variance] = mean_and_variance(sums);
       // Welch's statistic: the renders' mean against the reference, each with its own noise;
       // the t distribution of the renders' k - 1 degrees of freedom is the conservative one.
       const double noise =
-          std::max(variance + reference_variance + rounding_variance(rounding), 1e-30);
+          std::max(variance + b.reference_variance + rounding_variance(b.rounding), 1e-30);
       for (std::size_t r = 0; r < k; ++r) image_sums[r] += sums[r];
-      image_reference_variance += reference_variance, image_count += count;
-      image_rounding += rounding_variance(rounding);
-      record_block(d, i, j, per_row, count > 0 ? mean / std::sqrt(noise) : 0.0);
+      image_reference_variance += b.reference_variance, image_count += b.count;
+      image_rounding += rounding_variance(b.rounding);
+      record_block(d, i, j, per_row, b.count > 0 ? mean / std::sqrt(noise) : 0.0);
     }
   }
   const auto [image_mean, image_variance] = mean_and_variance(image_sums);

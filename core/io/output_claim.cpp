@@ -112,120 +112,142 @@ std::string lock_name_of(const std::string& name) {
   return lock;
 }
 
+// The output's lock file, created, or someone's (live or stale) opened without following a
+// link or blocking on a FIFO and kept only if it is a plain file of this user's. `vanished`:
+// removed between the two opens (create it then); `refusal`: why the found file is no lock;
+// otherwise a negative fd with `error` where neither open could.
+struct LockFile {
+  int fd = -1;
+  bool created = true;
+  bool vanished = false;
+  std::string refusal;
+  int error = 0;
+};
+
+LockFile open_lock_file(int dir_fd, const std::string& lock_name) {
+  LockFile lock;
+  lock.fd =
+      ::openat(dir_fd, lock_name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (lock.fd < 0 && errno == EEXIST) {
+    lock.created = false;
+    lock.fd = ::openat(dir_fd, lock_name.c_str(),
+                       O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+    if (lock.fd < 0 && errno == ENOENT) lock.vanished = true;
+    if (lock.fd < 0 && errno == ELOOP)
+      lock.refusal = "it is a symbolic link, which rtiow never makes; remove it";
+    if (lock.fd < 0 && errno == EISDIR)
+      lock.refusal = "it is a directory, which rtiow never makes; remove it";
+    if (lock.fd < 0 && errno == ENXIO)
+      lock.refusal = "it is a FIFO or socket, which rtiow never makes; remove it";
+    if (lock.fd >= 0) {
+      lock.refusal = why_not_a_lock(lock.fd);
+      if (!lock.refusal.empty()) ::close(lock.fd), lock.fd = -1;
+      return lock;
+    }
+  }
+  if (lock.fd < 0) lock.error = errno;
+  return lock;
+}
+
 }  // namespace
 
-OutputClaim::OutputClaim(const std::string& path)
-    : path_(path), name_(fs::path(path).filename().string()), lock_name_(lock_name_of(name_)) {
-  const std::string shown = quote_value((fs::path(path).parent_path() / lock_name_).string());
-  const auto refuse = [&](const std::string& why) {
-    if (lock_fd_ >= 0) ::close(lock_fd_);
-    if (dir_fd_ >= 0) ::close(dir_fd_);
-    throw InvalidInput("output " + quote_value(path) + ": cannot take its lock " + shown + ": " +
-                       why);
-  };
-  dir_fd_ = ::open(directory_of(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+void OutputClaim::refuse_lock(const std::string& why) {
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+  if (dir_fd_ >= 0) ::close(dir_fd_);
+  const std::string shown = quote_value((fs::path(path_).parent_path() / lock_name_).string());
+  throw InvalidInput("output " + quote_value(path_) + ": cannot take its lock " + shown + ": " +
+                     why);
+}
+
+void OutputClaim::open_directory() {
+  dir_fd_ = ::open(directory_of(path_).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dir_fd_ < 0) {
     const int error = errno;
     if (is_exhausted_resource(error)) {
-      throw std::runtime_error("cannot open the directory of output " + quote_value(path) + ": " +
+      throw std::runtime_error("cannot open the directory of output " + quote_value(path_) + ": " +
                                system_error_text(error));
     }
-    refuse(std::strerror(error));
+    refuse_lock(std::strerror(error));
   }
-  {  // One command writing one file twice (diff --out-diff x.png --out-z x.png) loses one.
-    const std::lock_guard<std::mutex> guard(g_claims_mutex);
-    for (const OutputClaim* claim : g_claims) {
-      if (claim->name_ == name_ && same_directory(claim->dir_fd_, dir_fd_)) {
-        ::close(dir_fd_);
-        throw InvalidInput("output " + quote_value(path) + ": is also " +
-                           quote_value(claim->path_) + ", another output of this command");
-      }
+  // One command writing one file twice (diff --out-diff x.png --out-z x.png) loses one.
+  const std::lock_guard<std::mutex> guard(g_claims_mutex);
+  for (const OutputClaim* claim : g_claims) {
+    if (claim->name_ == name_ && same_directory(claim->dir_fd_, dir_fd_)) {
+      ::close(dir_fd_);
+      throw InvalidInput("output " + quote_value(path_) + ": is also " + quote_value(claim->path_) +
+                         ", another output of this command");
     }
   }
+}
 
+bool OutputClaim::hold_lock(int fd, bool created) {
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    const std::string pid = read_pid(fd);
+    ::close(fd);
+    if (error != EWOULDBLOCK) refuse_lock(std::strerror(error));
+    ::close(dir_fd_);
+    throw InvalidInput("output " + quote_value(path_) + ": another rtiow (pid " + pid +
+                       ") is writing it; wait for it to end, or choose another name");
+  }
+  if (!still_named(dir_fd_, lock_name_, fd)) {
+    ::close(fd);  // locked a file its holder had just removed: take the new one
+    return false;
+  }
+  // The file's lock holds only while its name does: a cleaner that removes it (as one of
+  // /tmp does) would let a second rtiow take a new one. The name's socket holds regardless.
+  int error = 0;
+  name_lock_fd_ = bind_lock_name(dir_fd_, name_, error);
+  if (name_lock_fd_ < 0) {
+    ::close(fd);
+    ::close(dir_fd_);
+    if (error == EADDRINUSE) {
+      throw InvalidInput("output " + quote_value(path_) +
+                         ": another rtiow is writing it (its lock file was removed); wait for "
+                         "it to end, or choose another name");
+    }
+    throw std::runtime_error("cannot take the lock of output " + quote_value(path_) + ": " +
+                             system_error_text(error));
+  }
+  lock_fd_ = fd;
+  removed_on_abort_ = std::make_unique<RemovedOnAbort>(dir_fd_, lock_name_);
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  if (created || ::ftruncate(lock_fd_, 0) == 0) {
+    [[maybe_unused]] const ssize_t ignored = ::pwrite(lock_fd_, pid.data(), pid.size(), 0);
+  }
+  // The lock is held: no live rtiow writes this output's temporaries.
+  removed_ = remove_stale_temporaries(dir_fd_, name_);
+  const std::lock_guard<std::mutex> guard(g_claims_mutex);
+  g_claims.push_back(this);
+  return true;
+}
+
+OutputClaim::OutputClaim(const std::string& path)
+    : path_(path), name_(fs::path(path).filename().string()), lock_name_(lock_name_of(name_)) {
+  open_directory();
   // A few tries: a stale lock may be removed, or a fresh one made, between our steps.
   for (int attempt = 0; attempt < 5; ++attempt) {
-    bool created = true;
-    int fd = ::openat(dir_fd_, lock_name_.c_str(),
-                      O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-    if (fd < 0 && errno == EEXIST) {
-      // Someone's lock, live or stale; opened without following a link or blocking on a FIFO,
-      // and used only if it is a plain file of this user's.
-      created = false;
-      fd = ::openat(dir_fd_, lock_name_.c_str(),
-                    O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
-      if (fd < 0 && errno == ENOENT) continue;  // removed meanwhile: create it
-      if (fd < 0 && errno == ELOOP)
-        refuse("it is a symbolic link, which rtiow never makes; remove it");
-      if (fd < 0 && errno == EISDIR)
-        refuse("it is a directory, which rtiow never makes; remove it");
-      if (fd < 0 && errno == ENXIO)
-        refuse("it is a FIFO or socket, which rtiow never makes; remove it");
-      if (fd >= 0) {
-        const std::string why = why_not_a_lock(fd);
-        if (!why.empty()) {
-          ::close(fd);
-          refuse(why);
-        }
-      }
-    }
-    if (fd < 0) {
-      const int error = errno;
-      if (is_exhausted_resource(error)) {
+    const LockFile lock = open_lock_file(dir_fd_, lock_name_);
+    if (lock.vanished) continue;
+    if (!lock.refusal.empty()) refuse_lock(lock.refusal);
+    if (lock.fd < 0) {
+      if (is_exhausted_resource(lock.error)) {
         ::close(dir_fd_);
         throw std::runtime_error("cannot take the lock of output " + quote_value(path) + ": " +
-                                 system_error_text(error));
+                                 system_error_text(lock.error));
       }
       // The create itself failed: the directory takes no new files (/proc, read-only, not
       // ours), which is what the user must act on, not the lock's name.
-      if (created) {
+      if (lock.created) {
         ::close(dir_fd_);
         throw InvalidInput("output " + quote_value(path) + ": cannot create files in directory " +
-                           quote_value(directory_of(path)) + ": " + std::strerror(error));
+                           quote_value(directory_of(path)) + ": " + std::strerror(lock.error));
       }
-      refuse(std::strerror(error));
+      refuse_lock(std::strerror(lock.error));
     }
-    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-      const int error = errno;
-      const std::string pid = read_pid(fd);
-      ::close(fd);
-      if (error != EWOULDBLOCK) refuse(std::strerror(error));
-      ::close(dir_fd_);
-      throw InvalidInput("output " + quote_value(path) + ": another rtiow (pid " + pid +
-                         ") is writing it; wait for it to end, or choose another name");
-    }
-    if (!still_named(dir_fd_, lock_name_, fd)) {
-      ::close(fd);  // locked a file its holder had just removed: take the new one
-      continue;
-    }
-    // The file's lock holds only while its name does: a cleaner that removes it (as one of
-    // /tmp does) would let a second rtiow take a new one. The name's socket holds regardless.
-    int error = 0;
-    name_lock_fd_ = bind_lock_name(dir_fd_, name_, error);
-    if (name_lock_fd_ < 0) {
-      ::close(fd);
-      ::close(dir_fd_);
-      if (error == EADDRINUSE) {
-        throw InvalidInput("output " + quote_value(path) +
-                           ": another rtiow is writing it (its lock file was removed); wait for "
-                           "it to end, or choose another name");
-      }
-      throw std::runtime_error("cannot take the lock of output " + quote_value(path) + ": " +
-                               system_error_text(error));
-    }
-    lock_fd_ = fd;
-    removed_on_abort_ = std::make_unique<RemovedOnAbort>(dir_fd_, lock_name_);
-    const std::string pid = std::to_string(::getpid()) + "\n";
-    if (created || ::ftruncate(lock_fd_, 0) == 0) {
-      [[maybe_unused]] const ssize_t ignored = ::pwrite(lock_fd_, pid.data(), pid.size(), 0);
-    }
-    // The lock is held: no live rtiow writes this output's temporaries.
-    removed_ = remove_stale_temporaries(dir_fd_, name_);
-    const std::lock_guard<std::mutex> guard(g_claims_mutex);
-    g_claims.push_back(this);
-    return;
+    if (hold_lock(lock.fd, lock.created)) return;
   }
-  refuse("it kept changing while rtiow tried to take it");
+  refuse_lock("it kept changing while rtiow tried to take it");
 }
 
 OutputClaim::~OutputClaim() {

@@ -49,6 +49,12 @@ class OutputClaim {
   static const OutputClaim* find(const std::string& path);
 
  private:
+  void open_directory();  // the output's directory, held; refuses an output named twice
+  // Locks the lock file `fd` (created by this claim or found), binds the name's socket and
+  // records the claim; false where its holder removed it meanwhile (then try again).
+  bool hold_lock(int fd, bool created);
+  [[noreturn]] void refuse_lock(const std::string& why);  // closes what is open, throws
+
   std::string path_, name_, lock_name_;
   int dir_fd_ = -1;
   int lock_fd_ = -1;

@@ -67,10 +67,11 @@ std::string image_extensions() {
   return list;
 }
 
-void check_output_path(const std::string& path, const std::vector<std::string>& inputs,
-                       const char* what) {
+namespace {
+
+// The path as a name: not empty, no NUL, a file's name within the limits, none of rtiow's own.
+void check_output_name(const std::string& path, const std::string& name, const char* what) {
   if (path.empty()) throw InvalidInput(std::string(what) + ": the path is empty");
-  const std::string name = std::string(what) + " " + quote_value(path);
   if (path.find('\0') != std::string::npos) throw InvalidInput(name + ": holds a NUL byte");
   const fs::path p(path);
   const std::string file_name = p.filename().string();
@@ -91,6 +92,11 @@ void check_output_path(const std::string& path, const std::vector<std::string>& 
                        "checkpoint), which a render of that image replaces or removes: choose "
                        "another");
   }
+}
+
+// Where it points: a writable directory, and no file there that rtiow must not replace.
+void check_output_place(const std::string& path, const std::string& name) {
+  const fs::path p(path);
   const fs::path parent = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   struct stat info {};
   if (::stat(parent.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) {
@@ -123,6 +129,15 @@ void check_output_path(const std::string& path, const std::vector<std::string>& 
                          "writable, or choose another name)");
     }
   }
+}
+
+}  // namespace
+
+void check_output_path(const std::string& path, const std::vector<std::string>& inputs,
+                       const char* what) {
+  const std::string name = std::string(what) + " " + quote_value(path);
+  check_output_name(path, name, what);
+  check_output_place(path, name);
   for (const std::string& input : inputs) {
     if (same_file(path, input)) {
       throw InvalidInput(name + ": is the input file " + quote_value(input) +

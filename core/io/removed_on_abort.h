@@ -23,7 +23,7 @@ class RemovedOnAbort {
   int slot_ = -1;
 };
 
-// A helper process rtiow started and waits for (app/child_process.h): ended with SIGTERM if
+// A helper process rtiow started and waits for (core/io/child_process.h): ended with SIGTERM if
 // rtiow must end at once, so no helper outlives it writing into a temporary.
 class EndedOnAbort {
  public:

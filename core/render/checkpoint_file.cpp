@@ -424,20 +424,18 @@ std::optional<CheckpointSummary> read_checkpoint_summary(const std::string& path
   return summary;
 }
 
-std::optional<RenderState> read_checkpoint(const std::string& path, const RenderIdentity& expected,
-                                           const RenderSettings& settings) {
-  const std::optional<InputFile> file = open_checkpoint(path);
-  if (!file) return std::nullopt;
-  const int fd = file->fd();
-  Checksum checksum;
-  const Header header = read_header(fd, path, checksum);
-  const std::string differs =
-      identity_mismatch(stored_identity(header), expected, "the checkpoint's");
-  if (!differs.empty()) {
-    throw InvalidInput("checkpoint " + quote_value(path) + " is of another render (" + differs +
-                       "): remove it, or render with " + setting("restart") + " to replace it");
-  }
-  // Every field against the request and the limits, before anything is allocated.
+namespace {
+
+// What the header says of its pixels as a whole, checked against them once they are read.
+struct StoredTotals {
+  std::uint64_t rays_traced = 0;
+  std::optional<std::uint64_t> least_samples, most_samples;
+};
+
+// The header's fields against the request and the limits, before anything is allocated: the
+// state they describe, its pixels still to be read.
+RenderState state_of_header(const Header& header, const InputFile& file, const std::string& path,
+                            const RenderSettings& settings, StoredTotals& totals) {
   const std::uint64_t expected_pixels =
       std::uint64_t(film_width(settings)) * std::uint64_t(film_height(settings));
   const std::uint64_t pixels = field_number(header, "pixels", path, limits::kMaxPixels);
@@ -447,101 +445,143 @@ std::optional<RenderState> read_checkpoint(const std::string& path, const Render
   }
   const bool first_hits = settings.passes.any();
   const std::uint64_t most_bytes = kMaxBytesPerPixel + (first_hits ? kMaxPassBytesPerPixel : 0);
-  if (file->size() > pixels * most_bytes + kMaxHeaderBytes + 8) {
+  if (file.size() > pixels * most_bytes + kMaxHeaderBytes + 8) {
     throw bad_file(path, "is larger than its pixels can be");
   }
   const bool adaptive = is_adaptive(settings);
   const std::uint64_t most = most_samples(settings);
   const bool targets = field_number(header, "targets", path, adaptive ? 1 : 0) != 0;
   const bool last_round = field_number(header, "last_round", path, adaptive ? 1 : 0) != 0;
-  const std::uint64_t rays_traced =
+  totals.rays_traced =
       field_number(header, "rays_traced", path, std::numeric_limits<std::uint64_t>::max());
   const double seconds = field_double(header, "render_seconds", path, kMaxRenderSeconds);
   const double image_error = field_double(header, "estimated_image_error", path, 1e300);
   const std::uint64_t above = field_number(header, "pixels_above_target", path, pixels);
-  std::optional<std::uint64_t> least_stored, most_stored;
   if (!header.fixed_records) {
-    least_stored = field_number(header, "least_samples", path, most);
-    most_stored = field_number(header, "most_samples", path, most);
+    totals.least_samples = field_number(header, "least_samples", path, most);
+    totals.most_samples = field_number(header, "most_samples", path, most);
   }
-
   if (header.fixed_records && first_hits) {
     throw bad_file(path, "is of a version that kept no passes");
   }
   RenderState state{std::size_t(pixels), first_hits};
   if (targets) state.targets.resize(std::size_t(pixels));
   state.last_round = last_round;
-  state.rays_traced = rays_traced;
+  state.rays_traced = totals.rays_traced;
   state.render_seconds = seconds;
   state.estimated_image_error = image_error;
   state.pixels_above_target = above;
+  return state;
+}
 
-  // Each pixel's record, checked as it is read: a count and a target within the cap, one
-  // count for every pixel of a uniform render, rays no more than its samples can trace, sums
-  // within what its samples can add up to.
+// One pixel's record as stored: its sample count, rays and adaptive target, a count or target
+// of -1 where its difference runs beyond the cap `most` (refused before it is added: no
+// overflow). Its sums go into `sums`.
+struct PixelRecord {
+  std::int64_t samples = 0, target = 0;
+  std::uint64_t rays = 0;
+};
+
+PixelRecord read_pixel_record(RecordReader& in, bool fixed_records, bool targets,
+                              std::int64_t previous, std::uint64_t most, const PixelSumsOut& sums) {
+  PixelRecord r;
+  if (fixed_records) {
+    read_sums(in, true, sums);
+    r.samples = in.fixed<std::uint32_t>();
+    r.rays = in.fixed<std::uint64_t>();
+    if (targets) r.target = in.fixed<std::uint32_t>();
+    return r;
+  }
+  const auto bounded = [&](std::int64_t d) {
+    return d >= -std::int64_t(most) && d <= std::int64_t(most);
+  };
+  const std::int64_t difference = in.signed_varint();
+  r.samples = bounded(difference) ? previous + difference : -1;
+  const uint128 rays = in.varint();
+  r.rays = rays >> 64 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(rays);
+  if (targets) {
+    const std::int64_t beyond = in.signed_varint();
+    r.target = bounded(beyond) ? r.samples + beyond : -1;
+  }
+  read_sums(in, false, sums);
+  return r;
+}
+
+// Pixel i's record against what a render of `settings` can hold: a count and a target within
+// the cap, one count for every pixel of a uniform render, rays no more than its samples can
+// trace, sums within what its samples can add up to.
+void check_pixel_record(const PixelRecord& r, std::size_t i, const RenderState& state,
+                        const RenderSettings& settings, const std::string& path) {
+  const auto bad_pixel = [&](const std::string& why) {
+    return bad_file(path, "pixel " + std::to_string(i) + " " + why);
+  };
+  const std::uint64_t most = most_samples(settings);
+  if (r.samples < 0 || std::uint64_t(r.samples) > most) {
+    throw bad_pixel("has a sample count outside 0 to " + std::to_string(most));
+  }
+  if (!state.targets.empty() && (r.target < 0 || std::uint64_t(r.target) > most)) {
+    throw bad_pixel("has an adaptive target outside 0 to " + std::to_string(most));
+  }
+  const auto n = std::uint64_t(r.samples);
+  if (!is_adaptive(settings) && i > 0 && n != state.pixels.samples[0]) {
+    throw bad_pixel("has another count than the first pixel's, in a uniform render");
+  }
   const auto depth = std::uint64_t(std::max(settings.max_depth, 0));
-  const std::uint64_t first = settings.first_sample;  // every pixel's samples start here
-  RecordReader in(fd, checksum, path);
+  if (uint128(r.rays) > uint128(n) * depth) {
+    throw bad_pixel("has more rays than its samples can trace at depth " + std::to_string(depth));
+  }
+  // Every pixel's samples start at the request's first sample.
+  const std::string impossible =
+      impossible_sums(std::as_const(state.pixels.sums).at(i), settings.first_sample, n);
+  if (!impossible.empty()) throw bad_pixel("has sums no samples can add up to: " + impossible);
+}
+
+}  // namespace
+
+std::optional<RenderState> read_checkpoint(const std::string& path, const RenderIdentity& expected,
+                                           const RenderSettings& settings) {
+  const std::optional<InputFile> file = open_checkpoint(path);
+  if (!file) return std::nullopt;
+  Checksum checksum;
+  const Header header = read_header(file->fd(), path, checksum);
+  const std::string differs =
+      identity_mismatch(stored_identity(header), expected, "the checkpoint's");
+  if (!differs.empty()) {
+    throw InvalidInput("checkpoint " + quote_value(path) + " is of another render (" + differs +
+                       "): remove it, or render with " + setting("restart") + " to replace it");
+  }
+  StoredTotals totals;
+  RenderState state = state_of_header(header, *file, path, settings, totals);
+
+  // Each pixel's record, checked as it is read.
+  RecordReader in(file->fd(), checksum, path);
   PixelAccumulators& p = state.pixels;
+  const std::uint64_t most = most_samples(settings);
+  const bool targets = !state.targets.empty();
   std::uint64_t rays_sum = 0, least = most, most_seen = 0;
   std::int64_t previous = 0;
-  for (std::size_t i = 0; i < pixels; ++i) {
-    const auto bad_pixel = [&](const std::string& why) {
-      return bad_file(path, "pixel " + std::to_string(i) + " " + why);
-    };
-    std::int64_t samples = 0, target = 0;
-    std::uint64_t rays = 0;
-    if (header.fixed_records) {
-      read_sums(in, true, p.sums.at(i));
-      samples = in.fixed<std::uint32_t>();
-      rays = in.fixed<std::uint64_t>();
-      if (targets) target = in.fixed<std::uint32_t>();
-    } else {
-      // Differences beyond the cap are refused before they are added (no overflow).
-      const auto bounded = [&](std::int64_t d) {
-        return d >= -std::int64_t(most) && d <= std::int64_t(most);
-      };
-      const std::int64_t difference = in.signed_varint();
-      samples = bounded(difference) ? previous + difference : -1;
-      const uint128 r = in.varint();
-      rays = r >> 64 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(r);
-      if (targets) {
-        const std::int64_t beyond = in.signed_varint();
-        target = bounded(beyond) ? samples + beyond : -1;
-      }
-      read_sums(in, false, p.sums.at(i));
-    }
-    previous = samples;
-    if (samples < 0 || std::uint64_t(samples) > most) {
-      throw bad_pixel("has a sample count outside 0 to " + std::to_string(most));
-    }
-    if (targets && (target < 0 || std::uint64_t(target) > most)) {
-      throw bad_pixel("has an adaptive target outside 0 to " + std::to_string(most));
-    }
-    const auto n = std::uint64_t(samples);
-    if (!adaptive && i > 0 && n != p.samples[0]) {
-      throw bad_pixel("has another count than the first pixel's, in a uniform render");
-    }
-    if (uint128(rays) > uint128(n) * depth) {
-      throw bad_pixel("has more rays than its samples can trace at depth " + std::to_string(depth));
-    }
-    const std::string impossible = impossible_sums(std::as_const(p.sums).at(i), first, n);
-    if (!impossible.empty()) throw bad_pixel("has sums no samples can add up to: " + impossible);
+  for (std::size_t i = 0; i < p.samples.size(); ++i) {
+    const PixelRecord r =
+        read_pixel_record(in, header.fixed_records, targets, previous, most, p.sums.at(i));
+    previous = r.samples;
+    check_pixel_record(r, i, state, settings, path);
+    const auto n = std::uint64_t(r.samples);
     p.samples[i] = std::uint32_t(n);
-    p.rays[i] = rays;
-    if (targets) state.targets[i] = std::uint32_t(target);
-    rays_sum += rays;
+    p.rays[i] = r.rays;
+    if (targets) state.targets[i] = std::uint32_t(r.target);
+    rays_sum += r.rays;
     least = std::min(least, n), most_seen = std::max(most_seen, n);
   }
   if (!in.ends_with_checksum()) {
     throw InvalidInput("checkpoint " + quote_value(path) +
                        ": its checksum does not match its content (a damaged file: remove it)");
   }
-  if (rays_sum != rays_traced) {
+  if (rays_sum != totals.rays_traced) {
     throw bad_file(path, "header field rays_traced is not the sum of its pixels' rays");
   }
-  if ((least_stored && *least_stored != (pixels ? least : 0)) ||
-      (most_stored && *most_stored != most_seen)) {
+  const std::uint64_t pixels = p.samples.size();
+  if ((totals.least_samples && *totals.least_samples != (pixels ? least : 0)) ||
+      (totals.most_samples && *totals.most_samples != most_seen)) {
     throw bad_file(path, "header fields least_samples and most_samples are not its pixels'");
   }
   return state;

@@ -73,6 +73,72 @@ struct RunAccumulators {
   FirstHitSum* first_hits = nullptr;  // what the passes average, where they are asked
 };
 
+// One packet of camera samples as it goes through the loop below: each sample's stream,
+// pixel of the run and index, its camera ray's place among the traced ones (or -1), the
+// traced rays and their hits.
+struct SamplePacket {
+  std::array<std::optional<SampleStream>, kRayPacketSize> streams;
+  std::array<int, kRayPacketSize> owner;            // the pixel of the run each sample belongs to
+  std::array<std::uint64_t, kRayPacketSize> index;  // and its sample index
+  std::array<int, kRayPacketSize> slot;             // its camera ray's place in the packet, or -1
+  std::array<Ray, kRayPacketSize> rays_out;
+  std::array<std::optional<Hit>, kRayPacketSize> hits;
+  Camera::Lanes lanes{};
+  std::array<Ray, kRayPacketSize> camera_rays;
+  int count = 0, traced = 0;  // the packet holds the samples whose first ray is traced
+};
+
+// Fills the packet's camera lanes with the next samples of the run, from sample i of the
+// run's pixel `pixel` on, and moves both past them.
+[[gnu::always_inline]] inline void next_camera_samples(
+    SamplePacket& packet, const std::array<std::optional<PixelSampler>, kTileSize>& samplers,
+    const PixelRun& run, int x0, int y, float inv_w, float inv_h, int& pixel, std::uint64_t& i) {
+  packet.count = 0, packet.traced = 0;
+  for (; packet.count < kRayPacketSize && pixel < run.length; ++packet.count) {
+    const auto k = std::size_t(packet.count);
+    SampleStream& rng = packet.streams[k].emplace(*samplers[std::size_t(pixel)], i);
+    const std::array<float, 4> u = rng.next_camera();  // a pinhole ignores the lens's two
+    packet.lanes.s[k] = (float(x0 + pixel) + u[0]) * inv_w;
+    packet.lanes.t[k] = (float(y) + u[1]) * inv_h;
+    packet.lanes.lens_u[k] = u[2], packet.lanes.lens_v[k] = u[3];
+    packet.owner[k] = pixel;
+    packet.index[k] = i;
+    if (++i == run.last) {  // the pixel is done: the next one from its first sample
+      i = run.first;
+      ++pixel;
+    }
+  }
+}
+
+// Follows each of the packet's traced camera rays to the end of its path and adds every
+// sample to its pixel; returns the rays traced.
+template <typename Accel>
+[[gnu::always_inline]] inline std::uint64_t add_packet_paths(const RenderContext<Accel>& ctx,
+                                                             SamplePacket& packet,
+                                                             RunAccumulators out) {
+  const RenderSettings& settings = ctx.settings;
+  std::uint64_t total_rays = 0;
+  for (int k = 0; k < packet.count; ++k) {
+    const int j = packet.slot[std::size_t(k)];
+    const auto o = std::size_t(packet.owner[std::size_t(k)]);
+    std::uint64_t path_rays = j < 0 ? 0 : 1;
+    const Color value = j < 0 ? Color{}
+                              : continue_path(ctx.scene, ctx.accel, packet.rays_out[std::size_t(j)],
+                                              packet.hits[std::size_t(j)], settings.max_depth,
+                                              settings.russian_roulette,
+                                              *packet.streams[std::size_t(k)], path_rays);
+    add_sample(out.sums[o], out.spreads[o], value, packet.index[std::size_t(k)]);
+    if (out.first_hits) {  // a sample not traced met nothing: it adds zeros
+      out.first_hits[o].add(j < 0 ? FirstHit{}
+                                  : first_hit(ctx.scene, packet.rays_out[std::size_t(j)],
+                                              packet.hits[std::size_t(j)]));
+    }
+    out.rays[o] += path_rays;
+    total_rays += path_rays;
+  }
+  return total_rays;
+}
+
 // Adds the run's samples to its pixels. The camera rays go to the accelerator
 // kRayPacketSize at a time, pixel by pixel in sample order: a packet holds consecutive
 // samples of one pixel or, when a pass gives each pixel fewer than a packet (a large image
@@ -87,7 +153,6 @@ template <typename Accel>
                                                                    const PixelRun& run,
                                                                    RunAccumulators out) {
   const RenderSettings& settings = ctx.settings;
-  const Camera& camera = ctx.camera;
   // The frame's pixel the film's stands for: its samples and its camera rays are the ones the
   // whole frame's render gives it.
   const FramePlacement& frame = ctx.frame;
@@ -100,59 +165,21 @@ template <typename Accel>
     samplers[std::size_t(j)].emplace(settings.sampler, settings.seed, std::uint32_t(x0 + j),
                                      std::uint32_t(y), replicates(settings));
   }
-  std::array<std::optional<SampleStream>, kRayPacketSize> streams;
-  std::array<int, kRayPacketSize> owner;            // the pixel of the run each sample belongs to
-  std::array<std::uint64_t, kRayPacketSize> index;  // and its sample index
-  std::array<int, kRayPacketSize> slot;             // its camera ray's place in the packet, or -1
-  std::array<Ray, kRayPacketSize> rays_out;
-  std::array<std::optional<Hit>, kRayPacketSize> hits;
+  static_assert(Camera::kLanes == kRayPacketSize);
+  SamplePacket packet;
   std::uint64_t total_rays = 0;
   int pixel = run.first < run.last ? 0 : run.length;  // where the next packet starts ...
   std::uint64_t i = run.first;                        // ... and at which sample
-  static_assert(Camera::kLanes == kRayPacketSize);
-  Camera::Lanes lanes{};
-  std::array<Ray, kRayPacketSize> camera_rays;
   while (pixel < run.length) {
-    int count = 0, traced = 0;  // the packet holds the samples whose first ray is traced
-    for (; count < kRayPacketSize && pixel < run.length; ++count) {
-      const auto k = std::size_t(count);
-      SampleStream& rng = streams[k].emplace(*samplers[std::size_t(pixel)], i);
-      const std::array<float, 4> u = rng.next_camera();  // a pinhole ignores the lens's two
-      lanes.s[k] = (float(x0 + pixel) + u[0]) * inv_w;
-      lanes.t[k] = (float(y) + u[1]) * inv_h;
-      lanes.lens_u[k] = u[2], lanes.lens_v[k] = u[3];
-      owner[k] = pixel;
-      index[k] = i;
-      if (++i == run.last) {  // the pixel is done: the next one from its first sample
-        i = run.first;
-        ++pixel;
-      }
+    next_camera_samples(packet, samplers, run, x0, y, inv_w, inv_h, pixel, i);
+    ctx.camera.generate_rays(packet.lanes, packet.camera_rays.data());
+    for (int k = 0; k < packet.count; ++k) {
+      const Ray& ray = packet.camera_rays[std::size_t(k)];
+      packet.slot[std::size_t(k)] = starts_path(ray, settings.max_depth) ? packet.traced : -1;
+      if (packet.slot[std::size_t(k)] >= 0) packet.rays_out[std::size_t(packet.traced++)] = ray;
     }
-    camera.generate_rays(lanes, camera_rays.data());
-    for (int k = 0; k < count; ++k) {
-      const Ray& ray = camera_rays[std::size_t(k)];
-      slot[std::size_t(k)] = starts_path(ray, settings.max_depth) ? traced : -1;
-      if (slot[std::size_t(k)] >= 0) rays_out[std::size_t(traced++)] = ray;
-    }
-    intersect_packet(ctx.accel, rays_out.data(), traced, hits.data());
-    for (int k = 0; k < count; ++k) {
-      const int j = slot[std::size_t(k)];
-      const auto o = std::size_t(owner[std::size_t(k)]);
-      std::uint64_t path_rays = j < 0 ? 0 : 1;
-      const Color value =
-          j < 0 ? Color{}
-                : continue_path(ctx.scene, ctx.accel, rays_out[std::size_t(j)],
-                                hits[std::size_t(j)], settings.max_depth, settings.russian_roulette,
-                                *streams[std::size_t(k)], path_rays);
-      add_sample(out.sums[o], out.spreads[o], value, index[std::size_t(k)]);
-      if (out.first_hits) {  // a sample not traced met nothing: it adds zeros
-        out.first_hits[o].add(
-            j < 0 ? FirstHit{}
-                  : first_hit(ctx.scene, rays_out[std::size_t(j)], hits[std::size_t(j)]));
-      }
-      out.rays[o] += path_rays;
-      total_rays += path_rays;
-    }
+    intersect_packet(ctx.accel, packet.rays_out.data(), packet.traced, packet.hits.data());
+    total_rays += add_packet_paths(ctx, packet, out);
   }
   return total_rays;
 }

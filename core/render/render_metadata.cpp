@@ -118,6 +118,43 @@ CameraOverrides read_camera_record(const std::string& record, const std::string&
   return camera;  // what it leaves out is the scene's
 }
 
+namespace {
+
+// An adaptive render's sampling: its target or budget, and the range and mean of its pixels'
+// counts (each pixel has its own count: not one "spp").
+void add_adaptive_sampling(const RenderSettings& s, const RenderResult& r,
+                           const RenderOutcome& outcome, Metadata& metadata) {
+  namespace key = metadata_key;
+  // Each pixel has its own count: the range and the mean, not one "spp".
+  std::uint32_t limit = limits::kMostAdaptiveSamples;
+  if (const auto* t = std::get_if<PixelErrorTarget>(&s.samples)) {
+    metadata.emplace_back(key::kTargetError, t->error);
+    metadata.emplace_back(key::kPixelsAboveTarget, std::int64_t(r.pixels_above_target));
+    limit = std::uint32_t(t->most);
+  }
+  if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) {
+    metadata.emplace_back(key::kImageError, i->error);
+    metadata.emplace_back(key::kEstimatedImageError, r.estimated_image_error);
+    limit = std::uint32_t(i->most);
+  }
+  if (const auto* a = std::get_if<AdaptiveBudget>(&s.samples)) {
+    metadata.emplace_back(key::kAdaptive, std::string("sqrt(variance/cost)"));
+    if (a->per_pixel) {  // else the time limit's
+      metadata.emplace_back(key::kSppBudget, std::int64_t(*a->per_pixel));
+    }
+  }
+  metadata.insert(metadata.end(),
+                  {
+                      {key::kMinSpp, std::int64_t(least_samples(s.samples).value_or(0))},
+                      {key::kSppMin, std::int64_t(outcome.least)},
+                      {key::kSppMax, std::int64_t(outcome.most)},
+                      {key::kSppMean, outcome.mean},
+                      {key::kSppLimit, std::int64_t(limit)},
+                  });
+}
+
+}  // namespace
+
 Metadata render_metadata(const Scene& scene, const RenderSettings& s, const RenderResult& r,
                          bool reproducible) {
   namespace key = metadata_key;
@@ -144,32 +181,7 @@ Metadata render_metadata(const Scene& scene, const RenderSettings& s, const Rend
                                   });
   const RenderOutcome outcome = describe_outcome(s, r);
   if (is_adaptive(s)) {
-    // Each pixel has its own count: the range and the mean, not one "spp".
-    std::uint32_t limit = limits::kMostAdaptiveSamples;
-    if (const auto* t = std::get_if<PixelErrorTarget>(&s.samples)) {
-      metadata.emplace_back(key::kTargetError, t->error);
-      metadata.emplace_back(key::kPixelsAboveTarget, std::int64_t(r.pixels_above_target));
-      limit = std::uint32_t(t->most);
-    }
-    if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) {
-      metadata.emplace_back(key::kImageError, i->error);
-      metadata.emplace_back(key::kEstimatedImageError, r.estimated_image_error);
-      limit = std::uint32_t(i->most);
-    }
-    if (const auto* a = std::get_if<AdaptiveBudget>(&s.samples)) {
-      metadata.emplace_back(key::kAdaptive, std::string("sqrt(variance/cost)"));
-      if (a->per_pixel) {  // else the time limit's
-        metadata.emplace_back(key::kSppBudget, std::int64_t(*a->per_pixel));
-      }
-    }
-    metadata.insert(metadata.end(),
-                    {
-                        {key::kMinSpp, std::int64_t(least_samples(s.samples).value_or(0))},
-                        {key::kSppMin, std::int64_t(outcome.least)},
-                        {key::kSppMax, std::int64_t(outcome.most)},
-                        {key::kSppMean, outcome.mean},
-                        {key::kSppLimit, std::int64_t(limit)},
-                    });
+    add_adaptive_sampling(s, r, outcome, metadata);
   } else {
     metadata.emplace_back(key::kSpp, std::int64_t(r.samples_completed));
   }

@@ -153,6 +153,73 @@ bool JsonSplitter::container_byte(const std::string& window, std::size_t at) {
   return false;
 }
 
+void JsonSplitter::scan_block(const std::string& window, std::size_t& i, std::size_t& copied,
+                              std::size_t& bytewise_until) {
+  // 64 bytes at once, visiting only the structural bytes outside strings. A block with a
+  // backslash goes byte by byte (escapes are rare in a scene file), and so does the byte
+  // after one.
+  const JsonByteMasks block = classify_json_bytes(window.data() + i);
+  if (block.backslash != 0) {
+    bytewise_until = i + 64;
+    return;
+  }
+  const std::uint64_t strings = json_string_bytes(block.quote, in_string_);
+  std::uint64_t structural = (block.open | block.close | block.comma) & ~strings;
+  while (structural != 0) {
+    const std::size_t at = i + std::size_t(std::countr_zero(structural));
+    structural &= structural - 1;
+    if (container_byte(window, at)) {
+      copied = at;
+      in_string_ = false;
+      i = at + 1;
+      return;
+    }
+  }
+  in_string_ = (strings >> 63) != 0;
+  i += 64;
+}
+
+bool JsonSplitter::root_byte(const std::string& window, std::size_t i, std::size_t copied,
+                             std::string& skeleton) {
+  const char c = window[i];
+  if (c == '"') {
+    in_string_ = true;
+    if (depth_ == 1 && expect_value_) {
+      expect_value_ = false;
+    } else if (depth_ == 1 && expect_key_) {
+      in_key_ = true, key_escaped_ = false, expect_key_ = false;
+      key_.clear();
+    }
+  } else if (c == '{' || c == '[') {
+    if (depth_ == 0 && c != '{') return false;  // the root must be an object
+    if (depth_ == 0) expect_key_ = true;
+    const bool value_of_key = depth_ == 1 && expect_value_;
+    expect_value_ = false;
+    ++depth_;
+    const auto it = value_of_key ? split_.find(key_) : split_.end();
+    if (it != split_.end() && it->second == c) {
+      skeleton.append(window.data() + copied, i + 1 - copied);
+      splitting_ = true;
+      container_ = MemberRun{key_, c == '{', 0, 0, {}};
+      inner_depth_ = 0;
+      run_start_ = i + 1;
+      run_commas_ = 0;
+    }
+  } else if (c == '}' || c == ']') {
+    if (--depth_ < 0) return false;
+  } else if (c == ',') {
+    if (depth_ == 1) expect_key_ = true;
+  } else if (c == ':') {
+    if (depth_ == 1) {
+      if (key_escaped_) return false;  // the scan does not decode escapes: leave it whole
+      expect_value_ = true;
+    }
+  } else if (!is_json_space(c)) {
+    if (depth_ == 1) expect_value_ = false;  // a number or a literal
+  }
+  return true;
+}
+
 bool JsonSplitter::scan(const std::string& window, std::size_t from, std::size_t to,
                         std::string& skeleton) {
   const char* data = window.data();
@@ -161,31 +228,7 @@ bool JsonSplitter::scan(const std::string& window, std::size_t from, std::size_t
   std::size_t bytewise_until = from;  // a block with an escape is scanned byte by byte
   while (i < to) {
     if (splitting_ && !escaped_ && i >= bytewise_until && to - i >= 64) {
-      // 64 bytes at once, visiting only the structural bytes outside strings. A block with a
-      // backslash goes byte by byte (escapes are rare in a scene file), and so does the byte
-      // after one.
-      const JsonByteMasks block = classify_json_bytes(data + i);
-      if (block.backslash != 0) {
-        bytewise_until = i + 64;
-        continue;
-      }
-      const std::uint64_t strings = json_string_bytes(block.quote, in_string_);
-      std::uint64_t structural = (block.open | block.close | block.comma) & ~strings;
-      bool closed = false;
-      while (structural != 0 && !closed) {
-        const std::size_t at = i + std::size_t(std::countr_zero(structural));
-        structural &= structural - 1;
-        closed = container_byte(window, at);
-        if (closed) {
-          copied = at;
-          in_string_ = false;
-          i = at + 1;
-        }
-      }
-      if (!closed) {
-        in_string_ = (strings >> 63) != 0;
-        i += 64;
-      }
+      scan_block(window, i, copied, bytewise_until);
       continue;
     }
     if (escaped_) {  // the byte after a backslash in a string
@@ -219,42 +262,7 @@ bool JsonSplitter::scan(const std::string& window, std::size_t from, std::size_t
       continue;
     }
     // Outside the split containers: the root's structure, byte by byte (it is short).
-    const char c = data[i];
-    if (c == '"') {
-      in_string_ = true;
-      if (depth_ == 1 && expect_value_) {
-        expect_value_ = false;
-      } else if (depth_ == 1 && expect_key_) {
-        in_key_ = true, key_escaped_ = false, expect_key_ = false;
-        key_.clear();
-      }
-    } else if (c == '{' || c == '[') {
-      if (depth_ == 0 && c != '{') return false;  // the root must be an object
-      if (depth_ == 0) expect_key_ = true;
-      const bool value_of_key = depth_ == 1 && expect_value_;
-      expect_value_ = false;
-      ++depth_;
-      const auto it = value_of_key ? split_.find(key_) : split_.end();
-      if (it != split_.end() && it->second == c) {
-        skeleton.append(data + copied, i + 1 - copied);
-        splitting_ = true;
-        container_ = MemberRun{key_, c == '{', 0, 0, {}};
-        inner_depth_ = 0;
-        run_start_ = i + 1;
-        run_commas_ = 0;
-      }
-    } else if (c == '}' || c == ']') {
-      if (--depth_ < 0) return false;
-    } else if (c == ',') {
-      if (depth_ == 1) expect_key_ = true;
-    } else if (c == ':') {
-      if (depth_ == 1) {
-        if (key_escaped_) return false;  // the scan does not decode escapes: leave it whole
-        expect_value_ = true;
-      }
-    } else if (!is_json_space(c)) {
-      if (depth_ == 1) expect_value_ = false;  // a number or a literal
-    }
+    if (!root_byte(window, i, copied, skeleton)) return false;
     ++i;
   }
   if (!splitting_) skeleton.append(data + copied, to - copied);

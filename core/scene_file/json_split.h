@@ -63,6 +63,14 @@ class JsonSplitter {
  private:
   // Scans bytes [from, to) of the window; false when the document cannot be cut.
   bool scan(const std::string& window, std::size_t from, std::size_t to, std::string& skeleton);
+  // The 64 bytes of a split container at i, at once; moves i past them, or to the block's first
+  // byte that is not plain (a backslash, a run's end).
+  void scan_block(const std::string& window, std::size_t& i, std::size_t& copied,
+                  std::size_t& bytewise_until);
+  // One byte of the root's structure, outside the split containers; false where the scene is
+  // not one the scan can split (then it is read whole).
+  bool root_byte(const std::string& window, std::size_t i, std::size_t copied,
+                 std::string& skeleton);
   void end_run(const std::string& window, std::size_t end, bool last);
   // A bracket or comma outside strings inside a split container; true when it closes it.
   bool container_byte(const std::string& window, std::size_t at);

@@ -344,73 +344,29 @@ void add_records(const WindowRecords& window, MaterialTable& table, SphereSet& s
 
 }  // namespace
 
-std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, const std::string& name,
-                                        std::size_t run_bytes, std::size_t window_bytes) {
-  const IeeeFloatingPoint ieee;
-  const Reader r(one_line(name, 120));
-  Scene scene;
-  MaterialTable table(r, scene.spheres);
-  JsonSplitter splitter({{"materials", '{'}, {"spheres", '['}}, run_bytes, window_bytes);
-  std::string skeleton;
-  try {
-    // Three stages with windows in flight between them: cut (in order), read (on any core),
-    // resolve the names (in order, as the one-piece read does). A failure is a flag rather
-    // than an exception, which would leave the windows in flight undestroyed: the stages
-    // after it pass their windows on untouched, and the cut stops.
-    // (TSan cannot see TBB's own ordering of the stages: the annotations state it.)
-    bool done = false;
-    std::atomic<bool> failed{false};
-    char cut_order = 0, read_order = 0, resolve_order = 0;
-    // Windows pass between the stages as plain pointers (TBB's copies of them are its own
-    // business), owned by the stage that holds them.
-    using Window = WindowRecords*;
+namespace {
+
+// The split read's three stages with windows in flight between them: cut (in order), read (on
+// any core), resolve the names (in order, as the one-piece read does). A failure is a flag
+// rather than an exception, which would leave the windows in flight undestroyed: the stages
+// after it pass their windows on untouched, and the cut stops.
+// (TSan cannot see TBB's own ordering of the stages: the annotations state it.)
+class RunPipeline {
+ public:
+  RunPipeline(JsonSplitter& splitter, const JsonSplitter::Source& source, MaterialTable& table,
+              SphereSet& spheres)
+      : splitter_(splitter), source_(source), table_(table), spheres_(spheres) {}
+
+  // Runs the stages; false where a window could not be cut, read or resolved. `skeleton`: the
+  // document with its split containers left empty.
+  bool run(std::string& skeleton) {
+    skeleton_ = &skeleton;
     const auto cut = tbb::make_filter<void, Window>(
-        tbb::filter_mode::serial_in_order, [&](tbb::flow_control& control) {
-          tsan_acquire(&tsan_fork_sync);
-          tsan_acquire(&cut_order);
-          std::unique_ptr<WindowRecords> records;
-          if (done || failed) {
-            control.stop();
-          } else {
-            SplitWindow window;
-            if (!splitter.next(source, limits::kMaxSceneFileBytes, window, done, skeleton)) {
-              failed = true;
-            }
-            records = std::make_unique<WindowRecords>();
-            records->text = std::move(window.text);
-            records->runs = std::move(window.runs);
-          }
-          tsan_release(&cut_order);
-          tsan_release(&tsan_join_sync);
-          return records.release();
-        });
-    const auto read =
-        tbb::make_filter<Window, Window>(tbb::filter_mode::parallel, [&](Window records) {
-          tsan_acquire(&cut_order);
-          for (const MemberRun& run : records->runs) {
-            if (failed || !read_run_records(*records->text, run, records->records)) {
-              failed = true;
-              break;
-            }
-          }
-          tsan_release(&read_order);
-          return records;
-        });
-    const auto resolve =
-        tbb::make_filter<Window, void>(tbb::filter_mode::serial_in_order, [&](Window window) {
-          const std::unique_ptr<WindowRecords> records(window);
-          tsan_acquire(&read_order);
-          tsan_acquire(&resolve_order);
-          if (!failed) {
-            try {
-              add_records(*records, table, scene.spheres);  // refuses a material named twice
-            } catch (const InvalidInput&) {
-              failed = true;
-            }
-          }
-          tsan_release(&resolve_order);
-          tsan_release(&tsan_join_sync);
-        });
+        tbb::filter_mode::serial_in_order, [this](tbb::flow_control& c) { return cut_window(c); });
+    const auto read = tbb::make_filter<Window, Window>(tbb::filter_mode::parallel,
+                                                       [this](Window w) { return read_window(w); });
+    const auto resolve = tbb::make_filter<Window, void>(tbb::filter_mode::serial_in_order,
+                                                        [this](Window w) { resolve_window(w); });
     const auto tokens = std::size_t(2 * tbb::this_task_arena::max_concurrency());
     // The stages' tasks convert numbers under IEEE's settings (ieee_floating_point.h), as
     // the one-piece read does, whatever the arena's.
@@ -420,19 +376,101 @@ std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, cons
     tsan_release(&tsan_fork_sync);
     tbb::parallel_pipeline(tokens, cut & read & resolve, context);
     tsan_acquire(&tsan_join_sync);
-    if (failed) return std::nullopt;
-    // The skeleton's split containers are empty: a member there means the scan was wrong.
-    std::map<std::string, StreamedMember, std::less<>> streamed;
-    for (const char* key : {"materials", "spheres"}) {
-      streamed[key] = {std::string_view(key) == "materials",
-                       [](std::string_view, std::size_t, const JsonValue&) {
-                         throw InvalidInput("a member left in the skeleton");
-                       }};
+    return !failed_;
+  }
+
+ private:
+  // Windows pass between the stages as plain pointers (TBB's copies of them are its own
+  // business), owned by the stage that holds them.
+  using Window = WindowRecords*;
+
+  Window cut_window(tbb::flow_control& control) {
+    tsan_acquire(&tsan_fork_sync);
+    tsan_acquire(&cut_order_);
+    std::unique_ptr<WindowRecords> records;
+    if (done_ || failed_) {
+      control.stop();
+    } else {
+      SplitWindow window;
+      if (!splitter_.next(source_, limits::kMaxSceneFileBytes, window, done_, *skeleton_)) {
+        failed_ = true;
+      }
+      records = std::make_unique<WindowRecords>();
+      records->text = std::move(window.text);
+      records->runs = std::move(window.runs);
     }
-    JsonInput input(JsonInput::from_text(skeleton), limits::kMaxSceneFileBytes, r.source());
-    JsonDocument root;
-    parse_json_stream(input, r.source(), streamed, root);
-    finish_scene(r, root, scene, table);
+    tsan_release(&cut_order_);
+    tsan_release(&tsan_join_sync);
+    return records.release();
+  }
+
+  Window read_window(Window records) {
+    tsan_acquire(&cut_order_);
+    for (const MemberRun& run : records->runs) {
+      if (failed_ || !read_run_records(*records->text, run, records->records)) {
+        failed_ = true;
+        break;
+      }
+    }
+    tsan_release(&read_order_);
+    return records;
+  }
+
+  void resolve_window(Window window) {
+    const std::unique_ptr<WindowRecords> records(window);
+    tsan_acquire(&read_order_);
+    tsan_acquire(&resolve_order_);
+    if (!failed_) {
+      try {
+        add_records(*records, table_, spheres_);  // refuses a material named twice
+      } catch (const InvalidInput&) {
+        failed_ = true;
+      }
+    }
+    tsan_release(&resolve_order_);
+    tsan_release(&tsan_join_sync);
+  }
+
+  JsonSplitter& splitter_;
+  const JsonSplitter::Source& source_;
+  MaterialTable& table_;
+  SphereSet& spheres_;
+  std::string* skeleton_ = nullptr;
+  bool done_ = false;
+  std::atomic<bool> failed_{false};
+  char cut_order_ = 0, read_order_ = 0, resolve_order_ = 0;
+};
+
+// The scene's members outside the split containers, read from the skeleton the cut left.
+void read_skeleton(const Reader& r, const std::string& skeleton, Scene& scene,
+                   MaterialTable& table) {
+  // The skeleton's split containers are empty: a member there means the scan was wrong.
+  std::map<std::string, StreamedMember, std::less<>> streamed;
+  for (const char* key : {"materials", "spheres"}) {
+    streamed[key] = {std::string_view(key) == "materials",
+                     [](std::string_view, std::size_t, const JsonValue&) {
+                       throw InvalidInput("a member left in the skeleton");
+                     }};
+  }
+  JsonInput input(JsonInput::from_text(skeleton), limits::kMaxSceneFileBytes, r.source());
+  JsonDocument root;
+  parse_json_stream(input, r.source(), streamed, root);
+  finish_scene(r, root, scene, table);
+}
+
+}  // namespace
+
+std::optional<Scene> read_scene_in_runs(const JsonSplitter::Source& source, const std::string& name,
+                                        std::size_t run_bytes, std::size_t window_bytes) {
+  const IeeeFloatingPoint ieee;
+  const Reader r(one_line(name, 120));
+  Scene scene;
+  MaterialTable table(r, scene.spheres);
+  JsonSplitter splitter({{"materials", '{'}, {"spheres", '['}}, run_bytes, window_bytes);
+  std::string skeleton;
+  try {
+    if (!RunPipeline(splitter, source, table, scene.spheres).run(skeleton)) return std::nullopt;
+    read_skeleton(r, skeleton, scene, table);
     if (scene.name.empty()) scene.name = std::filesystem::path(name).stem().string();
     return scene;
   } catch (const InvalidInput&) {

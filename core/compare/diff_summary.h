@@ -1,6 +1,6 @@
 #pragma once
 // `rtiow diff --summary-json FILE`: the comparison's verdict and figures for a script, in one
-// documented schema (app/summary_json.h; diff's keys in docs/diff.md), beside the lines on
+// documented schema (core/io/summary_json.h; diff's keys in docs/diff.md), beside the lines on
 // stdout.
 
 #include <string>

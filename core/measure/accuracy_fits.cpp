@@ -1,4 +1,4 @@
-#include "app/measure/accuracy_fits.h"
+#include "core/measure/accuracy_fits.h"
 
 #include <algorithm>
 #include <cmath>

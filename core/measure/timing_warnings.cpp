@@ -1,14 +1,17 @@
-#include "app/measure/timing_warnings.h"
+#include "core/measure/timing_warnings.h"
 
 #include <cstddef>
 #include <cstdio>
 
+#include "core/limits/setting_name.h"
+
 namespace rtiow {
 
 namespace {
-constexpr const char* kWhy =
-    "another program was running, or the run was too short to time (--quick)";
+std::string why_slower() {
+  return "another program was running, or the run was too short to time (" + setting("quick") + ")";
 }
+}  // namespace
 
 std::string thread_scaling_warning(int threads, double one_thread_rate, double threads_rate) {
   if (threads <= 1 || !(threads_rate < one_thread_rate)) return "";
@@ -16,7 +19,7 @@ std::string thread_scaling_warning(int threads, double one_thread_rate, double t
   std::snprintf(text, sizeof text,
                 "warning: %d threads traced slower than 1 (%.2fx): %s; these rates are not this "
                 "machine's",
-                threads, threads_rate / one_thread_rate, kWhy);
+                threads, threads_rate / one_thread_rate, why_slower().c_str());
   return text;
 }
 
@@ -32,7 +35,7 @@ std::string depth_timing_warning(const std::vector<double>& depths,
       std::snprintf(text, sizeof text,
                     "warning: depth %.0f took longer than depth %.0f (a negative time saved): "
                     "these times are noise: %s",
-                    depths[i], depths[deepest], kWhy);
+                    depths[i], depths[deepest], why_slower().c_str());
       return text;
     }
   }

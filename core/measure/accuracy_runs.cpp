@@ -1,4 +1,4 @@
-#include "app/measure/accuracy_runs.h"
+#include "core/measure/accuracy_runs.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #pragma once
 // `rtiow render --summary-json FILE`: the render's summary for a script, in one documented
-// schema (app/summary_json.h, docs/usage.md), where the line on stderr is for people.
+// schema (core/io/summary_json.h, docs/usage.md), where the line on stderr is for people.
 // Written through the command's claim of FILE (core/io/output_claim.h) after the image, also
 // when a signal or a time limit stopped the render.
 

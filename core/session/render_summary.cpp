@@ -1,8 +1,8 @@
-#include "app/render/render_summary.h"
+#include "core/session/render_summary.h"
 
 #include <nlohmann/json.hpp>
 
-#include "app/summary_json.h"
+#include "core/io/summary_json.h"
 #include "core/parallel/thread_count.h"
 #include "core/render/render_outcome.h"
 #include "core/render/render_statistics.h"

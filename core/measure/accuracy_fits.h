@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/measure/accuracy_options.h"
+#include "core/measure/accuracy_options.h"
 
 namespace rtiow {
 

@@ -1,6 +1,6 @@
 #pragma once
 // `rtiow bench --summary-json FILE` and `rtiow accuracy --summary-json FILE`: the measurement's
-// headline figures in the summary schema every command shares (app/summary_json.h; the keys
+// headline figures in the summary schema every command shares (core/io/summary_json.h; the keys
 // in docs/usage.md), beside the full figures (bench.json, accuracy.json) and the table.
 
 #include <nlohmann/json.hpp>

@@ -1,4 +1,5 @@
-#include "app/measure/bench_compare.h"
+#include "core/measure/bench_compare.h"
+#include "core/limits/setting_name.h"
 
 #include <cstdint>
 #include <cstdio>
@@ -23,8 +24,8 @@ json read_bench(const std::string& path) {
   json figures = json::parse(file.first_bytes(std::size_t(file.size())), nullptr, false);
   if (figures.is_discarded() || !figures.is_object() || !figures.contains("cover") ||
       !figures["cover"].is_object()) {
-    throw InvalidInput("bench figures " + quote_value(path) +
-                       ": not a bench.json (rtiow bench --out DIR writes one)");
+    throw InvalidInput("bench figures " + quote_value(path) + ": not a bench.json (rtiow bench " +
+                       setting("out", "DIR") + " writes one)");
   }
   return figures;
 }

@@ -1,8 +1,8 @@
-#include "app/diff_summary.h"
+#include "core/compare/diff_summary.h"
 
 #include <nlohmann/json.hpp>
 
-#include "app/summary_json.h"
+#include "core/io/summary_json.h"
 
 namespace rtiow {
 

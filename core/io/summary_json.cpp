@@ -1,4 +1,4 @@
-#include "app/summary_json.h"
+#include "core/io/summary_json.h"
 
 #include <chrono>
 

@@ -3,8 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/measure/accuracy_options.h"
-#include "app/measure/measure_summary.h"
+#include "core/measure/accuracy_options.h"
+#include "core/measure/measure_summary.h"
 
 namespace rtiow {
 

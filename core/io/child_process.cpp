@@ -1,4 +1,4 @@
-#include "app/child_process.h"
+#include "core/io/child_process.h"
 
 #include <fcntl.h>
 #include <spawn.h>

@@ -1,4 +1,4 @@
-#include "app/progress_display.h"
+#include "core/session/progress_display.h"
 
 #include <sys/ioctl.h>
 #include <unistd.h>

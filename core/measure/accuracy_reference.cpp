@@ -1,4 +1,5 @@
-#include "app/measure/accuracy_reference.h"
+#include "core/measure/accuracy_reference.h"
+#include "core/limits/setting_name.h"
 
 #include <unistd.h>
 
@@ -10,13 +11,13 @@
 #include <system_error>
 #include <variant>
 
-#include "app/progress_display.h"
 #include "core/io/image_output.h"
 #include "core/limits/error.h"
 #include "core/render/render_identity.h"
 #include "core/render/render_metadata.h"
 #include "core/render/render_part.h"
 #include "core/render/render_statistics.h"
+#include "core/session/progress_display.h"
 
 namespace rtiow {
 namespace {
@@ -58,12 +59,12 @@ Reference load_or_render_reference(const Scene& scene, const RenderSettings& set
     const int why = error ? error.value() : errno;
     // Named as the user gave it: an option, or the default they never typed.
     if (cache_dir_given) {
-      throw InvalidInput("--cache-dir " + quote_value(cache_dir) +
+      throw InvalidInput(setting("cache_dir") + " " + quote_value(cache_dir) +
                          ": cannot keep the reference there: " + system_error_text(why));
     }
     throw InvalidInput("the default reference cache " + quote_value(cache_dir) +
-                       " cannot keep the reference: " + system_error_text(why) +
-                       " (give --cache-dir DIR to keep it elsewhere)");
+                       " cannot keep the reference: " + system_error_text(why) + " (give " +
+                       setting("cache_dir", "DIR") + " to keep it elsewhere)");
   }
   if (!quiet) {
     std::fprintf(stderr, "accuracy: rendering the reference (%dx%d, %d spp) into %s\n",

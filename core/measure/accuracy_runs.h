@@ -4,8 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/measure/accuracy_options.h"
 #include "core/film/image_error.h"
+#include "core/measure/accuracy_options.h"
 #include "core/render/render_request.h"
 #include "core/scene/scene.h"
 

@@ -1,4 +1,4 @@
-#include "app/measure/trace_rate.h"
+#include "core/measure/trace_rate.h"
 
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/enumerable_thread_specific.h>

@@ -1,6 +1,6 @@
-#include "app/measure/plot_script.h"
+#include "core/measure/plot_script.h"
 
-#include "app/child_process.h"
+#include "core/io/child_process.h"
 
 #include <unistd.h>
 
@@ -23,7 +23,7 @@ bool run_plot_script(const std::string& script, const std::string& json_text,
                      const std::string& png_path) {
   namespace fs = std::filesystem;
   std::error_code error;
-  // share/rtiow/ beside bin/ (RTIOW_DATADIR_FROM_BINDIR, from app/CMakeLists.txt).
+  // share/rtiow/ beside bin/ (RTIOW_DATADIR_FROM_BINDIR, from core/CMakeLists.txt).
   const fs::path path = fs::read_symlink("/proc/self/exe", error).parent_path() /
                         RTIOW_DATADIR_FROM_BINDIR / "rtiow" / script;
   if (!fs::exists(kPython, error) || !fs::exists(path, error)) {

@@ -1,4 +1,4 @@
-#include "app/measure/figure_outputs.h"
+#include "core/measure/figure_outputs.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -1,15 +1,16 @@
-#include "app/measure/accuracy_report.h"
+#include "core/measure/accuracy_report.h"
+#include "core/limits/setting_name.h"
 
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "app/measure/accuracy_fits.h"
-#include "app/measure/plot_script.h"
-#include "app/measure/timing_warnings.h"
 #include "core/io/atomic_file.h"
 #include "core/limits/error.h"
+#include "core/measure/accuracy_fits.h"
+#include "core/measure/plot_script.h"
+#include "core/measure/timing_warnings.h"
 
 namespace rtiow {
 namespace {
@@ -49,8 +50,9 @@ void print_spp_table(const json& r) {
 void print_budget_table(const json& r) {
   const json& s = r["summary"];
   std::printf(
-      "\nadaptive sampling on a budget (--adaptive: the time of N uniform spp, samples in "
-      "proportion to sqrt(variance/cost))\n");
+      "\nadaptive sampling on a budget (%s: the time of N uniform spp, samples in "
+      "proportion to sqrt(variance/cost))\n",
+      setting("adaptive").c_str());
   std::printf("  %-12s %5s %9s %9s %10s %20s %11s\n", "sampler", "N", "mean spp", "seconds",
               "relMSE", "mean difference", "vs uniform");
   for (const SamplerKind kind : kAccuracySamplers) {
@@ -93,8 +95,9 @@ void print_error_rows(const json& rows, const json& factors, const char* factor_
 }
 
 void print_image_error_table(const json& r) {
-  std::printf("\nimage error (--image-error with %s, at most %d spp per pixel)\n",
-              r["image_error_sampler"].get<std::string>().c_str(), 4 * r["max_spp"].get<int>());
+  std::printf("\nimage error (%s with %s, at most %d spp per pixel)\n",
+              setting("image_error").c_str(), r["image_error_sampler"].get<std::string>().c_str(),
+              4 * r["max_spp"].get<int>());
   print_error_rows(r["image_error"], r["summary"]["image_error_equal_time_factors"], "vs uniform");
 }
 
@@ -164,7 +167,7 @@ void print_choice_tables(const json& r) {
 }
 
 void print_adaptive_table(const json& r) {
-  std::printf("\nadaptive sampling (--target-error, min 16 spp, at most %d)\n",
+  std::printf("\nadaptive sampling (%s, min 16 spp, at most %d)\n", setting("target_error").c_str(),
               4 * r["max_spp"].get<int>());
   print_error_rows(r["adaptive"], r["summary"]["adaptive_equal_time_factors"], "equal-time");
   std::printf(

@@ -1,7 +1,8 @@
-#include "app/measure/bench_report.h"
+#include "core/measure/bench_report.h"
+#include "core/limits/setting_name.h"
 
-#include "app/measure/plot_script.h"
-#include "app/measure/timing_warnings.h"
+#include "core/measure/plot_script.h"
+#include "core/measure/timing_warnings.h"
 
 #include "core/io/atomic_file.h"
 
@@ -47,7 +48,10 @@ void print_context(const json& context) {
               context["rtiow"].get<std::string>().c_str(), build.c_str());
 }
 
-void print_bench_table(const json& r) {
+namespace {
+
+// The cover's table: each render's time and rate, the traced rays' rates and their ratios.
+void print_cover_table(const json& r) {
   const json& c = r["cover"];
   const double embree = c["embree"]["mrays_per_second"], naive = c["naive"]["mrays_per_second"];
   const double one = c["embree_1_thread"]["mrays_per_second"];
@@ -82,15 +86,18 @@ void print_bench_table(const json& r) {
     for (const json& failed : c["failed_measurements"]) {
       std::printf(
           "  failed measurement: %s (another program was running, or the runs were too "
-          "short: --repeat 5)\n",
-          failed.get<std::string>().c_str());
+          "short: %s)\n",
+          failed.get<std::string>().c_str(), setting("repeat", "5").c_str());
     }
   }
   if (const std::string warning = thread_scaling_warning(r["threads"].get<int>(), one, embree);
       !warning.empty()) {
     std::fprintf(stderr, "rtiow: %s\n", warning.c_str());  // the table stays the figures
   }
+}
 
+// The scaling table: each N's build time, rate and memory with each intersector.
+void print_scaling_table(const json& r) {
   const json& s = r["scaling_settings"];
   std::printf("\nScaling, spheres:N (N small spheres + ground + 3 big), %dx%d, %d spp, depth %d\n",
               s["width"].get<int>(), s["height"].get<int>(), s["spp"].get<int>(),
@@ -125,6 +132,12 @@ void print_bench_table(const json& r) {
       break;
     }
   }
+}
+}  // namespace
+
+void print_bench_table(const json& r) {
+  print_cover_table(r);
+  print_scaling_table(r);
 }
 
 void write_bench_json(const json& results, const std::string& path) {

@@ -1,15 +1,16 @@
-#include "app/measure/measure_summary.h"
+#include "core/measure/measure_summary.h"
+#include "core/limits/setting_name.h"
 
-#include "app/measure/timing_warnings.h"
-#include "app/summary_json.h"
 #include "core/io/output_claim.h"
 #include "core/io/output_path.h"
+#include "core/io/summary_json.h"
+#include "core/measure/timing_warnings.h"
 
 namespace rtiow {
 
 std::unique_ptr<OutputClaim> claim_summary(const std::string& path) {
   if (path.empty()) return nullptr;
-  check_output_path(path, {}, "--summary-json");
+  check_output_path(path, {}, setting("summary_json").c_str());
   return std::make_unique<OutputClaim>(path);
 }
 namespace {
