@@ -21,7 +21,7 @@ case "${1:-}" in
       clang libclang-rt-14-dev
       libopenmpi-dev openmpi-bin
       python3-matplotlib python3-jsonschema
-      python3-dev python3-numpy python3-pytest pybind11-dev
+      python3-dev python3-numpy python3-pytest pybind11-dev mypy
     )
     ;;
   *)

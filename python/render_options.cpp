@@ -10,6 +10,7 @@
 #include "core/limits/nearest_name.h"
 #include "core/limits/setting_name.h"
 #include "core/render/first_hit_passes.h"
+#include "core/session/tev_display.h"
 
 namespace py = pybind11;
 
@@ -193,23 +194,62 @@ const std::map<std::string, Setter>& setters() {
   return table;
 }
 
+using SessionSetter = std::function<void(ParsedOptions&, const std::string&, const py::handle&)>;
+
+// The options of a render to a file and of a share of the samples.
+const std::map<std::string, SessionSetter>& session_setters() {
+  static const std::map<std::string, SessionSetter> table = {
+      {"output", [](ParsedOptions& o, auto& n,
+                    auto& v) { o.job.output = text(n, v), o.job.output_given = true; }},
+      {"part", [](ParsedOptions& o, auto& n, auto& v) { o.job.part = text(n, v); }},
+      {"sample_range", [](ParsedOptions& o, auto& n, auto& v) { o.job.sample_range = text(n, v); }},
+      {"resume",
+       [](ParsedOptions& o, auto& n, auto& v) { o.session.checkpoint.resume = flag(n, v); }},
+      {"restart",
+       [](ParsedOptions& o, auto& n, auto& v) { o.session.checkpoint.restart = flag(n, v); }},
+      {"keep_state",
+       [](ParsedOptions& o, auto& n, auto& v) { o.session.checkpoint.keep_state = flag(n, v); }},
+      {"checkpoint", [](ParsedOptions& o, auto& n,
+                        auto& v) { o.session.checkpoint.interval_seconds = number(n, v); }},
+      {"preview",
+       [](ParsedOptions& o, auto& n, auto& v) { o.session.preview_seconds = number(n, v); }},
+      {"display", [](ParsedOptions& o, auto& n,
+                     auto& v) { o.session.display = parse_display_address(text(n, v)); }},
+      {"reproducible",
+       [](ParsedOptions& o, auto& n, auto& v) { o.session.reproducible = flag(n, v); }},
+  };
+  return table;
+}
+
 }  // namespace
 
 ParsedOptions parse_render_options(const py::kwargs& options) {
   ParsedOptions parsed;
-  std::vector<std::string> known = {"part", "sample_range"};
+  parsed.session.checkpoint.quiet = true;  // where the samples went is the exception's note
+  std::vector<std::string> known;
   for (const auto& [name, setter] : setters()) known.push_back(name);
+  for (const auto& [name, setter] : session_setters()) known.push_back(name);
   for (const auto& [key, value] : options) {
     const std::string name = key.cast<std::string>();
-    if (name == "part" || name == "sample_range") {  // the share: applied after resolve()
-      (name == "part" ? parsed.part : parsed.sample_range) = text(name, value);
-      continue;
-    }
-    const auto found = setters().find(name);
-    if (found == setters().end()) {
+    if (const auto found = setters().find(name); found != setters().end()) {
+      found->second(parsed.job.request, name, value);
+    } else if (const auto session = session_setters().find(name);
+               session != session_setters().end()) {
+      session->second(parsed, name, value);
+    } else {
       throw InvalidInput("render() has no option " + quote_value(name) + did_you_mean(name, known));
     }
-    found->second(parsed.request, name, value);
+  }
+  parsed.job.stats_channels = parsed.job.request.estimate_error;
+  const bool to_file = parsed.job.output_given;
+  for (const auto& [name, given] : {std::pair{"resume", parsed.session.checkpoint.resume},
+                                    std::pair{"restart", parsed.session.checkpoint.restart},
+                                    std::pair{"keep_state", parsed.session.checkpoint.keep_state},
+                                    std::pair{"preview", parsed.session.preview_seconds > 0.0},
+                                    std::pair{"display", parsed.session.display.has_value()}}) {
+    if (given && !to_file) {
+      throw InvalidInput(setting(name) + " is for a render to a file: give " + setting("output"));
+    }
   }
   return parsed;
 }

@@ -9,15 +9,19 @@
 
 #include <string>
 
-#include "core/render/render_request.h"
+#include "core/render/render_job.h"
+#include "core/session/render_session.h"
 
 namespace rtiow::python {
 
 struct ParsedOptions {
-  RenderRequest request;
-  // A share of the samples (as --part "i/n" or --sample-range "A:B"), at most one: the render
-  // is then written as a part file, which rtiow.merge() (or rtiow merge) adds up.
-  std::string part, sample_range;
+  // The request (job.request), a share of the samples (job.part as --part "i/n" or
+  // job.sample_range as --sample-range "A:B", at most one: the render is then a part file,
+  // which rtiow.merge() or rtiow merge adds up) and the output (job.output, where given).
+  JobRequest job;
+  // What goes around a render to a file, as rtiow render -o has it: the checkpoint (resume,
+  // restart, keep_state, checkpoint), preview, display, reproducible.
+  SessionOptions session;
 };
 
 ParsedOptions parse_render_options(const pybind11::kwargs& options);

@@ -10,9 +10,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -31,6 +33,8 @@
 #include "core/render/sample_share.h"
 #include "core/rtiow.h"
 #include "core/session/progress_status.h"
+#include "core/session/render_session.h"
+#include "core/session/session_report.h"
 #include "python/render_options.h"
 
 namespace py = pybind11;
@@ -46,21 +50,27 @@ struct Render {
   bool stats_channels = false;
   bool share = false;               // a share of the samples: written as a part file
   std::uint64_t samples_asked = 0;  // the whole job's count, which the shares are cut from
+  std::string written;              // rendered with output=: where the image or part went
 };
 
-// Runs `settings` on its own thread while this one, holding the GIL between naps, checks for
-// signals and reports progress. A signal (or an exception from the callback) stops the render
-// at its next safe point, then is raised here.
-RenderResult render_watched(const Scene& scene, const RenderSettings& settings,
-                            const py::object& progress_callback) {
+// A render run on a thread of its own while this one, holding the GIL between naps, checks
+// for signals and reports progress. A signal (or an exception from the callback) stops the
+// render at its next safe point; it is kept in `raised`, for the caller to raise once it has
+// put the stopped render where it goes.
+struct WatchedRender {
+  RenderResult result;
+  std::optional<py::error_already_set> raised;
+};
+
+WatchedRender render_watched(const RenderSettings& settings, const py::object& progress_callback,
+                             const std::function<RenderResult(RenderProgress&)>& run) {
   RenderProgress progress;
   progress.stop_cause = "interrupted by a signal";
-  RenderResult result;
+  WatchedRender out;
   std::exception_ptr failure;
   std::mutex mutex;
   std::condition_variable ended;
   bool done = false;
-  std::optional<py::error_already_set> raised;
   const std::uint64_t pixels =
       std::uint64_t(film_width(settings)) * std::uint64_t(film_height(settings));
   const auto start = std::chrono::steady_clock::now();
@@ -68,7 +78,7 @@ RenderResult render_watched(const Scene& scene, const RenderSettings& settings,
     py::gil_scoped_release released;
     std::thread worker([&] {
       try {
-        result = render(scene, settings, &progress);
+        out.result = run(progress);
       } catch (...) {
         failure = std::current_exception();
       }
@@ -81,10 +91,10 @@ RenderResult render_watched(const Scene& scene, const RenderSettings& settings,
         std::unique_lock lock(mutex);
         if (ended.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; })) break;
       }
-      if (raised) continue;  // stopping: wait for the render's safe point
+      if (out.raised) continue;  // stopping: wait for the render's safe point
       const py::gil_scoped_acquire held;
       if (PyErr_CheckSignals() != 0) {
-        raised.emplace();  // fetches KeyboardInterrupt (or what the handler raised)
+        out.raised.emplace();  // fetches KeyboardInterrupt (or what the handler raised)
         progress.stop_requested = true;
         continue;
       }
@@ -95,44 +105,99 @@ RenderResult render_watched(const Scene& scene, const RenderSettings& settings,
       try {
         progress_callback(status.fraction >= 0.0 ? status.fraction : 0.0);
       } catch (py::error_already_set& e) {
-        raised.emplace(std::move(e));
+        out.raised.emplace(std::move(e));
         progress.stop_requested = true;
       }
     }
     worker.join();
   }
-  if (raised) throw std::move(*raised);
-  if (failure) std::rethrow_exception(failure);
-  if (!progress_callback.is_none()) progress_callback(1.0);
-  return result;
+  if (failure) {
+    if (out.raised) throw std::move(*out.raised);
+    std::rethrow_exception(failure);
+  }
+  if (!out.raised && !progress_callback.is_none()) progress_callback(1.0);
+  return out;
+}
+
+// Raises what stopped a render, with a note (Python 3.11's add_note) of where its samples are.
+[[noreturn]] void raise_stopped(py::error_already_set& raised, const std::string& note) {
+  const py::object value = raised.value();
+  if (!note.empty() && py::hasattr(value, "add_note")) value.attr("add_note")(note);
+  throw std::move(raised);
+}
+
+// A render in memory: the image, and a share of the samples where one is asked.
+std::shared_ptr<Render> render_in_memory(const Scene& scene, const py::object& progress,
+                                         const ParsedOptions& parsed) {
+  const JobRequest& job = parsed.job;
+  ResolvedRender resolved = resolve(scene, job.request);
+  auto out = std::make_shared<Render>();
+  if (const auto* fixed = std::get_if<FixedSamples>(&resolved.settings.samples)) {
+    out->samples_asked = std::uint64_t(fixed->per_pixel);
+  }
+  if (!job.part.empty() || !job.sample_range.empty()) {
+    if (!job.part.empty() && !job.sample_range.empty()) {
+      throw InvalidInput("give " + setting("sample_range") + " or " + setting("part") +
+                         ", not both");
+    }
+    const std::string what = job.part.empty() ? "sample_range" : "part";
+    const std::uint64_t total = shareable_samples(resolved.settings, setting(what));
+    restrict_to(job.part.empty() ? parse_sample_range(job.sample_range, total)
+                                 : parse_part(job.part, total),
+                resolved.settings);
+    out->share = true;
+  }
+  validate(resolved.scene, resolved.settings);
+  WatchedRender watched = render_watched(resolved.settings, progress, [&](RenderProgress& p) {
+    return render(resolved.scene, resolved.settings, &p);
+  });
+  if (watched.raised) raise_stopped(*watched.raised, "");
+  out->result = std::move(watched.result);
+  out->scene = std::move(resolved.scene);
+  out->settings = resolved.settings;
+  out->stats_channels = job.request.estimate_error;
+  return out;
+}
+
+// A render to a file, as rtiow render -o runs it: the library's session claims the output
+// and its checkpoint, resumes, previews and shows it, and at the end writes the image or, for a
+// render stopped short, keeps its samples.
+std::shared_ptr<Render> render_to_file(const Scene& scene, const py::object& progress,
+                                       const ParsedOptions& parsed) {
+  check_session_options(parsed.session);
+  RenderJob job = prepare_job(parsed.job, scene);
+  WatchedRender watched;
+  SessionEnd end;
+  std::string stopped;
+  {
+    RenderSession session(job, parsed.job, parsed.session);
+    watched = render_watched(job.settings, progress,
+                             [&](RenderProgress& p) { return session.render(p); });
+    const py::gil_scoped_release released;
+    end = session.deliver(watched.result);
+    const std::atomic<bool> stop{watched.raised.has_value()};
+    session.let_viewer_finish(stop);
+    if (watched.raised) {
+      stopped = "rtiow: " + stopped_render_report(job, watched.result, session.checkpoint(), end);
+    }
+  }
+  if (watched.raised) raise_stopped(*watched.raised, stopped);
+  auto out = std::make_shared<Render>();
+  out->samples_asked = job.samples_asked;
+  out->share = job.share;
+  out->written = end.written;
+  out->result = std::move(watched.result);
+  out->scene = std::move(job.scene);
+  out->settings = job.settings;
+  out->stats_channels = parsed.job.stats_channels;
+  return out;
 }
 
 std::shared_ptr<Render> render_scene(const Scene& scene, const py::object& progress,
                                      const py::kwargs& options) {
   const ParsedOptions parsed = parse_render_options(options);
-  ResolvedRender resolved = resolve(scene, parsed.request);
-  auto out = std::make_shared<Render>();
-  if (const auto* fixed = std::get_if<FixedSamples>(&resolved.settings.samples)) {
-    out->samples_asked = std::uint64_t(fixed->per_pixel);
-  }
-  if (!parsed.part.empty() || !parsed.sample_range.empty()) {
-    if (!parsed.part.empty() && !parsed.sample_range.empty()) {
-      throw InvalidInput("give " + setting("sample_range") + " or " + setting("part") +
-                         ", not both");
-    }
-    const std::string what = parsed.part.empty() ? "sample_range" : "part";
-    const std::uint64_t total = shareable_samples(resolved.settings, setting(what));
-    restrict_to(parsed.part.empty() ? parse_sample_range(parsed.sample_range, total)
-                                    : parse_part(parsed.part, total),
-                resolved.settings);
-    out->share = true;
-  }
-  validate(resolved.scene, resolved.settings);
-  out->result = render_watched(resolved.scene, resolved.settings, progress);
-  out->scene = std::move(resolved.scene);
-  out->settings = resolved.settings;
-  out->stats_channels = parsed.request.estimate_error;
-  return out;
+  return parsed.job.output_given ? render_to_file(scene, progress, parsed)
+                                 : render_in_memory(scene, progress, parsed);
 }
 
 // The film as an array of height x width x 3 float32 over the render's own memory.
@@ -211,6 +276,8 @@ py::dict summary_of(const Render& render) {
   d["error"] = error;
   d["stopped"] = r.stopped ? py::object(py::str(r.stop_cause)) : py::object(py::none());
   d["time_limited"] = r.time_limited;
+  d["output"] =
+      render.written.empty() ? py::object(py::none()) : py::object(py::str(render.written));
   return d;
 }
 
@@ -384,9 +451,13 @@ void bind_renders(py::module_& m) {
         "Renders `scene`. Keyword arguments are rtiow render's long options with underscores "
         "(width, height, spp, seed, sampler, depth, time_limit, image_error, target_error, "
         "adaptive, min_spp, passes, crop, stats_channels, roulette, threads, accel, lookfrom, "
-        "lookat, vup, vfov, aperture, focus_distance, fresnel, part, sample_range); "
-        "progress(fraction) is called "
-        "about every 50 ms. Ctrl-C stops the render and raises KeyboardInterrupt.");
+        "lookat, vup, vfov, aperture, focus_distance, fresnel, part, sample_range). With "
+        "output=PATH it renders to that file as rtiow render -o does: a checkpoint beside it "
+        "(checkpoint=seconds, 0: none), resume=True to continue one, restart=True to discard "
+        "it, keep_state=True to keep it for a later refinement, preview=seconds, "
+        "display='host:port' (tev), reproducible=True. progress(fraction) is called about every "
+        "50 ms. Ctrl-C stops the render and raises KeyboardInterrupt; to a file, the samples "
+        "are kept in the checkpoint and the exception's note says how to continue.");
 }
 
 // Images: compared, merged from parts, read.

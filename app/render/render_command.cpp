@@ -98,10 +98,6 @@ SessionOptions session_options(const RenderOptions& o, const MpiSession& mpi) {
   if (mpi.distributed() && o.resume) {
     throw InvalidInput("--resume is for a render in one process, not under mpirun");
   }
-  if (o.resume && o.restart) throw InvalidInput("give --resume or --restart, not both");
-  if (o.keep_state && o.checkpoint_seconds <= 0.0) {
-    throw InvalidInput("--keep-state keeps the render's checkpoint: it needs --checkpoint above 0");
-  }
   SessionOptions options;
   options.writes_output = mpi.rank() == 0;
   options.checkpointed = !mpi.distributed();
@@ -111,6 +107,7 @@ SessionOptions session_options(const RenderOptions& o, const MpiSession& mpi) {
   options.preview_seconds = o.preview_seconds;
   if (!o.display.empty()) options.display = parse_display_address(o.display);
   options.reproducible = o.reproducible;
+  check_session_options(options);
   return options;
 }
 

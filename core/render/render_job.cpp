@@ -114,13 +114,17 @@ std::vector<std::string> input_files(const JobRequest& r) {
 RenderJob prepare_job(const JobRequest& r) {
   // Cheap checks of the output first, so a bad -o is refused before a large scene loads.
   if (r.output_given) check_output_path(output_path(r, Scene{}), input_files(r));
-  RenderJob job;
   // A generated scene is built in parallel: within the request's threads, as the render is (a
   // count out of range is refused by name once the request is resolved).
   const int asked = r.request.threads;
   const int threads = asked >= 0 && asked <= limits::kMaxThreads ? asked : 0;
   Scene scene = with_threads(threads, [&] { return load_scene(r); });
   if (r.check_loaded_scene) r.check_loaded_scene(scene);
+  return prepare_job(r, std::move(scene));
+}
+
+RenderJob prepare_job(const JobRequest& r, Scene scene) {
+  RenderJob job;
   job.output = output_path(r, scene);
   // The whole job, resolved and checked before it is cut into a share.
   ResolvedRender resolved = resolve(std::move(scene), r.request);

@@ -48,6 +48,10 @@ struct RenderJob {
 // loads).
 RenderJob prepare_job(const JobRequest& request);
 
+// The same for a scene already built (a program's own, or the Python module's): the request's
+// scene_file, scene and scene_seed are not read.
+RenderJob prepare_job(const JobRequest& request, Scene scene);
+
 // The image (with the statistics channels where asked) or, for a share, the part file.
 void write_job_result(const JobRequest& request, const RenderJob& job, const RenderResult& result,
                       const Metadata& metadata);

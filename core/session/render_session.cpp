@@ -16,9 +16,21 @@
 
 namespace rtiow {
 
+void check_session_options(const SessionOptions& options) {
+  const CheckpointOptions& c = options.checkpoint;
+  if (c.resume && c.restart) {
+    throw InvalidInput("give " + setting("resume") + " or " + setting("restart") + ", not both");
+  }
+  if (c.keep_state && c.interval_seconds <= 0.0) {
+    throw InvalidInput(setting("keep_state") + " keeps the render's checkpoint: it needs " +
+                       setting("checkpoint") + " above 0");
+  }
+}
+
 RenderSession::RenderSession(RenderJob& job, const JobRequest& request,
                              const SessionOptions& options)
     : job_(job), request_(request), options_(options) {
+  check_session_options(options_);
   // Previews and the viewer show a whole render; a part file is a share of one.
   for (const auto& [watching, name] : {std::pair{options_.preview_seconds > 0.0, "preview"},
                                        std::pair{!!options_.display, "display"}}) {

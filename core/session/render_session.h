@@ -38,6 +38,10 @@ struct SessionOptions {
   bool reproducible = false;              // the image's metadata without the time or the host
 };
 
+// Refuses options that contradict each other (resume and restart; keep_state without a
+// checkpoint), in the caller's words; RenderSession's constructor checks them too.
+void check_session_options(const SessionOptions& options);
+
 // How a session's render ended up on disk, for whoever reports it.
 struct SessionEnd {
   std::string written;     // where the image went (empty: its samples are in the checkpoint)

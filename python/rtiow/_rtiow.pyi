@@ -41,7 +41,7 @@ class Render:
     def write(self, path: str, reproducible: bool = False) -> None:
         """Writes the image with rtiow's metadata, as `rtiow render -o` does."""
 
-ImageLike = Union[str, Render]
+_ImageLike = Union[str, Render]
 
 def builtin_scene(name: str = "cover", scene_seed: int = ...) -> Scene: ...
 def builtin_scenes() -> List[str]: ...
@@ -78,12 +78,20 @@ def render(
     fresnel: str = ...,
     part: str = ...,
     sample_range: str = ...,
+    output: str = ...,
+    checkpoint: float = ...,
+    resume: bool = ...,
+    restart: bool = ...,
+    keep_state: bool = ...,
+    preview: float = ...,
+    display: str = ...,
+    reproducible: bool = ...,
 ) -> Render: ...
 def merge(parts: Sequence[str], output: str, *, stats_channels: bool = False) -> None:
     """Adds part files into the image one render of all their samples gives (rtiow merge)."""
 def diff(
-    test: Union[ImageLike, Sequence[ImageLike]],
-    reference: ImageLike,
+    test: Union[_ImageLike, Sequence[_ImageLike]],
+    reference: _ImageLike,
     *,
     alpha: float = 0.01,
     block: int = 16,
