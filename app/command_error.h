@@ -3,8 +3,11 @@
 // `rtiow diff` keeps 1 and 2 for its verdicts, so what stops it from comparing exits 3 or 4
 // as OpenImageIO's idiff does.
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
+
+#include "core/limits/error.h"
 
 namespace rtiow {
 
@@ -17,5 +20,10 @@ class CommandError : public std::runtime_error {
  private:
   int exit_code_;
 };
+
+// Every message leaves as one printable line, whatever a value in it held.
+inline void report_error(const std::string& what) {
+  std::fprintf(stderr, "rtiow: error: %s\n", one_line(what).c_str());
+}
 
 }  // namespace rtiow

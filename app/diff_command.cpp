@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "app/cli_checks.h"
 #include "app/command_error.h"
 #include "core/compare/diff_images.h"
 #include "core/compare/diff_summary.h"
@@ -26,14 +25,6 @@
 
 namespace rtiow {
 namespace {
-
-struct DiffOptions {
-  std::string reference;
-  std::vector<std::string> tests;
-  ComparisonSettings settings;
-  std::string out_diff, out_z;
-  std::string summary_json;  // empty: none
-};
 
 // The comparison, its lines on stdout, its pictures and its summary; the verdict.
 int compare_images(const DiffOptions& o) {
@@ -113,96 +104,20 @@ int run_diff(const DiffOptions& o) {
   }
 }
 
-// A plain comparison's thresholds.
-void add_plain_options(CLI::App* cmd, PlainThresholds& t) {
-  cmd->add_option("--fail", t.fail, "Plain: a pixel fails when a channel differs by more")
-      ->check(kFiniteNotNegative)
-      ->capture_default_str();
-  cmd->add_option("--failpercent", t.fail_percent,
-                  "Plain: the percentage of failing pixels allowed")
-      ->check(kFiniteNotNegative)
-      ->capture_default_str();
-  cmd->add_option("--hardfail", t.hard_fail,
-                  "Plain: fail when any channel differs by more (default: no limit)")
-      ->check(kFiniteNotNegative);
-  cmd->add_option("--warn", t.warn,
-                  "Plain: a pixel warns when a channel differs by more (default: --fail's value "
-                  "when --fail is given)")
-      ->check(kFiniteNotNegative)
-      ->capture_default_str();
-  cmd->add_option("--warnpercent", t.warn_percent,
-                  "Plain: the percentage of warning pixels allowed (default: --failpercent's "
-                  "value when --failpercent is given)")
-      ->check(kFiniteNotNegative)
-      ->capture_default_str();
-}
-
-// A noise-aware comparison's test.
-void add_noise_options(CLI::App* cmd, ComparisonSettings& s) {
-  cmd->add_option("--alpha", s.alpha,
-                  "Noise-aware: the chance that noise alone fails the comparison (half for the "
-                  "image mean, half over the blocks), 1e-12 to 0.5")
-      ->check(kFiniteNotNegative)
-      ->check(from_to(1e-12, 0.5))
-      ->capture_default_str();
-  cmd->add_option("--block", s.block, "Noise-aware: the side of a block of pixels, 1 to 4096")
-      ->check(from_to(1, 4096))
-      ->capture_default_str();
-}
-
 }  // namespace
 
-std::function<int()> add_diff_command(CLI::App& app) {
-  auto o = std::make_shared<DiffOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "diff",
-      "Compare a test image, or several renders with other seeds, with a reference. Exit 0 "
-      "pass, 1 warning, 2 failure; no verdict: 3 images of other sizes (or linear against "
-      "8-bit), 4 a missing or unreadable file or a bad option. Noise-aware when given several "
-      "renders or when both images carry variance channels (--stats-channels EXR): then a "
-      "difference fails only where the noise cannot explain it");
-  cmd->add_option("reference", o->reference, "The reference image")->required();
-  cmd->add_option("test", o->tests,
-                  "The image to check, or several renders of the same job with other seeds")
-      ->required();
-  cmd->add_option("--mode", o->settings.mode,
-                  "auto (seeds for several tests; noise when both images have variances; else "
-                  "plain), plain, noise, or seeds")
-      ->check(CLI::IsMember({"auto", "plain", "noise", "seeds"}))
-      ->capture_default_str();
-  add_plain_options(cmd, o->settings.thresholds);
-  add_noise_options(cmd, o->settings);
-  cmd->add_option("--out-diff", o->out_diff,
-                  "Write |test - reference| (several tests: their mean), scaled so the largest "
-                  "difference is white");
-  cmd->add_option("--summary-json", o->summary_json,
-                  "Also write the verdict and the figures as JSON here, for scripts (schema in "
-                  "docs/diff.md)");
-  cmd->add_option("--out-z", o->out_z,
-                  "Noise-aware: write the blocks' z (or t) scores (red: test brighter, blue: "
-                  "darker, full colour at the critical value)");
-  return [o, cmd] {
-    if (!cmd->parsed()) return -1;
-    // A warning threshold left unset follows the failure one given, so plain thresholds for
-    // failure alone do not leave every image warning at 1e-6.
-    if (cmd->count("--fail") > 0 && cmd->count("--warn") == 0) {
-      o->settings.thresholds.warn = o->settings.thresholds.fail;
-    }
-    if (cmd->count("--failpercent") > 0 && cmd->count("--warnpercent") == 0) {
-      o->settings.thresholds.warn_percent = o->settings.thresholds.fail_percent;
-    }
-    // Exit codes 1 and 2 are verdicts: whatever keeps diff from giving one exits 3 or 4 (a
-    // refusal before the outputs are claimed too).
-    try {
-      return run_diff(*o);
-    } catch (const CommandError&) {
-      throw;
-    } catch (const std::bad_alloc&) {
-      throw CommandError("out of memory; nothing was compared", kDiffCouldNotCompare);
-    } catch (const std::exception& e) {
-      throw CommandError(e.what(), kDiffCouldNotCompare);
-    }
-  };
+int run_diff_command(const DiffOptions& o) {
+  // Exit codes 1 and 2 are verdicts: whatever keeps diff from giving one exits 3 or 4 (a
+  // refusal before the outputs are claimed too).
+  try {
+    return run_diff(o);
+  } catch (const CommandError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw CommandError("out of memory; nothing was compared", kDiffCouldNotCompare);
+  } catch (const std::exception& e) {
+    throw CommandError(e.what(), kDiffCouldNotCompare);
+  }
 }
 
 }  // namespace rtiow

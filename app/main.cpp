@@ -1,8 +1,6 @@
 // rtiow: the command line. Parses, dispatches to a subcommand, and turns every refusal
 // into one line on stderr with exit code 2 (bad input) or 1 (a failure while working).
 
-#include <CLI/CLI.hpp>
-
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -17,35 +15,26 @@
 #include <iostream>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "app/cli_checks.h"
 #include "app/command_error.h"
-#include "app/diff_command.h"
-#include "app/help_format.h"
+#include "app/command_line.h"
 #include "app/interrupt.h"
-#include "app/measure/accuracy_command.h"
-#include "app/measure/bench_command.h"
-#include "app/merge_command.h"
 #include "app/mpi_launch.h"
 #include "app/mpi_session.h"
-#include "app/parse_errors.h"
-#include "app/render/render_command.h"
-#include "app/scene_command.h"
 #include "app/source_commit.h"
 #include "core/io/removed_on_abort.h"
 #include "core/limits/error.h"
-#include "core/limits/nearest_name.h"
 #include "core/limits/setting_name.h"
 #include "core/version.h"
 
 namespace {
 
-// Every message leaves as one printable line, whatever a value in it held.
-void report(const char* what) {
-  std::fprintf(stderr, "rtiow: error: %s\n", rtiow::one_line(what).c_str());
+void report(const std::string& what) {
+  rtiow::report_error(what);
 }
 
 // `rtiow --version`: the version, then what was built in, a fact a line.
@@ -83,53 +72,32 @@ std::string version_text() {
   std::_Exit(1);
 }
 
-// Help and version text; a failed write (a full disk, a closed pipe) is an error too.
-int print_and_exit(const CLI::App& app, const CLI::Error& e) {
-  const int code = app.exit(e);
-  std::cout.flush();
-  if (!std::cout || std::fflush(stdout) != 0) {
-    report("cannot write to standard output");
-    return 1;
-  }
-  return code;
-}
-
-// A first word that is no command, or no option rtiow itself takes: name it, with the nearest
-// real one (CLI11 would only say that a command is required). Returns true if it refused;
-// says so if `speaks` (under mpirun, rank 0 speaks for all).
-bool refused_unknown_command(const CLI::App& app, int argc, char** argv, bool speaks) {
-  if (argc < 2) return false;
-  const std::string first = argv[1];
-  std::vector<std::string> names;
-  if (first[0] == '-') {
-    names = rtiow::option_spellings(app);
-    if (std::find(names.begin(), names.end(), first.substr(0, first.find('='))) != names.end())
-      return false;
-  } else {
-    for (const CLI::App* sub : app.get_subcommands({})) {
-      if (sub->get_name() == first) return false;
-      if (!sub->get_group().empty()) names.push_back(sub->get_name());  // not the hidden ones
-    }
-  }
-  std::string known;
-  for (const std::string& name : names) known += (known.empty() ? "" : ", ") + name;
-  const std::string what = first[0] == '-' ? "unknown option " : "unknown command ";
-  if (!speaks) return true;
-  report((what + rtiow::quote_value(first) + rtiow::did_you_mean(first, names) +
-          " (known: " + known + "; see rtiow --help)")
-             .c_str());
-  return true;
-}
-
 // Runs the command that was parsed; every failure leaves as one line: exit 2 for bad input,
 // 1 for a failure while working.
-int run_parsed_command(const std::vector<std::function<int()>>& commands,
-                       const rtiow::MpiSession& mpi) {
+int run_command(const rtiow::CommandLine& c, const rtiow::MpiSession& mpi) {
+  using rtiow::Command;
+  switch (c.command) {
+    case Command::Render:
+      return rtiow::run_render_command(c.render, mpi);
+    case Command::Scene:
+      return rtiow::run_scene(c.scene);
+    case Command::Merge:
+      return rtiow::run_merge(c.merge);
+    case Command::Bench:
+      return rtiow::run_bench_command(c.bench);
+    case Command::BenchPoint:
+      return rtiow::run_bench_point(c.point);
+    case Command::Accuracy:
+      return rtiow::run_accuracy_command(c.accuracy);
+    case Command::Diff:
+      return rtiow::run_diff_command(c.diff);
+  }
+  return 0;
+}
+
+int run_parsed_command(const rtiow::CommandLine& command, const rtiow::MpiSession& mpi) {
   try {
-    for (const auto& command : commands) {
-      const int code = command();
-      if (code >= 0) return code;
-    }
+    return run_command(command, mpi);
   } catch (const rtiow::CommandError& e) {  // a command's own exit code
     if (mpi.rank() == 0) report(e.what());
     return e.exit_code();
@@ -226,41 +194,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   const rtiow::MpiSession mpi(argc, argv);
-  CLI::App app{
-      "rtiow: a path tracer for the scenes of Ray Tracing in One Weekend, "
-      "built on Embree, oneTBB and OpenImageIO",
-      "rtiow"};
-  // Before the commands are added: each takes its parent's formatter.
-  app.formatter(std::make_shared<rtiow::ReadableHelpFormatter>());
-  app.require_subcommand(1);
-  app.set_version_flag("--version", version_text());
-  app.footer(
-      "The docs/ pages the help cites are in the source tree, and in share/doc/rtiow/ where "
-      "rtiow is installed.");
-  std::vector<std::function<int()>> commands{
-      rtiow::add_render_command(app, mpi), rtiow::add_scene_command(app),
-      rtiow::add_merge_command(app),       rtiow::add_bench_command(app),
-      rtiow::add_accuracy_command(app),    rtiow::add_diff_command(app)};
-
-  rtiow::read_whole_numbers_as_decimal(app);
-
-  // Under mpirun every rank parses the same command line: rank 0 alone prints what it says.
-  const bool speaks = mpi.rank() == 0;
-  if (refused_unknown_command(app, argc, argv, speaks)) return 2;
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return speaks ? print_and_exit(app, e) : 0;
-  } catch (const CLI::CallForAllHelp& e) {
-    return speaks ? print_and_exit(app, e) : 0;
-  } catch (const CLI::CallForVersion& e) {
-    return speaks ? print_and_exit(app, e) : 0;
-  } catch (const CLI::ParseError& e) {
-    if (speaks) report(rtiow::explain_parse_error(app, e).c_str());
-    // diff's 2 is a verdict (FAILURE): a command line it cannot use is "could not compare".
-    return argc > 1 && std::string_view(argv[1]) == "diff" ? rtiow::kDiffCouldNotCompare : 2;
+  rtiow::CommandLine command;
+  if (const std::optional<int> code =
+          rtiow::parse_command_line(argc, argv, version_text(), mpi.rank() == 0, command)) {
+    return *code;
   }
-
-  return check_standard_output(run_parsed_command(commands, mpi),
+  return check_standard_output(run_parsed_command(command, mpi),
                                argc > 1 && std::string_view(argv[1]) == "diff");
 }

@@ -12,14 +12,6 @@
 #include "core/render/part_merge.h"
 
 namespace rtiow {
-namespace {
-
-struct MergeOptions {
-  std::vector<std::string> parts;
-  std::string output;
-  bool stats_channels = false;
-  bool quiet = false;
-};
 
 int run_merge(const MergeOptions& o) {
   check_image_output(o.output, o.parts);
@@ -46,25 +38,6 @@ int run_merge(const MergeOptions& o) {
                  one_line(o.output).c_str());
   }
   return 0;
-}
-
-}  // namespace
-
-std::function<int()> add_merge_command(CLI::App& app) {
-  auto options = std::make_shared<MergeOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "merge",
-      "Add part files (rtiow render --sample-range/--part) into the image one render "
-      "would have produced; checks they belong together, overlap nowhere and miss nothing");
-  cmd->add_option("parts", options->parts, "Part files (.exr)")->required();
-  cmd->add_option("-o,--output", options->output,
-                  "The merged image (" + image_extensions() + "); not one of the parts")
-      ->required();
-  cmd->add_flag("--stats-channels", options->stats_channels,
-                "Add per-pixel channels to an .exr output: spp and the variance of the pixel's "
-                "mean (variance.R/G/B), the same as one render's --stats-channels");
-  cmd->add_flag("-q,--quiet", options->quiet, "No summary on stderr");
-  return [options, cmd] { return cmd->parsed() ? run_merge(*options) : -1; };
 }
 
 }  // namespace rtiow

@@ -2,12 +2,18 @@
 // `rtiow merge PART... -o OUT`: adds shares of one render (from --sample-range or --part)
 // into the image a single render would have produced.
 
-#include <CLI/CLI.hpp>
-
-#include <functional>
+#include <string>
+#include <vector>
 
 namespace rtiow {
 
-std::function<int()> add_merge_command(CLI::App& app);
+struct MergeOptions {
+  std::vector<std::string> parts;
+  std::string output;
+  bool stats_channels = false;
+  bool quiet = false;
+};
+
+int run_merge(const MergeOptions& o);
 
 }  // namespace rtiow

@@ -104,11 +104,12 @@ Vec3d vector3(const std::string& name, const py::handle& value) {
 }
 
 using Setter = std::function<void(RenderRequest&, const std::string&, const py::handle&)>;
+using SetterTable = std::map<std::string, Setter>;
+constexpr long long kMaxInt = 2147483647;
 
-// Every option rtiow.render() takes, by the library's name for it.
-const std::map<std::string, Setter>& setters() {
-  constexpr long long kMaxInt = 2147483647;
-  static const std::map<std::string, Setter> table = {
+// The size, the samples and how they are taken.
+void add_sampling_setters(SetterTable& table) {
+  table.insert({
       {"width", [](RenderRequest& r, auto& n, auto& v) { r.width = int(whole(n, v, 0, kMaxInt)); }},
       {"height",
        [](RenderRequest& r, auto& n, auto& v) { r.height = int(whole(n, v, 0, kMaxInt)); }},
@@ -136,6 +137,12 @@ const std::map<std::string, Setter>& setters() {
       {"image_error", [](RenderRequest& r, auto& n, auto& v) { r.image_error = number(n, v); }},
       {"adaptive", [](RenderRequest& r, auto& n, auto& v) { r.adaptive = flag(n, v); }},
       {"stats_channels", [](RenderRequest& r, auto& n, auto& v) { r.estimate_error = flag(n, v); }},
+  });
+}
+
+// The path's rules, the passes, the region and the camera.
+void add_scene_setters(SetterTable& table) {
+  table.insert({
       {"roulette",
        [](RenderRequest& r, auto& n, auto& v) {
          if (py::isinstance<py::bool_>(v)) {
@@ -190,7 +197,17 @@ const std::map<std::string, Setter>& setters() {
       {"aperture", [](RenderRequest& r, auto& n, auto& v) { r.camera.aperture = number(n, v); }},
       {"focus_distance",
        [](RenderRequest& r, auto& n, auto& v) { r.camera.focus_distance = number(n, v); }},
-  };
+  });
+}
+
+// Every option rtiow.render() takes, by the library's name for it.
+const SetterTable& setters() {
+  static const SetterTable table = [] {
+    SetterTable t;
+    add_sampling_setters(t);
+    add_scene_setters(t);
+    return t;
+  }();
   return table;
 }
 

@@ -115,7 +115,13 @@ WatchedRender render_watched(const RenderSettings& settings, const py::object& p
     if (out.raised) throw std::move(*out.raised);
     std::rethrow_exception(failure);
   }
-  if (!out.raised && !progress_callback.is_none()) progress_callback(1.0);
+  if (!out.raised && !progress_callback.is_none()) {
+    try {  // the render is whole: what the callback raises now comes after it is delivered
+      progress_callback(1.0);
+    } catch (py::error_already_set& e) {
+      out.raised.emplace(std::move(e));
+    }
+  }
   return out;
 }
 

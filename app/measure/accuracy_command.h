@@ -4,12 +4,11 @@
 // the naive loop, Schlick against exact Fresnel, and adaptive sampling; prints tables and
 // writes JSON, CSV and a log-log plot.
 
-#include <CLI/CLI.hpp>
-
-#include <functional>
+#include "core/measure/accuracy_options.h"
 
 namespace rtiow {
 
-std::function<int()> add_accuracy_command(CLI::App& app);
+// Checks the options (every one broken named in one line), then measures.
+int run_accuracy_command(const AccuracyOptions& o);
 
 }  // namespace rtiow

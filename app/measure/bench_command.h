@@ -4,12 +4,15 @@
 // Each scaling point runs in a child process (`rtiow bench-point`, hidden) so its peak
 // memory is its own.
 
-#include <CLI/CLI.hpp>
-
-#include <functional>
+#include "core/measure/bench_runs.h"
 
 namespace rtiow {
 
-std::function<int()> add_bench_command(CLI::App& app);
+// rtiow bench: compares two figures files (--compare), or measures (the sources' commit and
+// how a point runs in a process of its own filled in here).
+int run_bench_command(BenchOptions o);
+
+// rtiow bench-point: one scaling point, in the process bench started.
+int run_bench_point(const PointOptions& o);
 
 }  // namespace rtiow

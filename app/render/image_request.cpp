@@ -41,21 +41,14 @@ const std::vector<std::pair<RequestPart, std::vector<std::string>>>& part_option
 
 }  // namespace
 
-std::set<RequestPart> parts_given(CLI::App& render) {
+std::set<RequestPart> parts_given(const std::function<bool(const std::string& option)>& typed) {
   std::set<RequestPart> given;
   for (const auto& [part, options] : part_options()) {
     for (const std::string& name : options) {
-      if (render.get_option(name)->count() > 0) given.insert(part);
+      if (typed(name)) given.insert(part);
     }
   }
   return given;
-}
-
-bool output_holds_channels(CLI::App& render) {
-  CLI::Option* output = render.get_option("--output");
-  const ImageFormat* format =
-      output->count() > 0 ? image_format(output->as<std::string>()) : nullptr;
-  return format && format->extra_channels;
 }
 
 }  // namespace rtiow

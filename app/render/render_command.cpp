@@ -10,7 +10,6 @@
 
 #include "app/interrupt.h"
 #include "app/mpi_session.h"
-#include "app/render/image_request.h"
 #include "app/render/render_options.h"
 #include "core/io/atomic_file.h"
 #include "core/io/image_backend.h"
@@ -214,31 +213,22 @@ int run_render(const RenderOptions& o, const JobRequest& request, const MpiSessi
 
 }  // namespace
 
-std::function<int()> add_render_command(CLI::App& app, const MpiSession& mpi) {
-  auto options = std::make_shared<RenderOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "render",
-      "Render a scene file or a built-in scene to an image (with no options: the book's cover "
-      "at its final settings, to cover.png)");
-  const RenderOptionHandles given = add_render_options(cmd, *options);
-  return [options, cmd, given, &mpi] {
-    if (!cmd->parsed()) return -1;
-    JobRequest request = job_request_of(*options, given.scene->count() > 0,
-                                        given.output->count() > 0, mpi.rank(), mpi.size());
-    if (!options->like.empty()) {
-      auto like = std::make_shared<RecordedRequest>(
-          read_recorded_request(options->like, "--like image " + quote_value(options->like)));
-      const std::set<RequestPart> typed = parts_given(*cmd);
-      request = overlay_recorded(*like, std::move(request), typed, output_holds_channels(*cmd),
-                                 options->reproducible);
-      if (!typed.count(RequestPart::Scene) && !typed.count(RequestPart::SceneSeed)) {
-        request.check_loaded_scene = [like](const Scene& scene) {
-          check_scene_of_image(*like, scene);
-        };
-      }
+int run_render_command(const RenderCommand& command, const MpiSession& mpi) {
+  RenderOptions o = command.options;  // --like may give it the image's --reproducible
+  JobRequest request =
+      job_request_of(o, command.scene_named, command.output_given, mpi.rank(), mpi.size());
+  if (!o.like.empty()) {
+    auto like = std::make_shared<RecordedRequest>(
+        read_recorded_request(o.like, "--like image " + quote_value(o.like)));
+    request = overlay_recorded(*like, std::move(request), command.typed,
+                               command.output_holds_channels, o.reproducible);
+    if (!command.typed.count(RequestPart::Scene) && !command.typed.count(RequestPart::SceneSeed)) {
+      request.check_loaded_scene = [like](const Scene& scene) {
+        check_scene_of_image(*like, scene);
+      };
     }
-    return run_render(*options, request, mpi);
-  };
+  }
+  return run_render(o, request, mpi);
 }
 
 }  // namespace rtiow

@@ -1,8 +1,7 @@
 #pragma once
-// `rtiow render`'s options: what the user typed, registered in the order --help lists them,
-// and turned into the request the core gives meaning to (core/render/render_job.h).
-
-#include <CLI/CLI.hpp>
+// `rtiow render`'s options: what the user typed (declared in app/command_line.cpp, in the
+// order --help lists them), turned into the request the core gives meaning to
+// (core/render/render_job.h).
 
 #include <cstdint>
 #include <optional>
@@ -50,13 +49,6 @@ struct RenderOptions {
   std::vector<double> lookfrom, lookat, vup;
   std::optional<double> vfov, aperture, focus_distance;
 };
-
-// The options of a render command, bound to `o`.
-struct RenderOptionHandles {
-  CLI::Option* scene;   // --scene
-  CLI::Option* output;  // -o
-};
-RenderOptionHandles add_render_options(CLI::App* cmd, RenderOptions& o);
 
 // The options as the core's request: `scene_named` and `output_given` say which were given;
 // `rank` of `ranks` is this process's place under mpirun (0 of 1 otherwise). Throws

@@ -47,28 +47,40 @@ def test_a_render_to_a_file_is_the_command_lines_file_byte_for_byte(options, run
 
 def test_ctrl_c_keeps_the_render_and_resume_finishes_it_as_one_render(tmp_path):
     scene = rtiow.builtin_scene("cover")
-    options = {"width": 64, "spp": 400, "checkpoint": 0.05, "reproducible": True}
+    options = {"width": 64, "spp": 3000, "checkpoint": 0.05, "reproducible": True}
     out = tmp_path / "stopped.exr"
-    calls = []
 
-    def interrupt_after_a_while(fraction):
-        calls.append(fraction)
-        if len(calls) == 4:  # as Ctrl-C would, from the caller's thread
+    def interrupt_once_started(fraction):
+        if 0.0 < fraction < 0.5:  # as Ctrl-C would, from the caller's thread
             raise KeyboardInterrupt
 
     with pytest.raises(KeyboardInterrupt) as stopped:
-        rtiow.render(scene, output=str(out), progress=interrupt_after_a_while, **options)
+        rtiow.render(scene, output=str(out), progress=interrupt_once_started, **options)
     checkpoint = tmp_path / "stopped.exr.rtiow-checkpoint"
     assert checkpoint.exists()
     notes = " ".join(getattr(stopped.value, "__notes__", []))
     assert "stopped.exr.rtiow-checkpoint" in notes and "resume" in notes
     # Continued, it is the render nothing stopped, byte for byte, and its checkpoint is gone.
     resumed = rtiow.render(scene, output=str(out), resume=True, **options)
-    assert resumed.summary["samples"] == "400 spp"
+    assert resumed.summary["samples"] == "3000 spp"
     whole = tmp_path / "whole.exr"
     rtiow.render(scene, output=str(whole), **options)
     assert out.read_bytes() == whole.read_bytes()
     assert not checkpoint.exists()
+
+
+def test_a_callback_that_raises_after_the_render_is_whole_loses_nothing(tmp_path):
+    out = tmp_path / "whole.exr"
+
+    def refuse_the_end(fraction):
+        if fraction == 1.0:
+            raise RuntimeError("the caller's own failure")
+
+    with pytest.raises(RuntimeError, match="the caller's own failure"):
+        rtiow.render(rtiow.builtin_scene("cover"), width=32, spp=2, output=str(out),
+                     progress=refuse_the_end)
+    assert out.exists()  # the finished render was written before the exception went on
+    assert not (tmp_path / "whole.exr.rtiow-checkpoint").exists()
 
 
 def test_a_checkpoint_is_refused_unless_told_what_to_do_with_it(tmp_path):
