@@ -12,18 +12,19 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "app/command_error.h"
 #include "app/command_text.h"
-#include "app/render/image_request.h"
 #include "core/io/image_output.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
 #include "core/limits/nearest_name.h"
 #include "core/limits/number_text.h"
+#include "core/render/recorded_request.h"
 #include "core/render/render_request.h"
 
 namespace rtiow {
@@ -351,7 +352,14 @@ void note_typed_render_options(CLI::App* cmd, RenderCommand& c) {
   const auto typed = [cmd](const std::string& name) { return cmd->get_option(name)->count() > 0; };
   c.scene_named = typed("--scene");
   c.output_given = typed("--output");
-  c.typed = parts_given(typed);
+  // The library's names of the settings, as this command line spells them.
+  c.typed = parts_given([&](std::string_view setting) {
+    if (setting == "scene_file") return typed("scene_file");  // the positional argument
+    if (setting == "focus_distance") return typed("--focus-dist");
+    std::string option = "--";
+    for (const char ch : setting) option.push_back(ch == '_' ? '-' : ch);
+    return typed(option);
+  });
   const ImageFormat* format = c.output_given ? image_format(c.options.output) : nullptr;
   c.output_holds_channels = format && format->extra_channels;
 }

@@ -18,7 +18,9 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -28,6 +30,7 @@
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/limits/nearest_name.h"
+#include "core/render/recorded_request.h"
 #include "core/render/render_outcome.h"
 #include "core/render/render_statistics.h"
 #include "core/render/sample_share.h"
@@ -61,6 +64,17 @@ struct WatchedRender {
   RenderResult result;
   std::optional<py::error_already_set> raised;
 };
+
+// The last progress call, with the render whole: what the callback raises now is kept for
+// after the render is delivered.
+void report_whole(const py::object& progress_callback, WatchedRender& out) {
+  if (progress_callback.is_none()) return;
+  try {
+    progress_callback(1.0);
+  } catch (py::error_already_set& e) {
+    out.raised.emplace(std::move(e));
+  }
+}
 
 WatchedRender render_watched(const RenderSettings& settings, const py::object& progress_callback,
                              const std::function<RenderResult(RenderProgress&)>& run) {
@@ -115,13 +129,7 @@ WatchedRender render_watched(const RenderSettings& settings, const py::object& p
     if (out.raised) throw std::move(*out.raised);
     std::rethrow_exception(failure);
   }
-  if (!out.raised && !progress_callback.is_none()) {
-    try {  // the render is whole: what the callback raises now comes after it is delivered
-      progress_callback(1.0);
-    } catch (py::error_already_set& e) {
-      out.raised.emplace(std::move(e));
-    }
-  }
+  if (!out.raised) report_whole(progress_callback, out);
   return out;
 }
 
@@ -204,6 +212,34 @@ std::shared_ptr<Render> render_scene(const Scene& scene, const py::object& progr
   const ParsedOptions parsed = parse_render_options(options);
   return parsed.job.output_given ? render_to_file(scene, progress, parsed)
                                  : render_in_memory(scene, progress, parsed);
+}
+
+// rtiow render --like: the request `image` records, each part the caller gives (a keyword, or
+// the scene) replacing the image's; the recorded scene is loaded and checked to be the one the
+// image was rendered from, unless the caller gives a scene.
+std::shared_ptr<Render> render_like(const std::string& image, const py::object& scene,
+                                    const py::object& progress, const py::kwargs& options) {
+  ParsedOptions parsed = parse_render_options(options);
+  const RecordedRequest recorded = read_recorded_request(image, "like image " + quote_value(image));
+  std::set<RequestPart> given =
+      parts_given([&](std::string_view name) { return options.contains(std::string(name)); });
+  if (!scene.is_none()) given.insert(RequestPart::Scene);
+  // A render in memory holds every channel; a file, what its format can.
+  const ImageFormat* format = parsed.job.output_given ? image_format(parsed.job.output) : nullptr;
+  const bool holds_channels = !parsed.job.output_given || (format && format->extra_channels);
+  parsed.job = overlay_recorded(recorded, std::move(parsed.job), given, holds_channels,
+                                parsed.session.reproducible);
+  Scene chosen;
+  if (scene.is_none()) {
+    const py::gil_scoped_release released;
+    chosen = load_job_scene(parsed.job);
+    check_scene_of_image(recorded, chosen);
+  } else {
+    chosen = scene.cast<const Scene&>();
+    parsed.job.scene_file.clear();  // not the recorded file's scene: its metadata names none
+  }
+  return parsed.job.output_given ? render_to_file(chosen, progress, parsed)
+                                 : render_in_memory(chosen, progress, parsed);
 }
 
 // The film as an array of height x width x 3 float32 over the render's own memory.
@@ -453,6 +489,12 @@ void bind_renders(py::module_& m) {
       .def("write", &write_render, py::arg("path"), py::arg("reproducible") = false,
            "Writes the image (and its channels) with rtiow's metadata, as rtiow render -o does.");
 
+  m.def("render_like", &render_like, py::arg("image"), py::kw_only(), py::arg("scene") = py::none(),
+        py::arg("progress") = py::none(),
+        "Renders again what `image` (a file rtiow wrote) records: its scene, size, samples, "
+        "seed, camera, ..., as rtiow render --like does. Each keyword of render() given, and "
+        "scene=, replaces its part of the recorded request; the recorded scene must still be "
+        "the one the image was rendered from.");
   m.def("render", &render_scene, py::arg("scene"), py::kw_only(), py::arg("progress") = py::none(),
         "Renders `scene`. Keyword arguments are rtiow render's long options with underscores "
         "(width, height, spp, seed, sampler, depth, time_limit, image_error, target_error, "

@@ -350,4 +350,46 @@ void check_scene_of_image(const RecordedRequest& image, const Scene& scene) {
                      ") to render it anyway");
 }
 
+namespace {
+
+// The settings that give each part.
+const std::vector<std::pair<RequestPart, std::vector<std::string_view>>>& part_settings() {
+  using P = RequestPart;
+  static const std::vector<std::pair<P, std::vector<std::string_view>>> table = {
+      {P::Scene, {"scene_file", "scene"}},
+      {P::SceneSeed, {"scene_seed", "scene_file"}},  // a layout goes with a built-in scene
+      {P::Size, {"width", "height"}},
+      {P::Crop, {"crop"}},
+      {P::Samples, {"spp", "target_error", "image_error", "adaptive", "min_spp", "time_limit"}},
+      {P::Depth, {"depth"}},
+      {P::Seed, {"seed"}},
+      {P::Sampler, {"sampler"}},
+      {P::Accelerator, {"accel"}},
+      {P::Roulette, {"roulette"}},
+      {P::Lookfrom, {"lookfrom"}},
+      {P::Lookat, {"lookat"}},
+      {P::Vup, {"vup"}},
+      {P::Vfov, {"vfov"}},
+      {P::Aperture, {"aperture"}},
+      {P::FocusDistance, {"focus_distance"}},
+      {P::Fresnel, {"fresnel"}},
+      {P::StatsChannels, {"stats_channels"}},
+      {P::Passes, {"passes"}},
+      {P::Reproducible, {"reproducible"}},
+  };
+  return table;
+}
+
+}  // namespace
+
+std::set<RequestPart> parts_given(const std::function<bool(std::string_view setting)>& given) {
+  std::set<RequestPart> parts;
+  for (const auto& [part, settings] : part_settings()) {
+    for (const std::string_view setting : settings) {
+      if (given(setting)) parts.insert(part);
+    }
+  }
+  return parts;
+}
+
 }  // namespace rtiow

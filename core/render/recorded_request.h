@@ -4,10 +4,12 @@
 // library reads it and lays it under what a caller asks for, part by part. `rtiow render
 // --like IMAGE` is this with the options the user typed on top.
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include "core/render/render_job.h"
 
@@ -51,6 +53,11 @@ struct RecordedRequest {
   std::string scene_digest;
   std::string version;  // the rtiow that rendered it
 };
+
+// The parts of a request a caller gave a setting of, from whether each setting, by the
+// library's name ("spp", "scene_file", "focus_distance"), was given: any one of a part's makes
+// the whole part the caller's.
+std::set<RequestPart> parts_given(const std::function<bool(std::string_view setting)>& given);
 
 // Reads the request `path`'s header records; `source` names the image in messages. Throws
 // InvalidInput naming the image and what is missing where it holds no request (a format

@@ -18,9 +18,8 @@
 #include "core/scene_file/scene_file.h"
 
 namespace rtiow {
-namespace {
 
-Scene load_scene(const JobRequest& r) {
+Scene load_job_scene(const JobRequest& r) {
   if (r.scene_file.empty()) return make_builtin_scene(r.scene, r.scene_seed);
   if (r.scene_named) throw InvalidInput("give a scene file or " + setting("scene") + ", not both");
   // `rtiow render cover`, as `rtiow scene cover` takes it: the built-in scene is --scene cover.
@@ -31,6 +30,8 @@ Scene load_scene(const JobRequest& r) {
   }
   return load_scene_file(r.scene_file);
 }
+
+namespace {
 
 // The output: as given (an empty -o is an error, not the default), or named after the scene.
 std::string output_path(const JobRequest& r, const Scene& scene) {
@@ -118,7 +119,7 @@ RenderJob prepare_job(const JobRequest& r) {
   // count out of range is refused by name once the request is resolved).
   const int asked = r.request.threads;
   const int threads = asked >= 0 && asked <= limits::kMaxThreads ? asked : 0;
-  Scene scene = with_threads(threads, [&] { return load_scene(r); });
+  Scene scene = with_threads(threads, [&] { return load_job_scene(r); });
   if (r.check_loaded_scene) r.check_loaded_scene(scene);
   return prepare_job(r, std::move(scene));
 }

@@ -52,6 +52,10 @@ RenderJob prepare_job(const JobRequest& request);
 // scene_file, scene and scene_seed are not read.
 RenderJob prepare_job(const JobRequest& request, Scene scene);
 
+// The scene the request names: its scene file (checked as any input), or the built-in scene
+// and its layout. prepare_job() loads it so; a caller that sets the scene up first uses this.
+Scene load_job_scene(const JobRequest& request);
+
 // The image (with the statistics channels where asked) or, for a share, the part file.
 void write_job_result(const JobRequest& request, const RenderJob& job, const RenderResult& result,
                       const Metadata& metadata);

@@ -23,6 +23,7 @@ from ._rtiow import (  # noqa: F401
     merge,
     read_image,
     render,
+    render_like,
     scene,
 )
 
@@ -37,5 +38,6 @@ __all__ = [
     "merge",
     "read_image",
     "render",
+    "render_like",
     "scene",
 ]

@@ -87,6 +87,48 @@ def render(
     display: str = ...,
     reproducible: bool = ...,
 ) -> Render: ...
+
+def render_like(
+    image: str,
+    *,
+    scene: Optional[Scene] = None,
+    progress: Optional[Callable[[float], Any]] = None,
+    width: int = ...,
+    height: int = ...,
+    spp: int = ...,
+    seed: int = ...,
+    sampler: str = ...,
+    depth: int = ...,
+    time_limit: float = ...,
+    image_error: float = ...,
+    target_error: float = ...,
+    adaptive: bool = ...,
+    min_spp: int = ...,
+    passes: Union[str, Sequence[str]] = ...,
+    crop: Union[str, Tuple[int, int, int, int]] = ...,
+    stats_channels: bool = ...,
+    roulette: Union[bool, str] = ...,
+    threads: int = ...,
+    accel: str = ...,
+    lookfrom: Union[str, Sequence[float]] = ...,
+    lookat: Union[str, Sequence[float]] = ...,
+    vup: Union[str, Sequence[float]] = ...,
+    vfov: float = ...,
+    aperture: float = ...,
+    focus_distance: float = ...,
+    fresnel: str = ...,
+    part: str = ...,
+    sample_range: str = ...,
+    output: str = ...,
+    checkpoint: float = ...,
+    resume: bool = ...,
+    restart: bool = ...,
+    keep_state: bool = ...,
+    preview: float = ...,
+    display: str = ...,
+    reproducible: bool = ...,
+) -> Render:
+    """Renders again what an image rtiow wrote records, as rtiow render --like does."""
 def merge(parts: Sequence[str], output: str, *, stats_channels: bool = False) -> None:
     """Adds part files into the image one render of all their samples gives (rtiow merge)."""
 def diff(

@@ -73,11 +73,14 @@ def test_every_stub_functions_parameters_are_the_modules():
     for name, (positional, keywords) in stubs.items():
         runtime_positional, runtime_keywords = runtime_parameters(getattr(rtiow._rtiow, name))
         assert positional == runtime_positional, name
-        if name != "render":  # render's other keywords are its **options: below
+        if name in ("render", "render_like"):  # then their **options: below
+            assert keywords[:len(runtime_keywords)] == runtime_keywords, name
+        else:
             assert keywords == runtime_keywords, name
     # Each keyword the stub gives render() is one it takes: a wrong value is refused by that
     # name, never as an option it does not have.
     scene = rtiow.builtin_scene("cover")
+    assert stubs["render_like"][1][2:] == stubs["render"][1][1:]  # the same options
     for keyword in stubs["render"][1]:
         if keyword == "progress":
             continue
