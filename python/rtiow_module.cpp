@@ -221,6 +221,7 @@ std::shared_ptr<Render> render_like(const std::string& image, const py::object& 
                                     const py::object& progress, const py::kwargs& options) {
   ParsedOptions parsed = parse_render_options(options);
   const RecordedRequest recorded = read_recorded_request(image, "like image " + quote_value(image));
+  parsed.job.other_inputs.push_back(image);  // read, so never the output
   std::set<RequestPart> given =
       parts_given([&](std::string_view name) { return options.contains(std::string(name)); });
   if (!scene.is_none()) given.insert(RequestPart::Scene);

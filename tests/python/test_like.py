@@ -20,6 +20,10 @@ def test_an_image_renders_again_to_the_same_bytes(run_rtiow, tmp_path):
     render = rtiow.render_like(str(first), output=str(again))
     assert again.read_bytes() == first.read_bytes()
     assert render.summary["seed"] == 7 and render.summary["samples"] == "6 spp"
+    # The image read is never the output.
+    with pytest.raises(ValueError, match="is the input file"):
+        rtiow.render_like(str(first), output=str(first), spp=2)
+    assert again.read_bytes() == first.read_bytes()
     # In memory too: the recorded request's pixels.
     assert np.array_equal(rtiow.render_like(str(first)).image, rtiow.read_image(str(first)))
 
