@@ -236,6 +236,11 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
       ->check(CLI::IsMember({roulette_name(true), roulette_name(false)}))
       ->capture_default_str();
   add_adaptive_options(cmd, o);
+  cmd->add_flag("--denoise", o.denoise,
+                "Write the denoised image (a feature regression on the first hits' albedo, "
+                "normal and depth; its estimated error on the summary line); an .exr also keeps "
+                "the noisy image (noisy.R/G/B) and each pixel's estimated squared error "
+                "(denoise.mse.R/G/B). With --part, the part keeps what 'rtiow denoise' needs");
   cmd->add_flag("--stats-channels", o.stats_channels,
                 "Add per-pixel channels to an .exr output: spp and the variance of the pixel's "
                 "mean (variance.R/G/B). For that estimate the samples alternate between two "
@@ -317,7 +322,7 @@ void group_options(CLI::App* cmd) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> groups = {
       {"Scene", {"--scene", "--list-scenes", "--like", "--scene-seed"}},
       {"Output",
-       {"-o", "--width", "--height", "--crop", "--passes", "--stats-channels", "--reproducible",
+       {"-o", "--width", "--height", "--crop", "--passes", "--denoise", "--stats-channels", "--reproducible",
         "-q", "--summary-json", "--preview", "--display"}},
       {"Sampling",
        {"--spp", "--depth", "--seed", "--sampler", "--roulette", "--fresnel", "--adaptive",
@@ -389,6 +394,24 @@ CLI::App* add_merge(CLI::App& app, MergeOptions& o) {
   cmd->add_flag("--stats-channels", o.stats_channels,
                 "Add per-pixel channels to an .exr output: spp and the variance of the pixel's "
                 "mean (variance.R/G/B), the same as one render's --stats-channels");
+  cmd->add_flag("--denoise", o.denoise,
+                "Write the merged render denoised, as 'rtiow denoise' does (the parts rendered "
+                "with --denoise)");
+  cmd->add_flag("-q,--quiet", o.quiet, "No summary on stderr");
+  return cmd;
+}
+
+CLI::App* add_denoise(CLI::App& app, MergeOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "denoise",
+      "Denoise a render kept as part files (rtiow render --denoise --part i/n, or --part 1/1 "
+      "for a whole render): merges them and writes the denoised image with its estimated error");
+  cmd->add_option("parts", o.parts, "Part files (.exr) rendered with --denoise")->required();
+  cmd->add_option("-o,--output", o.output,
+                  "The denoised image (" + image_extensions() + "); not one of the parts")
+      ->required();
+  cmd->add_flag("--stats-channels", o.stats_channels,
+                "Add the spp and variance channels to an .exr output, as merge does");
   cmd->add_flag("-q,--quiet", o.quiet, "No summary on stderr");
   return cmd;
 }
@@ -688,7 +711,7 @@ bool refused_unknown_command(const CLI::App& app, int argc, char** argv, bool sp
 
 // The commands, each bound to its part of `out`, in the order --help lists them.
 struct Commands {
-  CLI::App *render, *scene, *merge, *bench, *point, *accuracy, *diff;
+  CLI::App *render, *scene, *merge, *denoise, *bench, *point, *accuracy, *diff;
 };
 
 Commands add_commands(CLI::App& app, CommandLine& out) {
@@ -696,6 +719,7 @@ Commands add_commands(CLI::App& app, CommandLine& out) {
   c.render = add_render(app, out.render);
   c.scene = add_scene(app, out.scene);
   c.merge = add_merge(app, out.merge);
+  c.denoise = add_denoise(app, out.denoise);
   c.bench = add_bench_options(app, out.bench);
   c.point = add_point_options(app, out.point);
   c.accuracy = add_accuracy(app, out.accuracy);
@@ -708,12 +732,14 @@ void finish_parsed(const Commands& c, CommandLine& out) {
   apply_quick_runs(c.bench, out.bench, c.accuracy, out.accuracy);
   const std::pair<CLI::App*, Command> commands[] = {
       {c.render, Command::Render}, {c.scene, Command::Scene},      {c.merge, Command::Merge},
+      {c.denoise, Command::Denoise},
       {c.bench, Command::Bench},   {c.point, Command::BenchPoint}, {c.accuracy, Command::Accuracy},
       {c.diff, Command::Diff}};
   for (const auto& [cmd, command] : commands) {
     if (cmd->parsed()) out.command = command;
   }
   if (c.render->parsed()) note_typed_render_options(c.render, out.render);
+  out.denoise.denoise = true;
   out.scene.output_given = c.scene->get_option("--output")->count() > 0;
   follow_failure_thresholds(c.diff, out.diff.settings.thresholds);
 }

@@ -17,13 +17,14 @@
 
 namespace rtiow {
 
-enum class Command { Render, Scene, Merge, Bench, BenchPoint, Accuracy, Diff };
+enum class Command { Render, Scene, Merge, Denoise, Bench, BenchPoint, Accuracy, Diff };
 
 struct CommandLine {
   Command command = Command::Render;
   RenderCommand render;
   SceneOptions scene;
   MergeOptions merge;
+  MergeOptions denoise;  // `rtiow denoise`: a merge that denoises
   BenchOptions bench;
   PointOptions point;
   AccuracyOptions accuracy;

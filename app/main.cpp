@@ -83,6 +83,8 @@ int run_command(const rtiow::CommandLine& c, const rtiow::MpiSession& mpi) {
       return rtiow::run_scene(c.scene);
     case Command::Merge:
       return rtiow::run_merge(c.merge);
+    case Command::Denoise:
+      return rtiow::run_merge(c.denoise);
     case Command::Bench:
       return rtiow::run_bench_command(c.bench);
     case Command::BenchPoint:

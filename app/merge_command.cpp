@@ -22,7 +22,7 @@ int run_merge(const MergeOptions& o) {
   }
   const OutputClaim claim(o.output);  // before the parts are read: a second writer is refused now
   const MergedImage merged =
-      merge_part_files(o.parts, {o.stats_channels, format && format->extra_channels});
+      merge_part_files(o.parts, {o.stats_channels, format && format->extra_channels, o.denoise});
   if (merged.passes.any() && !merged.passes_kept) {
     std::fprintf(stderr,
                  "rtiow: warning: the parts hold the passes %s, which %s cannot: merge to .exr "
@@ -36,6 +36,11 @@ int run_merge(const MergeOptions& o) {
                  static_cast<unsigned long long>(merged.samples),
                  merged.passes_kept ? (", passes " + to_string(merged.passes)).c_str() : "",
                  one_line(o.output).c_str());
+    if (merged.denoised) {
+      std::fprintf(stderr, "denoised in %.2f s: image error %.4f estimated (noisy %.4f)\n",
+                   merged.denoised->seconds, merged.denoised->estimated_error,
+                   merged.denoised->noisy_error);
+    }
   }
   return 0;
 }

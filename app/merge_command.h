@@ -11,6 +11,7 @@ struct MergeOptions {
   std::vector<std::string> parts;
   std::string output;
   bool stats_channels = false;
+  bool denoise = false;
   bool quiet = false;
 };
 

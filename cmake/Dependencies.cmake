@@ -19,6 +19,8 @@ rtiow_require(nlohmann_json nlohmann-json3-dev)
 # nlohmann-json writes JSON. Debian's RapidJSON config gives directories (RAPIDJSON_INCLUDE_DIRS),
 # not a target: the core uses them privately, so the installed package does not need it.
 rtiow_require(RapidJSON rapidjson-dev)
+# Eigen solves the denoiser's per-pixel least squares (core/denoise/feature_regression.cpp).
+rtiow_require(Eigen3 libeigen3-dev 3.3 NO_MODULE)
 find_package(Threads REQUIRED)
 
 # MPI is optional: ON when Debian's OpenMPI (libopenmpi-dev) is installed, unless turned off.

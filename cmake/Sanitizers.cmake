@@ -29,7 +29,9 @@ function(rtiow_add_sanitized_test kind name)
                                                 RTIOW_TEST_OUTPUT_DIR="${CMAKE_CURRENT_BINARY_DIR}/output")
   rtiow_set_warnings(${target})
   rtiow_set_codegen(${target})
-  add_test(NAME ${target} COMMAND ${target})
+  # Brief: only a failing test's lines and the sanitizer's report, so a failure shows in the
+  # tail of a long CI log rather than among some hundred passing tests' lines.
+  add_test(NAME ${target} COMMAND ${target} --gtest_brief=1)
   set_tests_properties(${target} PROPERTIES
     LABELS sanitize
     ENVIRONMENT "ASAN_OPTIONS=detect_leaks=1:abort_on_error=0;UBSAN_OPTIONS=print_stacktrace=1;TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=${PROJECT_SOURCE_DIR}/tests/tsan.supp")

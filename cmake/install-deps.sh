@@ -11,7 +11,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libpng-dev
-  libcli11-dev nlohmann-json3-dev rapidjson-dev
+  libcli11-dev nlohmann-json3-dev rapidjson-dev libeigen3-dev
 )
 case "${1:-}" in
   --program) ;;

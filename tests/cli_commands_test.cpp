@@ -221,7 +221,7 @@ TEST(Cli, OptionErrorsSuggestWhatWasMeant) {
   EXPECT_EQ(bare.exit_code, 2);
   EXPECT_EQ(bare.stderr_text,
             "rtiow: error: no command given: rtiow COMMAND [OPTIONS], where COMMAND is one of "
-            "render, scene, merge, bench, accuracy, diff (see rtiow --help)\n");
+            "render, scene, merge, denoise, bench, accuracy, diff (see rtiow --help)\n");
   // A value outside an option's choices: the choices in words and the one meant.
   expect_refused("--sampler sobel",
                  "--sampler: 'sobel' is not one of independent, sobol, padded-sobol; did you mean "

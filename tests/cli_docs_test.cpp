@@ -94,7 +94,8 @@ TEST(Cli, HelpFitsTheTerminalAndGroupsRendersOptions) {
   for (const char* columns : {"80", "100"}) {
     ::setenv("COLUMNS", columns, 1);
     for (const char* command :
-         {"", "render ", "scene ", "merge ", "bench ", "bench-point ", "accuracy ", "diff "}) {
+         {"", "render ", "scene ", "merge ", "denoise ", "bench ", "bench-point ", "accuracy ",
+          "diff "}) {
       const CommandResult help = run_rtiow(std::string(command) + "--help");
       std::istringstream lines(help.stdout_text);
       for (std::string line; std::getline(lines, line);) {

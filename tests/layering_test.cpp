@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 const std::map<std::string, int>& layers() {
   static const std::map<std::string, int> order = {
       {"core/limits", 0},   {"core/parallel", 0}, {"core/version.h", 0},  {"core/version.cpp", 0},
-      {"core/geometry", 1}, {"core/sampling", 2}, {"materials", 3},       {"core/film", 4},
+      {"core/geometry", 1}, {"core/sampling", 2}, {"materials", 3},       {"core/film", 4}, {"core/denoise", 4},
       {"core/io", 5},       {"core/scene", 6},    {"core/scene_file", 7}, {"core/accel", 8},
       {"core/render", 9},   {"core/compare", 10}, {"core/session", 11},   {"core/measure", 12},
       {"core/rtiow.h", 13}, {"app", 14},

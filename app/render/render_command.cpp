@@ -74,7 +74,8 @@ bool gather_ranks(const MpiSession& mpi, RenderJob& job, RenderResult& result) {
 }
 
 // "rendered cover 1200x800, 500 spp, depth 50, embree, 2 threads: ... -> path"
-void print_summary(const RenderJob& job, const RenderResult& result, const MpiSession& mpi) {
+void print_summary(const RenderJob& job, const RenderResult& result, const MpiSession& mpi,
+                   const std::optional<DenoiseFigures>& denoised) {
   const RenderSettings& s = job.settings;
   const double rays = double(result.rays_traced);
   const int threads = thread_count(s.threads);  // the threads used (core/parallel/thread_count.h)
@@ -89,6 +90,10 @@ void print_summary(const RenderJob& job, const RenderResult& result, const MpiSe
                to_string(s.accel).c_str(), ranks.c_str(), threads, threads == 1 ? "" : "s",
                result.render_seconds, rays, rays / result.render_seconds * 1e-6,
                one_line(job.output).c_str());
+  if (denoised) {
+    std::fprintf(stderr, "denoised in %.2f s: image error %.4f estimated (noisy %.4f)\n",
+                 denoised->seconds, denoised->estimated_error, denoised->noisy_error);
+  }
 }
 
 // What the session around the render keeps and shows: no checkpoint under mpirun (each rank
@@ -160,12 +165,13 @@ int end_render(const RenderOptions& o, const RenderJob& job, const RenderResult&
                  stopped_render_report(job, result, session.checkpoint(), end).c_str());
     code = 128 + InterruptGuard::signal_received();
   } else {
-    if (!o.quiet) print_summary(job, result, mpi);
+    if (!o.quiet) print_summary(job, result, mpi, end.denoised);
     code = interrupted_outside_render("after the render ended; the image is complete");
   }
   if (!o.summary_json.empty()) {
     write_text_atomically(o.summary_json, render_summary_json(job, result, mpi.size(), code,
-                                                              !end.kept_in_checkpoint));
+                                                              !end.kept_in_checkpoint,
+                                                              end.denoised));
   }
   return code;
 }

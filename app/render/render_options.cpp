@@ -63,6 +63,7 @@ JobRequest job_request_of(const RenderOptions& o, bool scene_named, bool output_
   job.sample_range = o.sample_range, job.part = o.part;
   job.rank = rank, job.ranks = ranks;
   job.stats_channels = o.stats_channels;
+  job.denoise = o.denoise;
   if (!o.like.empty()) job.other_inputs.push_back(o.like);
   return job;
 }

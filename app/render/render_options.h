@@ -34,6 +34,7 @@ struct RenderOptions {
   bool adaptive = false;
   std::optional<int> min_spp;
   bool stats_channels = false;
+  bool denoise = false;
   std::string passes;  // "albedo,normal,depth" or a part of it; empty: none
   bool quiet = false;
   std::string summary_json;      // empty: none

@@ -78,6 +78,23 @@ std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
   }
 }
 
+// The merged render as the denoiser reads it: its halves need the parts' two replicates.
+RenderResult merged_for_denoising(const MergedRender& merged) {
+  const auto [sampler, replicates] = recorded_sampling(merged);
+  if (replicates != kReplicates || !merged.sums.keeps(SumGroup::Odd) ||
+      !merged.sums.keeps(SumGroup::FirstHit)) {
+    throw InvalidInput(setting("denoise") +
+                       ": the parts keep no independent halves or first hits to denoise with: "
+                       "render them with " +
+                       setting("denoise"));
+  }
+  try {
+    return merged_result(merged, parse_sampler(sampler), kReplicates);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(setting("denoise") + ": the parts' sampler: " + e.what());
+  }
+}
+
 }  // namespace
 
 MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeRequest& request) {
@@ -100,6 +117,15 @@ MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeR
   if (!image.passes_kept) {
     std::erase_if(image.metadata,
                   [](const auto& entry) { return entry.first == metadata_key::kPasses; });
+  }
+  if (request.denoise) {
+    DenoisedOutput denoised = denoised_output(merged_for_denoising(merged), request.extra_channels,
+                                              image.metadata);
+    image.channels.insert(image.channels.begin(),
+                          std::make_move_iterator(denoised.channels.begin()),
+                          std::make_move_iterator(denoised.channels.end()));
+    image.denoised = denoised.figures;
+    merged.film = std::move(denoised.image);
   }
   image.film = std::move(merged.film);
   image.samples = merged.samples;

@@ -6,9 +6,11 @@
 // the parts were rendered with.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/render/denoised_output.h"
 #include "core/film/film.h"
 #include "core/io/image_output.h"
 #include "core/render/first_hit_passes.h"
@@ -18,6 +20,7 @@ namespace rtiow {
 struct MergeRequest {
   bool statistics = false;     // the spp and variance channels (--stats-channels)
   bool extra_channels = true;  // the output holds channels beyond R, G, B (EXR)
+  bool denoise = false;        // the image denoised (core/denoise/denoised_output.h)
 };
 
 struct MergedImage {
@@ -29,6 +32,7 @@ struct MergedImage {
   std::size_t parts = 0;
   FirstHitPasses passes;     // the passes the parts hold
   bool passes_kept = false;  // false: the output cannot hold them (they are left out)
+  std::optional<DenoiseFigures> denoised;  // what the denoiser delivered, where asked
 };
 
 // Reads the part files at `paths` and merges them. Throws InvalidInput naming the file and

@@ -103,6 +103,28 @@ void check_adaptive_options(const JobRequest& r, const std::string& output) {
   // can write the whole render's variances; the part file holds its exact spreads, not channels.)
 }
 
+// The denoiser renders to no error target of its own yet: the targets measure the noisy image.
+void check_denoise_options(const JobRequest& r) {
+  if (!r.denoise) return;
+  const char* target = r.request.target_error > 0  ? "target_error"
+                       : r.request.image_error > 0 ? "image_error"
+                                                   : nullptr;
+  if (target) {
+    throw InvalidInput(setting("denoise") + " with " + setting(target) +
+                       ": the target would be the noisy image's error, not the denoised "
+                       "image's; give a sample count, " +
+                       setting("time_limit") + " or " + setting("adaptive") + " instead");
+  }
+}
+
+// What the denoiser needs kept: the two independent halves (the error estimate's replicates)
+// and the first hits it regresses on.
+RenderRequest denoised_request(const JobRequest& r) {
+  RenderRequest q = r.request;
+  if (r.denoise) q.estimate_error = true, q.passes = {true, true, true};
+  return q;
+}
+
 }  // namespace
 
 std::vector<std::string> input_files(const JobRequest& r) {
@@ -127,8 +149,9 @@ RenderJob prepare_job(const JobRequest& r) {
 RenderJob prepare_job(const JobRequest& r, Scene scene) {
   RenderJob job;
   job.output = output_path(r, scene);
+  check_denoise_options(r);
   // The whole job, resolved and checked before it is cut into a share.
-  ResolvedRender resolved = resolve(std::move(scene), r.request);
+  ResolvedRender resolved = resolve(std::move(scene), denoised_request(r));
   job.scene = std::move(resolved.scene);
   job.settings = resolved.settings;
   // A shared job's whole count, which the shares are cut from and which combines them again.
@@ -144,16 +167,33 @@ RenderJob prepare_job(const JobRequest& r, Scene scene) {
   return job;
 }
 
-void write_job_result(const JobRequest& r, const RenderJob& job, const RenderResult& result,
-                      const Metadata& metadata) {
-  if (!job.share) {
+std::optional<DenoiseFigures> write_job_result(const JobRequest& r, const RenderJob& job,
+                                               const RenderResult& result,
+                                               const Metadata& metadata) {
+  if (job.share) {
+    // The sums are copied: kept in the result, should the write fail.
+    write_part(job.output,
+               make_part(job.scene, job.settings, job.samples_asked, result, metadata));
+    return std::nullopt;
+  }
+  const ImageFormat* format = image_format(job.output);
+  const bool extra = format && format->extra_channels;
+  if (!r.denoise) {
     write_image(job.output, result.film, metadata,
                 image_channels(result, r.stats_channels, job.settings.passes),
                 frame_placement(job.settings));
-    return;
+    return std::nullopt;
   }
-  // The sums are copied: kept in the result, should the write fail.
-  write_part(job.output, make_part(job.scene, job.settings, job.samples_asked, result, metadata));
+  Metadata with_figures = metadata;
+  DenoisedOutput denoised = denoised_output(result, extra, with_figures);
+  std::vector<ExtraChannel> channels;
+  if (extra) {
+    channels = std::move(denoised.channels);
+    for (ExtraChannel& c : image_channels(result, r.stats_channels, job.settings.passes))
+      channels.push_back(std::move(c));
+  }
+  write_image(job.output, denoised.image, with_figures, channels, frame_placement(job.settings));
+  return denoised.figures;
 }
 
 }  // namespace rtiow

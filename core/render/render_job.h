@@ -6,9 +6,11 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/render/denoised_output.h"
 #include "core/io/image_output.h"
 #include "core/render/render_request.h"
 #include "core/render/render_settings.h"
@@ -29,6 +31,9 @@ struct JobRequest {
   std::string sample_range, part;
   int rank = 0, ranks = 1;  // under mpirun, this rank's equal share
   bool stats_channels = false;
+  // --denoise: keep the halves and the first hits, and write the denoised image (a share keeps
+  // them for the merge that denoises: core/render/part_merge.h).
+  bool denoise = false;
   std::vector<std::string> other_inputs;  // files read besides the scene, never overwritten
   // Called with the scene once it is loaded, before anything is changed about it.
   std::function<void(const Scene&)> check_loaded_scene;
@@ -56,8 +61,9 @@ RenderJob prepare_job(const JobRequest& request, Scene scene);
 // and its layout. prepare_job() loads it so; a caller that sets the scene up first uses this.
 Scene load_job_scene(const JobRequest& request);
 
-// The image (with the statistics channels where asked) or, for a share, the part file.
-void write_job_result(const JobRequest& request, const RenderJob& job, const RenderResult& result,
+// The image (with the statistics channels where asked; denoised where asked) or, for a share,
+// the part file. Returns the denoiser's figures where it denoised.
+std::optional<DenoiseFigures> write_job_result(const JobRequest& request, const RenderJob& job, const RenderResult& result,
                       const Metadata& metadata);
 
 // The files the request reads: the scene file and the others.

@@ -30,6 +30,10 @@ inline constexpr const char* kImageError = "image_error";
 inline constexpr const char* kEstimatedImageError = "estimated_image_error";
 // What that estimate is worth: "calibrated", or "upper bound" (one Sobol sequence).
 inline constexpr const char* kErrorEstimate = "error_estimate";
+// --denoise: the denoised image's estimated relative RMS error and the noisy image's, both
+// from the halves (core/denoise/denoiser.h).
+inline constexpr const char* kDenoisedError = "denoise.estimated_error";
+inline constexpr const char* kDenoisedNoisyError = "denoise.noisy_error";
 inline constexpr const char* kPixelsAboveTarget = "pixels_above_target";
 inline constexpr const char* kAdaptive = "adaptive";  // the budget mode: "sqrt(variance/cost)"
 inline constexpr const char* kSppMin = "spp_min";     // the fewest a pixel took

@@ -101,20 +101,21 @@ SessionEnd RenderSession::deliver(const RenderResult& result) {
     check_output_path(job_.output, {asked});
     partial_claim_.emplace(job_.output);
   }
-  write_or_keep(result);
+  end.denoised = write_or_keep(result);
   end.written = job_.output;
   return end;
 }
 
 // Writes the image; if that fails after the render, keeps the render's state and says where.
-void RenderSession::write_or_keep(const RenderResult& result) {
+std::optional<DenoiseFigures> RenderSession::write_or_keep(const RenderResult& result) {
   CheckpointSession* checkpoint = checkpoint_.get();
+  std::optional<DenoiseFigures> denoised;
   try {
     Metadata metadata = render_metadata(job_.scene, job_.settings, result, options_.reproducible);
     if (!request_.scene_file.empty()) {
       metadata.emplace_back(metadata_key::kSceneFile, request_.scene_file);
     }
-    write_job_result(request_, job_, result, metadata);
+    denoised = write_job_result(request_, job_, result, metadata);
   } catch (const InvalidInput&) {
     throw;
   } catch (const std::exception& e) {
@@ -136,6 +137,7 @@ void RenderSession::write_or_keep(const RenderResult& result) {
                              checkpoint->how_to_continue() + " to write it");
   }
   if (checkpoint) checkpoint->image_written();
+  return denoised;
 }
 
 void RenderSession::let_viewer_finish(const std::atomic<bool>& stop) {

@@ -11,7 +11,8 @@
 namespace rtiow {
 
 std::string render_summary_json(const RenderJob& job, const RenderResult& result, int ranks,
-                                int exit_code, bool image_written) {
+                                int exit_code, bool image_written,
+                                const std::optional<DenoiseFigures>& denoised) {
   using json = nlohmann::ordered_json;
   const RenderSettings& s = job.settings;
   const RenderOutcome outcome = describe_outcome(s, result);
@@ -59,6 +60,10 @@ std::string render_summary_json(const RenderJob& job, const RenderResult& result
   j["error"] = {{"estimated", estimated ? json(result.estimated_image_error) : json()},
                 {"estimate", to_string(result.error_estimate)},
                 {"target", target}};
+  j["denoise"] = denoised ? json{{"estimated_error", denoised->estimated_error},
+                                 {"noisy_error", denoised->noisy_error},
+                                 {"seconds", denoised->seconds}}
+                          : json();
   return summary_text(j);
 }
 

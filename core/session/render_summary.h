@@ -4,7 +4,10 @@
 // Written through the command's claim of FILE (core/io/output_claim.h) after the image, also
 // when a signal or a time limit stopped the render.
 
+#include <optional>
 #include <string>
+
+#include "core/render/denoised_output.h"
 
 #include "core/render/render_job.h"
 #include "core/render/render_settings.h"
@@ -14,7 +17,9 @@ namespace rtiow {
 // The summary as JSON text. `ranks` is 1 outside mpirun; `exit_code` is the command's.
 // `image_written`: false where a stopped render left the output as it was, its samples kept
 // in the checkpoint alone ("output" is then null).
+// `denoised`: what the denoiser delivered (--denoise), null otherwise.
 std::string render_summary_json(const RenderJob& job, const RenderResult& result, int ranks,
-                                int exit_code, bool image_written = true);
+                                int exit_code, bool image_written = true,
+                                const std::optional<DenoiseFigures>& denoised = std::nullopt);
 
 }  // namespace rtiow

@@ -1,0 +1,177 @@
+#include "core/denoise/denoiser.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#include "core/denoise/feature_regression.h"
+#include "core/film/pixel_variance.h"
+
+namespace rtiow {
+
+namespace {
+
+// The per-sample variance that weights the patches is the replicate estimate, one degree of
+// freedom a pixel, averaged over (2 r + 1)^2 pixels.
+constexpr int kNoiseLevelRadius = 2;
+// A candidate is chosen by its estimated error averaged over (2 r + 1)^2 pixels (the pixel
+// left out); the per-pixel error channel is averaged over the same window.
+constexpr int kSelectionRadius = 3;
+
+// The mean of `values` over the (2 r + 1)^2 window around each pixel (clipped at the edges),
+// with the pixel itself left out when `leave_out`. Summed-area table: the same bits for any
+// thread count.
+template <typename T>
+std::vector<T> window_mean(const std::vector<T>& values, int width, int height, int r,
+                           bool leave_out) {
+  const auto w = std::size_t(width) + 1;
+  std::vector<T> table(w * (std::size_t(height) + 1), T{});
+  for (int y = 0; y < height; ++y) {
+    T row{};
+    for (int x = 0; x < width; ++x) {
+      row = row + values[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+      table[(std::size_t(y) + 1) * w + std::size_t(x) + 1] = table[std::size_t(y) * w + std::size_t(x) + 1] + row;
+    }
+  }
+  std::vector<T> mean(values.size());
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const auto x0 = std::size_t(std::max(0, x - r)), x1 = std::size_t(std::min(width, x + r + 1));
+      const auto y0 = std::size_t(std::max(0, y - r)), y1 = std::size_t(std::min(height, y + r + 1));
+      const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+      T sum = table[y1 * w + x1] - table[y0 * w + x1] - table[y1 * w + x0] + table[y0 * w + x0];
+      double count = double((x1 - x0) * (y1 - y0));
+      if (leave_out && count > 1) sum = sum - values[p], count -= 1;
+      mean[p] = sum * (1.0 / count);
+    }
+  }
+  return mean;
+}
+
+// The non-local means bandwidths tried in the second pass (NFOR's pair).
+constexpr std::array<float, 2> kBandwidths{0.5f, 1.0f};
+
+// The halves' filtered means combined as the noisy mean combines them (weighted by their
+// counts), never below 0, and each pixel's own weight in it: d combined(p) / d noisy(p) is
+// (n_even h_even + n_odd h_odd) / n for halves of equal per-sample variance.
+struct Combined {
+  std::vector<Color> color;
+  std::vector<float> own_weight;
+};
+
+Combined combine(const DenoiseInput& in, const FilteredHalf& even, const FilteredHalf& odd) {
+  Combined out;
+  out.color.resize(in.size()), out.own_weight.resize(in.size());
+  for (std::size_t p = 0; p < in.size(); ++p) {
+    const double ne = in.even_samples[p], no = in.odd_samples[p], total = ne + no;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double v = (ne * double(even.color[p][c]) + no * double(odd.color[p][c])) / total;
+      out.color[p][c] = float(std::max(0.0, v));
+    }
+    out.own_weight[p] =
+        float((ne * double(even.own_weight[p]) + no * double(odd.own_weight[p])) / total);
+  }
+  return out;
+}
+
+// A candidate image and its own weight in each pixel (1 for the noisy image).
+struct Candidate {
+  const std::vector<Color>* color;
+  const std::vector<float>* own_weight;
+};
+
+}  // namespace
+
+DenoisedImage denoise(const DenoiseInput& in) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t n = in.size();
+  // The noisy mean's variance, from the halves: unbiased, one degree of freedom per channel.
+  std::vector<Vec3d> variance(n), sample_variance(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const double ne = in.even_samples[p], no = in.odd_samples[p], total = ne + no;
+    const Vec3d diff = Vec3d(in.even[p]) - Vec3d(in.odd[p]);
+    variance[p] = diff * diff * (ne * no / (total * total));
+    sample_variance[p] = variance[p] * total;
+  }
+  sample_variance = window_mean(sample_variance, in.width, in.height, kNoiseLevelRadius, false);
+
+  // First pass: each half regressed on the features with its neighbours weighted equally; a
+  // function of that half's samples alone.
+  const FilteredHalf first_even = filter_half(in, in.even, {}, {}).front();
+  const FilteredHalf first_odd = filter_half(in, in.odd, {}, {}).front();
+  // Second pass: each half weighted by the patches of the other's first pass, whose noise is
+  // about its own weight times the half's (a regression's hat rows have squares summing to it).
+  const auto guide_variance = [&](const FilteredHalf& f, const std::vector<std::uint32_t>& count) {
+    std::vector<Vec3d> v(n);
+    for (std::size_t p = 0; p < n; ++p)
+      v[p] = sample_variance[p] * (double(f.own_weight[p]) / double(count[p]));
+    return v;
+  };
+  const std::vector<Vec3d> odd_guide_variance = guide_variance(first_odd, in.odd_samples);
+  const std::vector<Vec3d> even_guide_variance = guide_variance(first_even, in.even_samples);
+  const std::vector<float> bandwidths(kBandwidths.begin(), kBandwidths.end());
+  const auto second_even =
+      filter_half(in, in.even, {&first_odd.color, &odd_guide_variance}, bandwidths);
+  const auto second_odd =
+      filter_half(in, in.odd, {&first_even.color, &even_guide_variance}, bandwidths);
+
+  std::vector<Combined> filtered;
+  for (std::size_t k = 0; k < bandwidths.size(); ++k)
+    filtered.push_back(combine(in, second_even[k], second_odd[k]));
+  const std::vector<float> ones(n, 1.0f);
+  std::vector<Candidate> candidates;
+  for (const Combined& f : filtered) candidates.push_back({&f.color, &f.own_weight});
+  candidates.push_back({&in.mean, &ones});
+
+  // Each candidate's squared error at each pixel (Stein's estimate), and its relative sum.
+  std::vector<std::vector<Vec3d>> error(candidates.size());
+  std::vector<std::vector<double>> score(candidates.size());
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    error[c].resize(n), score[c].resize(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      const Vec3d z = Vec3d((*candidates[c].color)[p]);
+      const Vec3d d = z - Vec3d(in.mean[p]);
+      const double g = (*candidates[c].own_weight)[p];
+      error[c][p] = d * d - variance[p] * (1.0 - 2.0 * g);
+      double s = 0;
+      for (std::size_t ch = 0; ch < 3; ++ch) s += error[c][p][ch] / ((z[ch] + kRelativeErrorOffset) * (z[ch] + kRelativeErrorOffset));
+      score[c][p] = s;
+    }
+    score[c] = window_mean(score[c], in.width, in.height, kSelectionRadius, true);
+  }
+
+  DenoisedImage out;
+  out.image = Film(in.width, in.height);
+  out.noisy = Film(in.width, in.height);
+  out.noisy_kept.assign(n, 0.0f);
+  std::vector<Vec3d> chosen_error(n);
+  double relative = 0.0, noisy_relative = 0.0;
+  for (std::size_t p = 0; p < n; ++p) {
+    std::size_t best = candidates.size() - 1;
+    for (std::size_t c = 0; c + 1 < candidates.size(); ++c)
+      if (score[c][p] < score[best][p]) best = c;
+    const Color z = (*candidates[best].color)[p];
+    const int x = int(p % std::size_t(in.width)), y = int(p / std::size_t(in.width));
+    out.image.at(x, y) = z;
+    out.noisy.at(x, y) = in.mean[p];
+    out.noisy_kept[p] = best + 1 == candidates.size() ? 1.0f : 0.0f;
+    chosen_error[p] = error[best][p];
+    for (std::size_t ch = 0; ch < 3; ++ch) {
+      const double zo = double(z[ch]) + kRelativeErrorOffset;
+      const double xo = double(in.mean[p][ch]) + kRelativeErrorOffset;
+      relative += chosen_error[p][ch] / (zo * zo);
+      noisy_relative += variance[p][ch] / (xo * xo);
+    }
+  }
+  out.mse = window_mean(chosen_error, in.width, in.height, kSelectionRadius, false);
+  for (Vec3d& e : out.mse) e = {std::max(0.0, e.x), std::max(0.0, e.y), std::max(0.0, e.z)};
+  const double values = 3.0 * double(std::max<std::size_t>(n, 1));
+  out.estimated_error = std::sqrt(std::max(0.0, relative / values));
+  out.noisy_error = std::sqrt(std::max(0.0, noisy_relative / values));
+  out.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace rtiow

@@ -1,0 +1,43 @@
+#pragma once
+// The denoiser's filter: for each pixel, a first-order regression of one half's colour on the
+// first hit's features (albedo, normal, depth) and the pixel's place, over a window around it
+// (Bitterli et al. 2016, "Nonlinearly Weighted First-order Regression for Denoising Monte Carlo
+// Renderings", section 4), its neighbours weighted by non-local means on a guide (the patch
+// distance of Rousselle et al. 2012, "Adaptive Rendering with Non-Local Means Filtering", eq. 6)
+// or equally. The guide is made from the other half alone, so the filtered half stays a linear
+// function of its own samples, whose share in its own pixel (the hat matrix's diagonal) the
+// error estimate needs (core/denoise/denoiser.h).
+
+#include <array>
+#include <vector>
+
+#include "core/denoise/denoise_input.h"
+#include "core/geometry/vec3.h"
+
+namespace rtiow {
+
+// The window is (2 kRegressionRadius + 1)^2 pixels; the patches (2 kPatchRadius + 1)^2.
+inline constexpr int kRegressionRadius = 5;
+inline constexpr int kPatchRadius = 1;
+
+// What weighs a pixel's neighbours: the patches of `image`, whose pixels have `variance`; with
+// no image, every neighbour counts the same.
+struct Guide {
+  const std::vector<Color>* image = nullptr;
+  const std::vector<Vec3d>* variance = nullptr;
+};
+
+// One half filtered: each pixel's value, and its own weight in it (d filtered(p) / d half(p),
+// the hat matrix's diagonal).
+struct FilteredHalf {
+  std::vector<Color> color;
+  std::vector<float> own_weight;
+};
+
+// `half` (one of `in`'s halves) filtered at each bandwidth k of `bandwidths` (how far, in
+// standard deviations of the guide's noise, a neighbour's patch may differ and still count; one
+// result for an equal-weights guide). Deterministic: the same bits for any thread count.
+std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<Color>& half,
+                                      const Guide& guide, const std::vector<float>& bandwidths);
+
+}  // namespace rtiow

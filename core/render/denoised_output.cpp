@@ -1,0 +1,89 @@
+#include "core/render/denoised_output.h"
+
+#include <string>
+
+#include "core/denoise/denoiser.h"
+#include "core/film/replicate_variance.h"
+#include "core/limits/error.h"
+#include "core/limits/setting_name.h"
+#include "core/render/render_metadata.h"
+#include "core/render/render_settings.h"
+
+namespace rtiow {
+
+namespace {
+
+// Why a result cannot be denoised, or empty.
+std::string what_is_missing(const RenderResult& r) {
+  if (r.replicates < kReplicates || !r.sums.keeps(SumGroup::Odd))
+    return "the render kept one sequence of samples, not the two independent halves the "
+           "denoiser compares";
+  if (!r.sums.keeps(SumGroup::FirstHit))
+    return "the render kept no first hits (albedo, normal, depth) for the denoiser to follow";
+  if (r.pixel_samples.size() != r.sums.size()) return "the render has no sample counts";
+  for (std::uint32_t n : r.pixel_samples) {
+    if (odd_samples(r.first_sample, n) == 0 || n - odd_samples(r.first_sample, n) == 0)
+      return "a pixel has fewer than one sample in each half (at least 2 spp are needed)";
+  }
+  return {};
+}
+
+Color half_mean(const PixelSum& sum, std::uint64_t samples) { return sum.mean(samples); }
+
+}  // namespace
+
+DenoiseInput denoise_input(const RenderResult& r) {
+  if (const std::string missing = what_is_missing(r); !missing.empty())
+    throw InvalidInput(setting("denoise") + ": " + missing);
+  DenoiseInput in;
+  in.width = r.film.width();
+  in.height = r.film.height();
+  const std::size_t n = r.sums.size();
+  in.mean = r.film.pixels();
+  in.even.resize(n), in.odd.resize(n), in.features.resize(n);
+  in.even_samples.resize(n), in.odd_samples.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const std::uint32_t samples = r.pixel_samples[p];
+    const auto odd = std::uint32_t(odd_samples(r.first_sample, samples));
+    const PixelSum& odd_sum = r.sums.spreads[p].odd;
+    PixelSum even_sum;
+    for (int c = 0; c < 3; ++c)
+      even_sum.set_channel(c, r.sums.color[p].channel(c) - odd_sum.channel(c));
+    in.even[p] = half_mean(even_sum, samples - odd);
+    in.odd[p] = half_mean(odd_sum, odd);
+    in.even_samples[p] = samples - odd;
+    in.odd_samples[p] = odd;
+    for (std::size_t c = 0; c < FirstHitSum::kChannels; ++c)
+      in.features[p][c] = r.sums.first_hits[p].mean(c, samples);
+  }
+  return in;
+}
+
+
+DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels,
+                               Metadata& metadata) {
+  DenoisedImage d = denoise(denoise_input(result));
+  DenoisedOutput out;
+  out.figures = {d.estimated_error, d.noisy_error, d.seconds};
+  metadata.emplace_back(metadata_key::kDenoisedError, d.estimated_error);
+  metadata.emplace_back(metadata_key::kDenoisedNoisyError, d.noisy_error);
+  if (extra_channels) {
+    const std::size_t n = d.mse.size();
+    const char* rgb[3] = {"R", "G", "B"};
+    for (std::size_t c = 0; c < 3; ++c) {
+      ExtraChannel noisy{std::string("noisy.") + rgb[c], std::vector<float>(n)};
+      for (std::size_t p = 0; p < n; ++p) noisy.values[p] = d.noisy.pixels()[p][c];
+      out.channels.push_back(std::move(noisy));
+    }
+    for (std::size_t c = 0; c < 3; ++c) {
+      ExtraChannel mse{std::string("denoise.mse.") + rgb[c], std::vector<float>(n)};
+      for (std::size_t p = 0; p < n; ++p) mse.values[p] = float(d.mse[p][c]);
+      out.channels.push_back(std::move(mse));
+    }
+    out.channels.push_back({"denoise.kept", std::move(d.noisy_kept)});
+  }
+  out.image = std::move(d.image);
+  return out;
+}
+
+}  // namespace rtiow

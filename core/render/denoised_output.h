@@ -1,0 +1,40 @@
+#pragma once
+// A render's result as `--denoise` delivers it: the denoised image, the figures the summary,
+// the metadata and --summary-json report, and the channels an EXR keeps beside it (the noisy
+// image and the denoiser's own estimate of each pixel's error). One call for every place that
+// denoises: a render's write, a merge of parts, `rtiow denoise`.
+
+#include <vector>
+
+#include "core/denoise/denoise_input.h"
+#include "core/film/film.h"
+#include "core/io/image_output.h"
+
+namespace rtiow {
+
+struct RenderResult;
+
+struct DenoiseFigures {
+  double estimated_error = 0.0;  // the denoised image's relative RMS error (offset 0.01)
+  double noisy_error = 0.0;      // the noisy image's, by the same estimate from the halves
+  double seconds = 0.0;          // the denoiser's own time
+};
+
+struct DenoisedOutput {
+  Film image;
+  DenoiseFigures figures;
+  std::vector<ExtraChannel> channels;  // noisy.R/G/B, denoise.mse.R/G/B, denoise.kept
+};
+
+// The halves and features of a render's result. Throws InvalidInput naming what it lacks: the
+// odd samples' sums (a render that kept one sequence), the first hits' sums (no passes), or a
+// pixel with fewer than one sample in each half.
+DenoiseInput denoise_input(const RenderResult& result);
+
+// Denoises `result` (core/denoise/denoiser.h) and records its figures in `metadata`; the
+// channels only where `extra_channels` (the output can hold them). Throws InvalidInput where
+// the result lacks what the denoiser needs (core/denoise/denoise_input.h).
+DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels,
+                               Metadata& metadata);
+
+}  // namespace rtiow

@@ -1,0 +1,79 @@
+// `--denoise` and `rtiow denoise` from outside: what the files hold, that a render denoised at
+// once and one kept as parts and denoised after its merge give the same pixels, and the
+// refusals.
+
+#include "tests/cli_helpers.h"
+
+namespace rtiow::test::cli {
+namespace {
+
+const char* const kSmall = "--width 64 --height 40 --spp 8 --seed 3";
+
+TEST(CliDenoise, WritesTheDenoisedImageTheNoisyOneAndTheEstimatedError) {
+  const fs::path image = output_path("denoised.exr"), summary = output_path("summary.json");
+  const CommandResult r = run_rtiow("render --denoise " + std::string(kSmall) + " -o " +
+                                    image.string() + " --summary-json " + summary.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("denoised in "), std::string::npos) << r.stderr_text;
+  for (const char* channel : {"noisy.R", "denoise.mse.G", "denoise.kept", "albedo.R", "N.Z", "Z"})
+    EXPECT_FALSE(exr_channel(image, channel).empty()) << channel;
+  const std::vector<float> noisy = exr_channel(image, "noisy.R");
+  int width = 0, height = 0;
+  const std::vector<float> rgb = exr_pixels(image, width, height);
+  ASSERT_EQ(rgb.size(), noisy.size() * 3);
+  double differ = 0;
+  for (std::size_t p = 0; p < noisy.size(); ++p) differ += rgb[3 * p] != noisy[p];
+  EXPECT_GT(differ, 0.5 * double(noisy.size())) << "the image is the noisy one";
+  const auto j = nlohmann::json::parse(slurp(summary));
+  ASSERT_TRUE(j["denoise"].is_object()) << j.dump();
+  EXPECT_GT(j["denoise"]["estimated_error"].get<double>(), 0.0);
+  EXPECT_LT(j["denoise"]["estimated_error"].get<double>(),
+            j["denoise"]["noisy_error"].get<double>());
+  EXPECT_EQ(summary_schema_violations({summary}), "");
+  auto in = OIIO::ImageInput::open(image.string());
+  ASSERT_TRUE(in);
+  EXPECT_NEAR(in->spec().get_float_attribute("rtiow:denoise.estimated_error"),
+              j["denoise"]["estimated_error"].get<double>(), 1e-6);
+}
+
+TEST(CliDenoise, PartsDenoisedAfterTheirMergeGiveTheRendersPixels) {
+  const fs::path whole = output_path("whole.exr"), merged = output_path("merged.exr");
+  const fs::path a = output_path("a.exr"), b = output_path("b.exr");
+  const std::string args = "render -q --denoise " + std::string(kSmall);
+  ASSERT_EQ(run_rtiow(args + " --threads 1 -o " + whole.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow(args + " --part 0/2 -o " + a.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow(args + " --part 1/2 -o " + b.string()).exit_code, 0);
+  const CommandResult r = run_rtiow("denoise " + a.string() + " " + b.string() + " -o " +
+                                    merged.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  int w1 = 0, h1 = 0, w2 = 0, h2 = 0;
+  const std::vector<float> one = exr_pixels(whole, w1, h1), two = exr_pixels(merged, w2, h2);
+  ASSERT_FALSE(one.empty());
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(exr_channel(whole, "denoise.mse.R"), exr_channel(merged, "denoise.mse.R"));
+}
+
+TEST(CliDenoise, RefusesWhatItCannotDenoiseInOneLine) {
+  expect_refused("--denoise --image-error 0.05", "the target would be the noisy image's error");
+  expect_refused("--denoise --target-error 0.05", "the target would be the noisy image's error");
+  // Parts rendered without --denoise keep no halves or first hits.
+  const fs::path part = output_path("plain.exr"), out = output_path("out.png");
+  ASSERT_EQ(run_rtiow("render -q " + std::string(kSmall) + " --part 0/1 -o " + part.string())
+                .exit_code,
+            0);
+  const CommandResult r = run_rtiow("denoise " + part.string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+  EXPECT_EQ(count_lines(r.stderr_text), 1) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("render them with --denoise"), std::string::npos) << r.stderr_text;
+  EXPECT_FALSE(fs::exists(out));
+  // Not a part: an image.
+  const fs::path image = output_path("image.exr");
+  ASSERT_EQ(run_rtiow("render -q " + std::string(kSmall) + " -o " + image.string()).exit_code, 0);
+  const CommandResult not_part = run_rtiow("denoise " + image.string() + " -o " + out.string());
+  EXPECT_EQ(not_part.exit_code, 2) << not_part.stderr_text;
+  EXPECT_EQ(count_lines(not_part.stderr_text), 1) << not_part.stderr_text;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace rtiow::test::cli

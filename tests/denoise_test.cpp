@@ -1,0 +1,183 @@
+// The denoiser (core/denoise/): what it keeps unbiased, what it keeps sharp, and whether the
+// error it reports is the error it delivers. Synthetic images whose truth is known, with
+// independent Gaussian halves, so every verdict is fixed by its seeds; and renders against an
+// independent reference.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include "core/denoise/denoiser.h"
+#include "core/render/denoised_output.h"
+#include "core/limits/error.h"
+#include "core/render/render.h"
+#include "core/scene/builtin_scenes.h"
+
+namespace rtiow {
+namespace {
+
+struct Truth {
+  int width = 64, height = 48;
+  std::function<float(int x, int y)> value;        // grey: the same in R, G, B
+  std::function<PixelFeatures(int x, int y)> features;
+};
+
+constexpr std::uint32_t kHalfSamples = 8;
+
+// Two independent halves of `truth`, each a mean of kHalfSamples samples with per-sample
+// standard deviation `sigma`.
+DenoiseInput noisy_halves(const Truth& truth, double sigma, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma / std::sqrt(double(kHalfSamples)));
+  DenoiseInput in;
+  in.width = truth.width, in.height = truth.height;
+  for (int y = 0; y < truth.height; ++y) {
+    for (int x = 0; x < truth.width; ++x) {
+      const double t = truth.value(x, y);
+      Color a, b;
+      for (std::size_t c = 0; c < 3; ++c) {
+        a[c] = float(t + noise(rng));
+        b[c] = float(t + noise(rng));
+      }
+      in.even.push_back(a), in.odd.push_back(b);
+      in.mean.push_back((a + b) * 0.5f);
+      in.even_samples.push_back(kHalfSamples), in.odd_samples.push_back(kHalfSamples);
+      in.features.push_back(truth.features(x, y));
+    }
+  }
+  return in;
+}
+
+PixelFeatures flat_features(int, int) { return {0.5f, 0.5f, 0.5f, 0.f, 0.f, 1.f, 4.f}; }
+
+// The relative squared error (offset 0.01) summed over pixels and channels, true and estimated.
+struct Errors {
+  double truth = 0, estimate = 0;
+};
+Errors errors(const Truth& truth, const DenoisedImage& d, int x0, int x1) {
+  Errors e;
+  for (int y = 0; y < truth.height; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      const std::size_t p = std::size_t(y) * std::size_t(truth.width) + std::size_t(x);
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double t = truth.value(x, y), z = d.image.at(x, y)[c];
+        e.truth += (z - t) * (z - t);
+        e.estimate += d.mse[p][c];
+      }
+    }
+  }
+  return e;
+}
+
+TEST(Denoiser, AFlatEvenlyLitRegionStaysUnbiased) {
+  const Truth flat{64, 48, [](int, int) { return 0.5f; }, flat_features};
+  double sum = 0, count = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const DenoisedImage d = denoise(noisy_halves(flat, 0.4, seed));
+    for (const Color& c : d.image.pixels()) sum += double(c.x + c.y + c.z), count += 3;
+  }
+  // The noisy mean's standard error over the 4 images is 0.4 / sqrt(16 * 4 * 64 * 48 * 3):
+  // about 6e-4. A filter that averages moves nothing; a bias (a clamp, a weight that favours
+  // bright neighbours) would show as many of these.
+  const double mean = sum / count;
+  EXPECT_NEAR(mean, 0.5, 4 * 0.4 / std::sqrt(16.0 * count));
+}
+
+TEST(Denoiser, FilteringHelpsWhereTheImageIsSmooth) {
+  const Truth ramp{64, 48, [](int x, int) { return 0.2f + 0.01f * float(x); }, flat_features};
+  const DenoisedImage d = denoise(noisy_halves(ramp, 0.4, 7));
+  Errors noisy;
+  for (int y = 0; y < ramp.height; ++y)
+    for (int x = 0; x < ramp.width; ++x)
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double e = d.noisy.at(x, y)[c] - ramp.value(x, y);
+        noisy.truth += e * e;
+      }
+  const Errors denoised = errors(ramp, d, 0, ramp.width);
+  EXPECT_LT(denoised.truth, noisy.truth / 4) << "the ramp is what a first-order regression fits";
+  EXPECT_LT(d.estimated_error, d.noisy_error);
+}
+
+// An edge the features know (albedo) and one they know by depth and normal alone (a
+// silhouette): the error across it stays within what the denoiser reports there, and the
+// pixels beside it keep their side's value.
+void expect_sharp(const Truth& edge, int edge_x, const char* what) {
+  double truth = 0, estimate = 0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const DenoisedImage d = denoise(noisy_halves(edge, 0.3, seed));
+    const Errors across = errors(edge, d, edge_x - 2, edge_x + 2);
+    truth += across.truth, estimate += across.estimate;
+    double left = 0, right = 0;
+    for (int y = 0; y < edge.height; ++y)
+      left += d.image.at(edge_x - 1, y).x, right += d.image.at(edge_x, y).x;
+    const double step = edge.value(edge_x, 0) - edge.value(edge_x - 1, 0);
+    EXPECT_NEAR(left / edge.height, edge.value(edge_x - 1, 0), 0.1 * std::abs(step)) << what;
+    EXPECT_NEAR(right / edge.height, edge.value(edge_x, 0), 0.1 * std::abs(step)) << what;
+  }
+  EXPECT_LT(truth, 2 * estimate) << what << ": the error across the edge is above its estimate";
+}
+
+TEST(Denoiser, AnAlbedoEdgeStaysSharp) {
+  const Truth edge{64, 48, [](int x, int) { return x < 32 ? 0.15f : 0.75f; },
+                   [](int x, int) -> PixelFeatures {
+                     const float a = x < 32 ? 0.2f : 0.9f;
+                     return {a, a, a, 0.f, 0.f, 1.f, 4.f};
+                   }};
+  expect_sharp(edge, 32, "albedo edge");
+}
+
+TEST(Denoiser, ASilhouetteStaysSharp) {
+  const Truth silhouette{64, 48, [](int x, int) { return x < 24 ? 0.7f : 0.25f; },
+                         [](int x, int) -> PixelFeatures {
+                           if (x < 24) return {0.5f, 0.5f, 0.5f, 0.6f, 0.f, 0.8f, 2.f};
+                           return {0.5f, 0.5f, 0.5f, 0.f, 1.f, 0.f, 9.f};
+                         }};
+  expect_sharp(silhouette, 24, "silhouette");
+}
+
+TEST(Denoiser, NeverWorseThanTheNoisyImageWhereTheFeaturesSayNothing) {
+  // Detail the features do not explain (a checkerboard of one material), under little noise:
+  // filtering would blur it, so the pixels keep their noisy values.
+  const Truth checks{64, 48, [](int x, int y) { return ((x + y) % 2) ? 0.2f : 0.8f; },
+                     flat_features};
+  const DenoisedImage d = denoise(noisy_halves(checks, 0.05, 3));
+  Errors noisy;
+  for (int y = 0; y < checks.height; ++y)
+    for (int x = 0; x < checks.width; ++x)
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double e = d.noisy.at(x, y)[c] - checks.value(x, y);
+        noisy.truth += e * e;
+      }
+  const Errors denoised = errors(checks, d, 0, checks.width);
+  EXPECT_LT(denoised.truth, 1.1 * noisy.truth);
+}
+
+TEST(Denoiser, TheSameBitsOnAnyNumberOfThreads) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  RenderSettings s;
+  s.width = 48, s.height = 32, s.samples = FixedSamples{8};
+  s.estimate_error = true, s.passes = {true, true, true};
+  s.threads = 1;
+  const DenoisedImage one = denoise(denoise_input(render(scene, s)));
+  s.threads = 2;
+  const DenoisedImage two = denoise(denoise_input(render(scene, s)));
+  EXPECT_EQ(one.image.pixels(), two.image.pixels());
+  EXPECT_EQ(one.estimated_error, two.estimated_error);
+}
+
+TEST(Denoiser, RefusesARenderWithoutHalvesOrFirstHits) {
+  const Scene scene = make_builtin_scene("materials", 1);
+  RenderSettings s;
+  s.width = 16, s.height = 9, s.samples = FixedSamples{4};
+  s.passes = {true, true, true};
+  EXPECT_THROW(denoise_input(render(scene, s)), InvalidInput);  // one Sobol sequence
+  s.estimate_error = true, s.passes = {};
+  EXPECT_THROW(denoise_input(render(scene, s)), InvalidInput);  // no first hits
+}
+
+}  // namespace
+}  // namespace rtiow
