@@ -234,6 +234,7 @@ const std::map<std::string, SessionSetter>& session_setters() {
                      auto& v) { o.session.display = parse_display_address(text(n, v)); }},
       {"reproducible",
        [](ParsedOptions& o, auto& n, auto& v) { o.session.reproducible = flag(n, v); }},
+      {"denoise", [](ParsedOptions& o, auto& n, auto& v) { o.job.denoise = flag(n, v); }},
   };
   return table;
 }
@@ -263,7 +264,8 @@ ParsedOptions parse_render_options(const py::kwargs& options) {
                                     std::pair{"restart", parsed.session.checkpoint.restart},
                                     std::pair{"keep_state", parsed.session.checkpoint.keep_state},
                                     std::pair{"preview", parsed.session.preview_seconds > 0.0},
-                                    std::pair{"display", parsed.session.display.has_value()}}) {
+                                    std::pair{"display", parsed.session.display.has_value()},
+                                    std::pair{"denoise", parsed.job.denoise}}) {
     if (given && !to_file) {
       throw InvalidInput(setting(name) + " is for a render to a file: give " + setting("output"));
     }

@@ -340,20 +340,33 @@ void write_render(const Render& render, const std::string& path, bool reproducib
 }
 
 // rtiow merge: the part files added into the image one render of all their samples gives.
-void merge_files(const std::vector<std::string>& parts, const std::string& output,
-                 bool stats_channels) {
-  const py::gil_scoped_release released;
-  check_image_output(output, parts);
-  const ImageFormat* format = image_format(output);
-  if (stats_channels && format && !format->extra_channels) {
-    throw InvalidInput(setting("stats_channels") + ": output " + quote_value(output) +
-                       " must be .exr to hold the spp and variance channels");
-  }
-  const OutputClaim claim(output);
-  const MergedImage merged =
-      merge_part_files(parts, {stats_channels, format && format->extra_channels});
-  write_image(output, merged.film, merged.metadata, merged.channels, merged.placement);
+std::optional<DenoiseFigures> merge_and_write(const std::vector<std::string>& parts,
+                                              const std::string& output, bool stats_channels,
+                                              bool denoise) {
+  return merge_to_file(parts, output, {stats_channels, true, denoise}).denoised;
 }
+
+// With `denoise`, the denoiser's figures (estimated_error, noisy_error, seconds); else None.
+py::object merge_files(const std::vector<std::string>& parts, const std::string& output,
+                       bool stats_channels, bool denoise) {
+  std::optional<DenoiseFigures> figures;
+  {
+    const py::gil_scoped_release released;
+    figures = merge_and_write(parts, output, stats_channels, denoise);
+  }
+  if (!figures) return py::none();
+  py::dict out;
+  out["estimated_error"] = figures->estimated_error;
+  out["noisy_error"] = figures->noisy_error;
+  out["seconds"] = figures->seconds;
+  return out;
+}
+
+py::object denoise_files(const std::vector<std::string>& parts, const std::string& output,
+                         bool stats_channels) {
+  return merge_files(parts, output, stats_channels, true);
+}
+
 
 // An image to compare: a file, or a render (with its variances where it has them).
 DiffInput diff_input_of(const py::handle& image) {
@@ -518,9 +531,15 @@ void bind_images(py::module_& m) {
         "reference, as rtiow diff does: noise-aware where both have variances, by seeds for a "
         "list, else plain. Returns a dict with 'passed', 'verdict' and the figures.");
   m.def("merge", &merge_files, py::arg("parts"), py::arg("output"), py::kw_only(),
-        py::arg("stats_channels") = false,
+        py::arg("stats_channels") = false, py::arg("denoise") = false,
         "Adds part files (renders with part= or sample_range=, written) into the image one "
-        "render of all their samples gives, as rtiow merge does; checks they belong together.");
+        "render of all their samples gives, as rtiow merge does; checks they belong together. "
+        "With denoise=True the image is denoised and its figures returned, as by denoise().");
+  m.def("denoise", &denoise_files, py::arg("parts"), py::arg("output"), py::kw_only(),
+        py::arg("stats_channels") = false,
+        "Denoises a render kept as part files (render(..., denoise=True, part='0/1', "
+        "output=...)), as rtiow denoise does. Returns the denoised image's estimated error "
+        "(relative RMS, offset 0.01), the noisy image's and the denoiser's seconds.");
   m.def("read_image", &read_image, py::arg("path"),
         "An image file's R, G, B as height x width x 3 float32 (linear files as stored).");
 }

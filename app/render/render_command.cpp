@@ -91,8 +91,7 @@ void print_summary(const RenderJob& job, const RenderResult& result, const MpiSe
                result.render_seconds, rays, rays / result.render_seconds * 1e-6,
                one_line(job.output).c_str());
   if (denoised) {
-    std::fprintf(stderr, "denoised in %.2f s: image error %.4f estimated (noisy %.4f)\n",
-                 denoised->seconds, denoised->estimated_error, denoised->noisy_error);
+    std::fprintf(stderr, "%s\n", describe(*denoised).c_str());
   }
 }
 

@@ -1,5 +1,6 @@
 #include "core/render/denoised_output.h"
 
+#include <cstdio>
 #include <string>
 
 #include "core/denoise/denoiser.h"
@@ -59,6 +60,13 @@ DenoiseInput denoise_input(const RenderResult& r) {
   return in;
 }
 
+
+std::string describe(const DenoiseFigures& f) {
+  char line[160];
+  std::snprintf(line, sizeof line, "denoised in %.2f s: image error %.4f estimated (noisy %.4f)",
+                f.seconds, f.estimated_error, f.noisy_error);
+  return line;
+}
 
 DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels,
                                Metadata& metadata) {

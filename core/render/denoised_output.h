@@ -4,6 +4,7 @@
 // image and the denoiser's own estimate of each pixel's error). One call for every place that
 // denoises: a render's write, a merge of parts, `rtiow denoise`.
 
+#include <string>
 #include <vector>
 
 #include "core/denoise/denoise_input.h"
@@ -19,6 +20,9 @@ struct DenoiseFigures {
   double noisy_error = 0.0;      // the noisy image's, by the same estimate from the halves
   double seconds = 0.0;          // the denoiser's own time
 };
+
+// "denoised in 1.32 s: image error 0.0660 estimated (noisy 0.0966)": the summary's line.
+std::string describe(const DenoiseFigures& figures);
 
 struct DenoisedOutput {
   Film image;

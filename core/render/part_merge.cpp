@@ -3,6 +3,8 @@
 #include <new>
 #include <utility>
 
+#include "core/io/output_claim.h"
+#include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/limits/setting_name.h"
 #include "core/render/render_metadata.h"
@@ -131,6 +133,21 @@ MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeR
   image.samples = merged.samples;
   image.parts = parts.size();
   return image;
+}
+
+MergedImage merge_to_file(const std::vector<std::string>& paths, const std::string& output,
+                          MergeRequest request) {
+  check_image_output(output, paths);
+  const ImageFormat* format = image_format(output);
+  request.extra_channels = format && format->extra_channels;
+  if (request.statistics && !request.extra_channels) {
+    throw InvalidInput(setting("stats_channels") + ": output " + quote_value(output) +
+                       " must be .exr to hold the spp and variance channels");
+  }
+  const OutputClaim claim(output);  // before the parts are read: a second writer is refused now
+  MergedImage merged = merge_part_files(paths, request);
+  write_image(output, merged.film, merged.metadata, merged.channels, merged.placement);
+  return merged;
 }
 
 }  // namespace rtiow

@@ -41,4 +41,10 @@ struct MergedImage {
 // from one sequence).
 MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeRequest& request);
 
+// `rtiow merge` and `rtiow denoise` whole: the output checked against the parts and claimed
+// before they are read, the merge, and the image written with what its format can hold.
+// `request.extra_channels` is taken from the output's format. Returns what was written.
+MergedImage merge_to_file(const std::vector<std::string>& paths, const std::string& output,
+                          MergeRequest request);
+
 }  // namespace rtiow

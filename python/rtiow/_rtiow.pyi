@@ -86,6 +86,7 @@ def render(
     preview: float = ...,
     display: str = ...,
     reproducible: bool = ...,
+    denoise: bool = ...,
 ) -> Render: ...
 
 def render_like(
@@ -127,10 +128,17 @@ def render_like(
     preview: float = ...,
     display: str = ...,
     reproducible: bool = ...,
+    denoise: bool = ...,
 ) -> Render:
     """Renders again what an image rtiow wrote records, as rtiow render --like does."""
-def merge(parts: Sequence[str], output: str, *, stats_channels: bool = False) -> None:
+def merge(
+    parts: Sequence[str], output: str, *, stats_channels: bool = False, denoise: bool = False
+) -> Optional[Dict[str, float]]:
     """Adds part files into the image one render of all their samples gives (rtiow merge)."""
+def denoise(
+    parts: Sequence[str], output: str, *, stats_channels: bool = False
+) -> Dict[str, float]:
+    """Denoises a render kept as part files (rendered with denoise=True), as rtiow denoise does."""
 def diff(
     test: Union[_ImageLike, Sequence[_ImageLike]],
     reference: _ImageLike,
