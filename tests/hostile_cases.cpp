@@ -535,6 +535,16 @@ std::vector<Case> part_cases() {
        2,
        "rtiow:replicates 7: a render draws one sequence or 2 replicates",
        {"merge", "--stats-channels", "replicates-seven.exr", "stats1.exr", "-o", "merged.exr"}},
+      // rtiow denoise: parts that keep no halves or no first hits, a tampered half, halves of
+      // another size.
+      {"DenoisePartsWithoutHalves", 2, "render them with --denoise",
+       {"denoise", "part0.exr", "part1.exr", "-o", "denoised.png"}},
+      {"DenoisePartsWithoutFirstHits", 2, "render them with --denoise",
+       {"denoise", "stats0.exr", "stats1.exr", "-o", "denoised.png"}},
+      {"DenoiseTamperedHalf", 2, "odd.R is more than sum.R",
+       {"denoise", "denoise-odd-above-sum.exr", "denoise1.exr", "-o", "denoised.png"}},
+      {"DenoiseHalvesOfAnotherSize", 2, "a share of a different render",
+       {"denoise", "denoise0.exr", "denoise-smaller1.exr", "-o", "denoised.png"}},
       {"MergeWithoutJobField", 2, "header field rtiow:part_job_samples",
        merge({"no-job.exr", "part1.exr"})},
       {"MergeDirectory", 2, "is a directory", merge({"adir.png"})},

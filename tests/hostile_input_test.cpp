@@ -126,7 +126,7 @@ std::string png_claiming(std::uint32_t width, std::uint32_t height, std::size_t 
 
 fs::path fixtures() {
   // Named by version: a build tree keeps the fixtures of an older suite under another name.
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-6";
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-7";
   if (fs::exists(dir / "complete")) return dir;
   const fs::path work =
       fs::path(RTIOW_TEST_OUTPUT_DIR) / ("hostile-fixtures." + std::to_string(getpid()));
@@ -146,6 +146,9 @@ fs::path fixtures() {
   render("--part 0/2 --passes albedo,normal,depth -o passes0.exr");
   render("--part 0/2 --stats-channels -o stats0.exr");
   render("--part 1/2 --stats-channels -o stats1.exr");
+  render("--part 0/2 --denoise -o denoise0.exr");
+  render("--part 1/2 --denoise -o denoise1.exr");
+  render("--part 1/2 --denoise --width 24 -o denoise-smaller1.exr");
   // Part files whose header or sums lie, written field by field and word by word: `edit`
   // changes the header, `words` pixel 0's words (by channel name) of the part `from`.
   using Words = std::function<void(std::function<std::uint32_t&(const std::string&)>)>;
@@ -193,6 +196,11 @@ fs::path fixtures() {
     for (const char* w : {".0", ".1", ".2", ".3"})
       word(std::string("odd.G") + w) = word(std::string("sum.G") + w);
     word("odd.G.0") += 1;  // the sum's low word is far from 2^32 - 1 for a pixel of about 1
+  });
+  crafted("denoise-odd-above-sum.exr", same, "denoise0.exr", [](auto word) {
+    for (const char* w : {".0", ".1", ".2", ".3"})
+      word(std::string("odd.R") + w) = word(std::string("sum.R") + w);
+    word("odd.R.0") += 1;
   });
   crafted("count-word.exr", [](auto& s) { s.attribute("rtiow:part_samples", "1"); });
   crafted(
