@@ -53,6 +53,17 @@ TEST(CliDenoise, PartsDenoisedAfterTheirMergeGiveTheRendersPixels) {
   EXPECT_EQ(exr_channel(whole, "denoise.mse.R"), exr_channel(merged, "denoise.mse.R"));
 }
 
+TEST(CliDenoise, LikeRendersADenoisedImageAgainDenoised) {
+  const fs::path first = output_path("first.png"), again = output_path("again.png");
+  ASSERT_EQ(run_rtiow("render -q --reproducible --denoise " + std::string(kSmall) + " -o " +
+                      first.string())
+                .exit_code,
+            0);
+  const CommandResult r = run_rtiow("render -q --like " + first.string() + " -o " + again.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_EQ(slurp(first), slurp(again));
+}
+
 TEST(CliDenoise, RefusesWhatItCannotDenoiseInOneLine) {
   expect_refused("--denoise --image-error 0.05", "the target would be the noisy image's error");
   expect_refused("--denoise --target-error 0.05", "the target would be the noisy image's error");

@@ -200,9 +200,11 @@ void read_channels(const KeyReader& keys, const ImageHeader& header, JobRequest&
   const bool asked_replicates = replicates && *replicates == "2" &&
                                 r.sampler != SamplerKind::Independent &&
                                 (keys.find(key::kSpp) || keys.find(key::kAdaptive));
+  // A denoised image keeps two replicates for the denoiser, not because they were asked.
+  job.denoise = keys.find(key::kDenoisedError) != nullptr;
   job.stats_channels = r.estimate_error =
       std::find(channels.begin(), channels.end(), "variance.R") != channels.end() ||
-      asked_replicates;
+      (asked_replicates && !job.denoise);
   if (keys.find(key::kPasses)) {
     r.passes = keys.parsed(key::kPasses, [](const std::string& list) {
       try {
@@ -328,7 +330,10 @@ JobRequest overlay_recorded(const RecordedRequest& image, JobRequest asked,
     }
     asked.stats_channels = r.estimate_error = true;
   }
-  if (left(P::Passes) && i.passes.any() && output_holds_channels) r.passes = i.passes;
+  if (left(P::Denoise) && image.job.denoise) asked.denoise = true;
+  // A denoised image's passes came with --denoise, which asks for them again.
+  if (left(P::Passes) && i.passes.any() && output_holds_channels && !asked.denoise)
+    r.passes = i.passes;
   if (left(P::Reproducible) && image.reproducible) reproducible = true;
   return asked;
 }
@@ -375,6 +380,7 @@ const std::vector<std::pair<RequestPart, std::vector<std::string_view>>>& part_s
       {P::Fresnel, {"fresnel"}},
       {P::StatsChannels, {"stats_channels"}},
       {P::Passes, {"passes"}},
+      {P::Denoise, {"denoise"}},
       {P::Reproducible, {"reproducible"}},
   };
   return table;

@@ -37,6 +37,7 @@ enum class RequestPart {
   Fresnel,
   StatsChannels,  // the replicates an error estimate needs, and their channels
   Passes,
+  Denoise,       // the image written denoised (and so the halves and first hits kept)
   Reproducible,  // no wall-clock time in the file, so it is byte for byte the same
 };
 
