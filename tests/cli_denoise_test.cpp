@@ -43,8 +43,8 @@ TEST(CliDenoise, PartsDenoisedAfterTheirMergeGiveTheRendersPixels) {
   ASSERT_EQ(run_rtiow(args + " --threads 1 -o " + whole.string()).exit_code, 0);
   ASSERT_EQ(run_rtiow(args + " --part 0/2 -o " + a.string()).exit_code, 0);
   ASSERT_EQ(run_rtiow(args + " --part 1/2 -o " + b.string()).exit_code, 0);
-  const CommandResult r = run_rtiow("denoise " + a.string() + " " + b.string() + " -o " +
-                                    merged.string());
+  const CommandResult r =
+      run_rtiow("denoise " + a.string() + " " + b.string() + " -o " + merged.string());
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   int w1 = 0, h1 = 0, w2 = 0, h2 = 0;
   const std::vector<float> one = exr_pixels(whole, w1, h1), two = exr_pixels(merged, w2, h2);
@@ -69,9 +69,9 @@ TEST(CliDenoise, RefusesWhatItCannotDenoiseInOneLine) {
   expect_refused("--denoise --target-error 0.05", "the target would be the noisy image's error");
   // Parts rendered without --denoise keep no halves or first hits.
   const fs::path part = output_path("plain.exr"), out = output_path("out.png");
-  ASSERT_EQ(run_rtiow("render -q " + std::string(kSmall) + " --part 0/1 -o " + part.string())
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      run_rtiow("render -q " + std::string(kSmall) + " --part 0/1 -o " + part.string()).exit_code,
+      0);
   const CommandResult r = run_rtiow("denoise " + part.string() + " -o " + out.string());
   EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
   EXPECT_EQ(count_lines(r.stderr_text), 1) << r.stderr_text;

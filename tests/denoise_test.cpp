@@ -6,15 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <random>
 #include <vector>
 
 #include "core/denoise/denoiser.h"
-#include "core/render/denoised_output.h"
 #include "core/limits/error.h"
+#include "core/render/denoised_output.h"
 #include "core/render/render.h"
 #include "core/scene/builtin_scenes.h"
 
@@ -23,7 +23,7 @@ namespace {
 
 struct Truth {
   int width = 64, height = 48;
-  std::function<float(int x, int y)> value;        // grey: the same in R, G, B
+  std::function<float(int x, int y)> value;  // grey: the same in R, G, B
   std::function<PixelFeatures(int x, int y)> features;
 };
 
@@ -53,7 +53,9 @@ DenoiseInput noisy_halves(const Truth& truth, double sigma, std::uint64_t seed) 
   return in;
 }
 
-PixelFeatures flat_features(int, int) { return {0.5f, 0.5f, 0.5f, 0.f, 0.f, 1.f, 4.f}; }
+PixelFeatures flat_features(int, int) {
+  return {0.5f, 0.5f, 0.5f, 0.f, 0.f, 1.f, 4.f};
+}
 
 // The relative squared error (offset 0.01) summed over pixels and channels, true and estimated.
 struct Errors {
@@ -163,14 +165,16 @@ TEST(Denoiser, TheErrorItReportsIsTheErrorItDelivers) {
   const Truth scene{96, 64,
                     [](int x, int y) {
                       const float shade = 0.3f + 0.4f * float(y) / 64.0f;
-                      const float ball = (x - 60) * (x - 60) + (y - 30) * (y - 30) < 400 ? 1.6f : 1.0f;
+                      const float ball =
+                          (x - 60) * (x - 60) + (y - 30) * (y - 30) < 400 ? 1.6f : 1.0f;
                       const float stripes = (x / 4) % 2 ? 0.1f : 0.0f;  // not in the features
                       return shade * ball * (x < 30 ? 0.3f : 1.0f) + stripes;
                     },
                     [](int x, int y) -> PixelFeatures {
                       const bool ball = (x - 60) * (x - 60) + (y - 30) * (y - 30) < 400;
                       const float a = x < 30 ? 0.3f : 1.0f;
-                      if (ball) return {a, a, a, float(x - 60) / 20.f, float(y - 30) / 20.f, 0.5f, 3.f};
+                      if (ball)
+                        return {a, a, a, float(x - 60) / 20.f, float(y - 30) / 20.f, 0.5f, 3.f};
                       return {a, a, a, 0.f, 1.f, 0.f, 6.f};
                     }};
   double truth = 0, estimate = 0;

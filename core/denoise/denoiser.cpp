@@ -31,14 +31,16 @@ std::vector<T> window_mean(const std::vector<T>& values, int width, int height, 
     T row{};
     for (int x = 0; x < width; ++x) {
       row = row + values[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-      table[(std::size_t(y) + 1) * w + std::size_t(x) + 1] = table[std::size_t(y) * w + std::size_t(x) + 1] + row;
+      table[(std::size_t(y) + 1) * w + std::size_t(x) + 1] =
+          table[std::size_t(y) * w + std::size_t(x) + 1] + row;
     }
   }
   std::vector<T> mean(values.size());
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const auto x0 = std::size_t(std::max(0, x - r)), x1 = std::size_t(std::min(width, x + r + 1));
-      const auto y0 = std::size_t(std::max(0, y - r)), y1 = std::size_t(std::min(height, y + r + 1));
+      const auto y0 = std::size_t(std::max(0, y - r)),
+                 y1 = std::size_t(std::min(height, y + r + 1));
       const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
       T sum = table[y1 * w + x1] - table[y0 * w + x1] - table[y1 * w + x0] + table[y0 * w + x0];
       double count = double((x1 - x0) * (y1 - y0));
@@ -81,21 +83,28 @@ struct Candidate {
   const std::vector<float>* own_weight;
 };
 
-}  // namespace
-
-DenoisedImage denoise(const DenoiseInput& in) {
-  const auto start = std::chrono::steady_clock::now();
-  const std::size_t n = in.size();
-  // The noisy mean's variance, from the halves: unbiased, one degree of freedom per channel.
-  std::vector<Vec3d> variance(n), sample_variance(n);
-  for (std::size_t p = 0; p < n; ++p) {
+// The noisy mean's variance at each pixel, from the halves: unbiased, one degree of freedom
+// per channel, whatever the sampler.
+std::vector<Vec3d> noisy_variance(const DenoiseInput& in) {
+  std::vector<Vec3d> variance(in.size());
+  for (std::size_t p = 0; p < in.size(); ++p) {
     const double ne = in.even_samples[p], no = in.odd_samples[p], total = ne + no;
     const Vec3d diff = Vec3d(in.even[p]) - Vec3d(in.odd[p]);
     variance[p] = diff * diff * (ne * no / (total * total));
-    sample_variance[p] = variance[p] * total;
   }
-  sample_variance = window_mean(sample_variance, in.width, in.height, kNoiseLevelRadius, false);
+  return variance;
+}
 
+// The two passes (core/denoise/feature_regression.h): the second pass's image at each
+// bandwidth. `variance` is the noisy mean's.
+std::vector<Combined> second_pass_images(const DenoiseInput& in,
+                                         const std::vector<Vec3d>& variance) {
+  const std::size_t n = in.size();
+  // The per-sample variance, the guides' noise level, pooled over a window.
+  std::vector<Vec3d> sample_variance(n);
+  for (std::size_t p = 0; p < n; ++p)
+    sample_variance[p] = variance[p] * double(in.even_samples[p] + in.odd_samples[p]);
+  sample_variance = window_mean(sample_variance, in.width, in.height, kNoiseLevelRadius, false);
   // First pass: each half regressed on the features with its neighbours weighted equally; a
   // function of that half's samples alone.
   const FilteredHalf first_even = filter_half(in, in.even, {}, {}).front();
@@ -115,48 +124,71 @@ DenoisedImage denoise(const DenoiseInput& in) {
       filter_half(in, in.even, {&first_odd.color, &odd_guide_variance}, bandwidths);
   const auto second_odd =
       filter_half(in, in.odd, {&first_even.color, &even_guide_variance}, bandwidths);
-
-  std::vector<Combined> filtered;
+  std::vector<Combined> images;
   for (std::size_t k = 0; k < bandwidths.size(); ++k)
-    filtered.push_back(combine(in, second_even[k], second_odd[k]));
+    images.push_back(combine(in, second_even[k], second_odd[k]));
+  return images;
+}
+
+// The relative error's denominators, (level + 0.01)^2: the sharper second-pass image at the
+// pixel, or the mean of its 8 neighbours where that is lower. Whatever of the pixel's own noise
+// is in its level divides its own error (a bright outlier in a dark region): the noisy value
+// reported 0.71 of the noisy image's true error on the materials scene at 8 spp; the filtered
+// value alone, which keeps some of it, 0.65-0.90 of the denoised error there at 16 spp and 96
+// pixels wide, this 0.70-0.96; a 3x3 mean alone, blurred across edges, 0.87 on the cover.
+struct RelativeLevel {
+  std::vector<Vec3d> level;
+
+  RelativeLevel(const DenoiseInput& in, const std::vector<Color>& sharper)
+      : level(sharper.begin(), sharper.end()) {
+    const std::vector<Vec3d> around = window_mean(level, in.width, in.height, 1, true);
+    for (std::size_t p = 0; p < level.size(); ++p)
+      for (std::size_t c = 0; c < 3; ++c) level[p][c] = std::min(level[p][c], around[p][c]);
+  }
+  // A squared error at pixel p, relative, summed over the channels.
+  double relative(const Vec3d& squared_error, std::size_t p) const {
+    double sum = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = level[p][c] + kRelativeErrorOffset;
+      sum += squared_error[c] / (d * d);
+    }
+    return sum;
+  }
+};
+
+// Each candidate's squared error at each pixel, by Stein's estimate.
+std::vector<Vec3d> stein_estimate(const DenoiseInput& in, const Candidate& candidate,
+                                  const std::vector<Vec3d>& variance) {
+  std::vector<Vec3d> error(in.size());
+  for (std::size_t p = 0; p < in.size(); ++p) {
+    const Vec3d d = Vec3d((*candidate.color)[p]) - Vec3d(in.mean[p]);
+    const double g = (*candidate.own_weight)[p];
+    error[p] = d * d - variance[p] * (1.0 - 2.0 * g);
+  }
+  return error;
+}
+
+}  // namespace
+
+DenoisedImage denoise(const DenoiseInput& in) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t n = in.size();
+  const std::vector<Vec3d> variance = noisy_variance(in);
+  const std::vector<Combined> filtered = second_pass_images(in, variance);
   const std::vector<float> ones(n, 1.0f);
   std::vector<Candidate> candidates;
   for (const Combined& f : filtered) candidates.push_back({&f.color, &f.own_weight});
   candidates.push_back({&in.mean, &ones});
+  const RelativeLevel level(in, filtered.front().color);
 
-  // Each candidate's squared error at each pixel (Stein's estimate), and its relative sum.
+  // Each candidate's estimated error, and its relative sum averaged over the pixel's
+  // neighbours (the pixel left out), by which a pixel chooses.
   std::vector<std::vector<Vec3d>> error(candidates.size());
   std::vector<std::vector<double>> score(candidates.size());
-  // The relative error's denominators, (level + 0.01)^2: the sharper second-pass image at the
-  // pixel, or the mean of its 8 neighbours where that is lower. Whatever of the pixel's own noise
-  // is in its level divides its own error (a bright outlier in a dark region): the noisy value
-  // reported 0.71 of the noisy image's true error on the materials scene at 8 spp; the filtered
-  // value alone, which keeps some of it, 0.65-0.90 of the denoised error there at 16 spp and 96
-  // pixels wide, this 0.70-0.96; a 3x3 mean alone, blurred across edges, 0.87 on the cover.
-  std::vector<Vec3d> level(n);
-  for (std::size_t p = 0; p < n; ++p) level[p] = Vec3d(filtered.front().color[p]);
-  {
-    const std::vector<Vec3d> around = window_mean(level, in.width, in.height, 1, true);
-    for (std::size_t p = 0; p < n; ++p)
-      for (std::size_t c = 0; c < 3; ++c) level[p][c] = std::min(level[p][c], around[p][c]);
-  }
-  const auto relative_to_level = [&](const Vec3d& e, std::size_t p) {
-    double s = 0;
-    for (std::size_t ch = 0; ch < 3; ++ch) {
-      const double d = level[p][ch] + kRelativeErrorOffset;
-      s += e[ch] / (d * d);
-    }
-    return s;
-  };
   for (std::size_t c = 0; c < candidates.size(); ++c) {
-    error[c].resize(n), score[c].resize(n);
-    for (std::size_t p = 0; p < n; ++p) {
-      const Vec3d z = Vec3d((*candidates[c].color)[p]);
-      const Vec3d d = z - Vec3d(in.mean[p]);
-      const double g = (*candidates[c].own_weight)[p];
-      error[c][p] = d * d - variance[p] * (1.0 - 2.0 * g);
-      score[c][p] = relative_to_level(error[c][p], p);
-    }
+    error[c] = stein_estimate(in, candidates[c], variance);
+    score[c].resize(n);
+    for (std::size_t p = 0; p < n; ++p) score[c][p] = level.relative(error[c][p], p);
     score[c] = window_mean(score[c], in.width, in.height, kSelectionRadius, true);
   }
 
@@ -170,22 +202,20 @@ DenoisedImage denoise(const DenoiseInput& in) {
     std::size_t best = candidates.size() - 1;
     for (std::size_t c = 0; c + 1 < candidates.size(); ++c)
       if (score[c][p] < score[best][p]) best = c;
-    const Color z = (*candidates[best].color)[p];
     const int x = int(p % std::size_t(in.width)), y = int(p / std::size_t(in.width));
-    out.image.at(x, y) = z;
+    out.image.at(x, y) = (*candidates[best].color)[p];
     out.noisy.at(x, y) = in.mean[p];
     out.noisy_kept[p] = best + 1 == candidates.size() ? 1.0f : 0.0f;
     chosen_error[p] = error[best][p];
-    relative += relative_to_level(chosen_error[p], p);
-    noisy_relative += relative_to_level(variance[p], p);
+    relative += level.relative(chosen_error[p], p);
+    noisy_relative += level.relative(variance[p], p);
   }
   out.mse = window_mean(chosen_error, in.width, in.height, kSelectionRadius, false);
   for (Vec3d& e : out.mse) e = {std::max(0.0, e.x), std::max(0.0, e.y), std::max(0.0, e.z)};
   const double values = 3.0 * double(std::max<std::size_t>(n, 1));
   out.estimated_error = std::sqrt(std::max(0.0, relative / values));
   out.noisy_error = std::sqrt(std::max(0.0, noisy_relative / values));
-  out.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 

@@ -30,13 +30,13 @@
 namespace rtiow {
 
 struct DenoisedImage {
-  Film image;                    // the denoised image
-  Film noisy;                    // the noisy mean it was made from
-  std::vector<Vec3d> mse;        // each pixel's estimated squared error per channel (>= 0)
-  std::vector<float> noisy_kept; // 1 where the pixel kept its noisy value, else 0
-  double estimated_error = 0.0;  // the image's relative RMS error (offset 0.01), estimated
-  double noisy_error = 0.0;      // the noisy image's, by the same estimate
-  double seconds = 0.0;          // the denoiser's own time
+  Film image;                     // the denoised image
+  Film noisy;                     // the noisy mean it was made from
+  std::vector<Vec3d> mse;         // each pixel's estimated squared error per channel (>= 0)
+  std::vector<float> noisy_kept;  // 1 where the pixel kept its noisy value, else 0
+  double estimated_error = 0.0;   // the image's relative RMS error (offset 0.01), estimated
+  double noisy_error = 0.0;       // the noisy image's, by the same estimate
+  double seconds = 0.0;           // the denoiser's own time
 };
 
 // Deterministic: the same bits for the same input on any number of threads.

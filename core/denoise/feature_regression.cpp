@@ -120,9 +120,9 @@ std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<
             x(row, kColumns - 2) = double(qx - px) / kRegressionRadius;
             x(row, kColumns - 1) = double(qy - py) / kRegressionRadius;
             for (int c = 0; c < 3; ++c) values(row, c) = half[q][std::size_t(c)];
-            distance(row) =
-                guide.image ? patch_distance(*guide.image, *guide.variance, in, px, py, qx, qy)
-                            : 0.0;
+            distance(row) = guide.image
+                                ? patch_distance(*guide.image, *guide.variance, in, px, py, qx, qy)
+                                : 0.0;
           }
         }
         for (std::size_t k = 0; k < results; ++k) {

@@ -29,7 +29,9 @@ std::string what_is_missing(const RenderResult& r) {
   return {};
 }
 
-Color half_mean(const PixelSum& sum, std::uint64_t samples) { return sum.mean(samples); }
+Color half_mean(const PixelSum& sum, std::uint64_t samples) {
+  return sum.mean(samples);
+}
 
 }  // namespace
 
@@ -59,7 +61,6 @@ DenoiseInput denoise_input(const RenderResult& r) {
   }
   return in;
 }
-
 
 std::string describe(const DenoiseFigures& f) {
   char line[160];

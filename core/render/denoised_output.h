@@ -38,7 +38,6 @@ DenoiseInput denoise_input(const RenderResult& result);
 // Denoises `result` (core/denoise/denoiser.h) and records its figures in `metadata`; the
 // channels only where `extra_channels` (the output can hold them). Throws InvalidInput where
 // the result lacks what the denoiser needs (core/denoise/denoise_input.h).
-DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels,
-                               Metadata& metadata);
+DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels, Metadata& metadata);
 
 }  // namespace rtiow

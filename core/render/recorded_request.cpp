@@ -330,8 +330,7 @@ JobRequest overlay_recorded(const RecordedRequest& image, JobRequest asked,
     }
     asked.stats_channels = r.estimate_error = true;
   }
-  if (left(P::Denoise) && image.job.denoise) asked.denoise = true;
-  // A denoised image's passes came with --denoise, which asks for them again.
+  if (left(P::Denoise) && image.job.denoise) asked.denoise = true;  // it asks for the passes
   if (left(P::Passes) && i.passes.any() && output_holds_channels && !asked.denoise)
     r.passes = i.passes;
   if (left(P::Reproducible) && image.reproducible) reproducible = true;
