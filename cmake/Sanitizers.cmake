@@ -31,7 +31,13 @@ function(rtiow_add_sanitized_test kind name)
   rtiow_set_codegen(${target})
   # Brief: only a failing test's lines and the sanitizer's report, so a failure shows in the
   # tail of a long CI log rather than among some hundred passing tests' lines.
-  add_test(NAME ${target} COMMAND ${target} --gtest_brief=1)
+  # ThreadSanitizer looks for races: the single-threaded float printing round trip (2 million
+  # values, 21 s under TSan, the longest test on the suite's critical path) is left to ASan.
+  set(filter "")
+  if(kind STREQUAL "tsan")
+    set(filter "--gtest_filter=-JsonFloat.*")
+  endif()
+  add_test(NAME ${target} COMMAND ${target} --gtest_brief=1 ${filter})
   set_tests_properties(${target} PROPERTIES
     LABELS sanitize
     ENVIRONMENT "ASAN_OPTIONS=detect_leaks=1:abort_on_error=0;UBSAN_OPTIONS=print_stacktrace=1;TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=${PROJECT_SOURCE_DIR}/tests/tsan.supp")

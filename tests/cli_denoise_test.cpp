@@ -64,9 +64,23 @@ TEST(CliDenoise, LikeRendersADenoisedImageAgainDenoised) {
   EXPECT_EQ(slurp(first), slurp(again));
 }
 
+TEST(CliDenoise, ARenderStoppedBeforeTwoSamplesKeepsItsNoisyImage) {
+  // A time limit that ends the render after its first pass of 1 spp: nothing to compare.
+  const fs::path image = output_path("first-pass.png");
+  const CommandResult r =
+      run_rtiow("render --denoise --time-limit 0.000001 --width 32 -o " + image.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_TRUE(fs::exists(image));
+  EXPECT_NE(r.stderr_text.find("warning: the image is not denoised: a pixel has fewer than one "
+                               "sample in each half"),
+            std::string::npos)
+      << r.stderr_text;
+}
+
 TEST(CliDenoise, RefusesWhatItCannotDenoiseInOneLine) {
   expect_refused("--denoise --image-error 0.05", "the target would be the noisy image's error");
   expect_refused("--denoise --target-error 0.05", "the target would be the noisy image's error");
+  expect_refused("--denoise --spp 1", "--denoise needs at least 2 spp");
   // Parts rendered without --denoise keep no halves or first hits.
   const fs::path part = output_path("plain.exr"), out = output_path("out.png");
   ASSERT_EQ(

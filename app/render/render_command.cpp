@@ -165,12 +165,16 @@ int end_render(const RenderOptions& o, const RenderJob& job, const RenderResult&
     code = 128 + InterruptGuard::signal_received();
   } else {
     if (!o.quiet) print_summary(job, result, mpi, end.denoised);
+    if (o.denoise && !end.denoised && !end.written.empty() && !job.share) {
+      std::fprintf(stderr, "rtiow: warning: the image is not denoised: %s\n",
+                   why_not_denoised(result).c_str());
+    }
     code = interrupted_outside_render("after the render ended; the image is complete");
   }
   if (!o.summary_json.empty()) {
-    write_text_atomically(o.summary_json, render_summary_json(job, result, mpi.size(), code,
-                                                              !end.kept_in_checkpoint,
-                                                              end.denoised));
+    write_text_atomically(
+        o.summary_json,
+        render_summary_json(job, result, mpi.size(), code, !end.kept_in_checkpoint, end.denoised));
   }
   return code;
 }

@@ -35,6 +35,10 @@ Color half_mean(const PixelSum& sum, std::uint64_t samples) {
 
 }  // namespace
 
+std::string why_not_denoised(const RenderResult& result) {
+  return what_is_missing(result);
+}
+
 DenoiseInput denoise_input(const RenderResult& r) {
   if (const std::string missing = what_is_missing(r); !missing.empty())
     throw InvalidInput(setting("denoise") + ": " + missing);

@@ -35,6 +35,9 @@ struct DenoisedOutput {
 // pixel with fewer than one sample in each half.
 DenoiseInput denoise_input(const RenderResult& result);
 
+// Why `result` cannot be denoised (what denoise_input() would refuse), or empty.
+std::string why_not_denoised(const RenderResult& result);
+
 // Denoises `result` (core/denoise/denoiser.h) and records its figures in `metadata`; the
 // channels only where `extra_channels` (the output can hold them). Throws InvalidInput where
 // the result lacks what the denoiser needs (core/denoise/denoise_input.h).

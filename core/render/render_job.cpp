@@ -115,6 +115,11 @@ void check_denoise_options(const JobRequest& r) {
                        "image's; give a sample count, " +
                        setting("time_limit") + " or " + setting("adaptive") + " instead");
   }
+  if (r.request.spp && *r.request.spp < 2 && !r.request.adaptive) {
+    throw InvalidInput(setting("denoise") +
+                       " needs at least 2 spp, one in each half it compares (" +
+                       setting("spp", std::to_string(*r.request.spp)) + ")");
+  }
 }
 
 // What the denoiser needs kept: the two independent halves (the error estimate's replicates)
@@ -172,15 +177,17 @@ std::optional<DenoiseFigures> write_job_result(const JobRequest& r, const Render
                                                const Metadata& metadata) {
   if (job.share) {
     // The sums are copied: kept in the result, should the write fail.
-    write_part(job.output,
-               make_part(job.scene, job.settings, job.samples_asked, result, metadata));
+    write_part(job.output, make_part(job.scene, job.settings, job.samples_asked, result, metadata));
     return std::nullopt;
   }
   const ImageFormat* format = image_format(job.output);
   const bool extra = format && format->extra_channels;
-  if (!r.denoise) {
+  // A render stopped (or time-limited) before each half had a sample keeps its noisy image.
+  if (!r.denoise || !why_not_denoised(result).empty()) {
+    // (The passes --denoise asked for go where the format holds them.)
     write_image(job.output, result.film, metadata,
-                image_channels(result, r.stats_channels, job.settings.passes),
+                extra ? image_channels(result, r.stats_channels, job.settings.passes)
+                      : std::vector<ExtraChannel>{},
                 frame_placement(job.settings));
     return std::nullopt;
   }

@@ -62,7 +62,8 @@ RenderJob prepare_job(const JobRequest& request, Scene scene);
 Scene load_job_scene(const JobRequest& request);
 
 // The image (with the statistics channels where asked; denoised where asked) or, for a share,
-// the part file. Returns the denoiser's figures where it denoised.
+// the part file. Returns the denoiser's figures where it denoised (not where a render stopped
+// before each half of every pixel had a sample: its noisy image is written).
 std::optional<DenoiseFigures> write_job_result(const JobRequest& request, const RenderJob& job, const RenderResult& result,
                       const Metadata& metadata);
 
