@@ -1,0 +1,176 @@
+// The denoiser's study (docs/denoising.md): the error it reports against the error it delivers,
+// and the time it takes to reach the default image's error.
+//
+//   rtiow_denoise_study calibrate SCENE WIDTH REFERENCE_SPP SEEDS SPP...
+//   rtiow_denoise_study trade SCENE WIDTH REFERENCE_SPP
+//
+// The truth is a render of REFERENCE_SPP with another seed, its own variance (from its halves)
+// taken out of the squared error. Relative errors use rtiow's offset of 0.01.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/denoise/denoiser.h"
+#include "core/render/denoised_output.h"
+#include "core/render/render.h"
+#include "core/scene/builtin_scenes.h"
+
+namespace rtiow {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+RenderSettings denoise_settings(int width, int height, int spp, std::uint64_t seed) {
+  RenderSettings s;
+  s.width = width, s.height = height, s.samples = FixedSamples{spp}, s.seed = seed;
+  s.estimate_error = true, s.passes = {true, true, true};
+  return s;
+}
+
+// A reference and the true relative squared error of images against it.
+struct Reference {
+  DenoiseInput sums;
+  int width = 0;
+
+  // Summed over the pixels [x0, x1) x [y0, y1) and their channels.
+  double squared_error(const std::vector<Color>& image, int x0, int y0, int x1, int y1) const {
+    double total = 0;
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+        for (std::size_t c = 0; c < 3; ++c) {
+          const double r = sums.mean[p][c], d = double(image[p][c]) - r;
+          const double halves = double(sums.even[p][c]) - double(sums.odd[p][c]);
+          total += (d * d - halves * halves / 4) / ((r + 0.01) * (r + 0.01));
+        }
+      }
+    }
+    return total;
+  }
+  double image_error(const std::vector<Color>& image) const {
+    const int height = int(sums.size() / std::size_t(width));
+    return std::sqrt(
+        std::max(0.0, squared_error(image, 0, 0, width, height) / (3.0 * double(sums.size()))));
+  }
+};
+
+Reference reference_of(const Scene& scene, int width, int height, int spp) {
+  return {denoise_input(render(scene, denoise_settings(width, height, spp, 999))), width};
+}
+
+// The share of 32x32 blocks whose true error is over twice the denoiser's per-pixel estimate.
+std::pair<int, int> blocks_over_estimate(const Reference& ref, const DenoisedImage& d) {
+  int over = 0, blocks = 0;
+  const int w = d.image.width(), h = d.image.height();
+  for (int by = 0; by + 32 <= h; by += 32) {
+    for (int bx = 0; bx + 32 <= w; bx += 32) {
+      const double truth = ref.squared_error(d.image.pixels(), bx, by, bx + 32, by + 32);
+      double estimate = 0;
+      for (int y = by; y < by + 32; ++y) {
+        for (int x = bx; x < bx + 32; ++x) {
+          const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
+          for (std::size_t c = 0; c < 3; ++c) {
+            const double z = d.image.pixels()[p][c];
+            estimate += d.mse[p][c] / ((z + 0.01) * (z + 0.01));
+          }
+        }
+      }
+      ++blocks, over += truth > 2 * estimate ? 1 : 0;
+    }
+  }
+  return {over, blocks};
+}
+
+void calibrate(const Scene& scene, int width, int height, int reference_spp, int seeds,
+               const std::vector<int>& counts) {
+  const Reference ref = reference_of(scene, width, height, reference_spp);
+  for (const int spp : counts) {
+    for (int seed = 1; seed <= seeds; ++seed) {
+      const RenderResult r =
+          render(scene, denoise_settings(width, height, spp, std::uint64_t(seed)));
+      const DenoisedImage d = denoise(denoise_input(r));
+      const double truth = ref.image_error(d.image.pixels());
+      const double noisy = ref.image_error(r.film.pixels());
+      const auto [over, blocks] = blocks_over_estimate(ref, d);
+      std::size_t kept = 0;
+      for (const float k : d.noisy_kept) kept += k > 0 ? 1 : 0;
+      std::printf(
+          "%s %dx%d spp %d seed %d: denoised est %.5f true %.5f ratio %.3f | noisy est %.5f "
+          "true %.5f | mse gain %.2f | kept %.1f%% | blocks bad %d/%d | %.2fs\n",
+          scene.name.c_str(), width, height, spp, seed, d.estimated_error, truth,
+          d.estimated_error / truth, d.noisy_error, noisy, noisy * noisy / (truth * truth),
+          100.0 * double(kept) / double(d.noisy_kept.size()), over, blocks, d.seconds);
+    }
+  }
+}
+
+void trade(const Scene& scene, int width, int height, int reference_spp) {
+  const Reference ref = reference_of(scene, width, height, reference_spp);
+  RenderSettings plain;  // the default image: one Sobol sequence, no passes
+  plain.width = width, plain.height = height, plain.samples = FixedSamples{100};
+  double error = 0, fastest = 1e30;
+  for (int seed = 1; seed <= 3; ++seed) {
+    plain.seed = std::uint64_t(seed);
+    const auto start = std::chrono::steady_clock::now();
+    const RenderResult r = render(scene, plain);
+    fastest = std::min(fastest, seconds_since(start));
+    error += ref.image_error(r.film.pixels()) / 3;
+  }
+  std::printf("%s %dx%d: default 100 spp: true error %.5f, %.3f s (fastest of 3)\n",
+              scene.name.c_str(), width, height, error, fastest);
+  for (const int spp : {8, 16, 32, 64, 100}) {
+    double denoised = 0, noisy = 0, render_s = 1e30, denoise_s = 1e30;
+    for (int seed = 1; seed <= 2; ++seed) {
+      const auto start = std::chrono::steady_clock::now();
+      const RenderResult r =
+          render(scene, denoise_settings(width, height, spp, std::uint64_t(seed)));
+      render_s = std::min(render_s, seconds_since(start));
+      const DenoisedImage d = denoise(denoise_input(r));
+      denoise_s = std::min(denoise_s, d.seconds);
+      denoised += ref.image_error(d.image.pixels()) / 2,
+          noisy += ref.image_error(r.film.pixels()) / 2;
+    }
+    std::printf(
+        "  --denoise %3d spp: true error %.5f (noisy %.5f), render %.3f s + denoise %.3f s = "
+        "%.3f s\n",
+        spp, denoised, noisy, render_s, denoise_s, render_s + denoise_s);
+  }
+}
+
+}  // namespace
+}  // namespace rtiow
+
+int main(int argc, char** argv) {
+  using namespace rtiow;
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if ((mode != "calibrate" || argc < 7) && (mode != "trade" || argc != 5)) {
+    std::fprintf(stderr,
+                 "usage: %s calibrate SCENE WIDTH REFERENCE_SPP SEEDS SPP...\n"
+                 "       %s trade SCENE WIDTH REFERENCE_SPP\n",
+                 argv[0], argv[0]);
+    return 2;
+  }
+  try {
+    const Scene scene = make_builtin_scene(argv[2], kDefaultSceneSeed);
+    const int width = std::stoi(argv[3]), reference_spp = std::stoi(argv[4]);
+    if (mode == "trade") {  // the height as the command line rounds it
+      trade(scene, width, int(std::lround(width / scene.image.aspect_ratio)), reference_spp);
+      return 0;
+    }
+    const int height = int(width / scene.image.aspect_ratio);  // truncated, as the study ran
+    std::vector<int> counts;
+    for (int i = 6; i < argc; ++i) counts.push_back(std::stoi(argv[i]));
+    calibrate(scene, width, height, reference_spp, std::stoi(argv[5]), counts);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rtiow_denoise_study: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
