@@ -9,6 +9,8 @@ extern "C" void __tsan_acquire(void* address);
 extern "C" void __tsan_release(void* address);
 #endif
 
+#include <utility>
+
 namespace rtiow {
 
 inline void tsan_release([[maybe_unused]] const void* sync) {
@@ -46,6 +48,27 @@ class TsanOrderedBody {
     const Body& body = *body_;
     body(part);
     tsan_release(&tsan_join_sync);
+  }
+
+ private:
+  const Body* body_;
+};
+
+// A parallel pipeline's stage as TBB copies it into its filters, ordered as TsanOrderedBody
+// orders a loop's body: the copy holds a pointer to the stage (on the caller's stack, written
+// before the caller releases tsan_fork_sync) and acquires the fork before it reads the stage.
+// The copy lives in TBB's memory, written on the caller's thread and read on a worker out of
+// TSan's sight (a flaky unit_tests_tsan report in CI, the lambda's capture read at the scene
+// reader's pipeline): tests/tsan.supp suppresses races whose innermost frame is this class.
+template <typename Body>
+class TsanPipelineStage {
+ public:
+  explicit TsanPipelineStage(const Body& body) : body_(&body) {}
+
+  template <typename... Args>
+  auto operator()(Args&&... args) const {
+    tsan_acquire(&tsan_fork_sync);
+    return (*body_)(std::forward<Args>(args)...);
   }
 
  private:

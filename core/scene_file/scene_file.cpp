@@ -361,12 +361,15 @@ class RunPipeline {
   // document with its split containers left empty.
   bool run(std::string& skeleton) {
     skeleton_ = &skeleton;
-    const auto cut = tbb::make_filter<void, Window>(
-        tbb::filter_mode::serial_in_order, [this](tbb::flow_control& c) { return cut_window(c); });
-    const auto read = tbb::make_filter<Window, Window>(tbb::filter_mode::parallel,
-                                                       [this](Window w) { return read_window(w); });
+    const auto cut_stage = [this](tbb::flow_control& c) { return cut_window(c); };
+    const auto read_stage = [this](Window w) { return read_window(w); };
+    const auto resolve_stage = [this](Window w) { resolve_window(w); };
+    const auto cut = tbb::make_filter<void, Window>(tbb::filter_mode::serial_in_order,
+                                                    TsanPipelineStage(cut_stage));
+    const auto read =
+        tbb::make_filter<Window, Window>(tbb::filter_mode::parallel, TsanPipelineStage(read_stage));
     const auto resolve = tbb::make_filter<Window, void>(tbb::filter_mode::serial_in_order,
-                                                        [this](Window w) { resolve_window(w); });
+                                                        TsanPipelineStage(resolve_stage));
     const auto tokens = std::size_t(2 * tbb::this_task_arena::max_concurrency());
     // The stages' tasks convert numbers under IEEE's settings (ieee_floating_point.h), as
     // the one-piece read does, whatever the arena's.
