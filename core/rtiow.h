@@ -4,6 +4,7 @@
 // the image `rtiow render` gives for the same options.
 
 #include "core/compare/image_comparison.h"  // compare_image_files: rtiow diff
+#include "core/io/image_channels.h"         // read_image_channels: an image's channels
 #include "core/io/image_output.h"           // write_image
 #include "core/limits/setting_name.h"       // spell_settings_as: how messages name settings
 #include "core/render/checkpoint_file.h"    // write_checkpoint, read_checkpoint: --resume

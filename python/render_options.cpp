@@ -264,8 +264,7 @@ ParsedOptions parse_render_options(const py::kwargs& options) {
                                     std::pair{"restart", parsed.session.checkpoint.restart},
                                     std::pair{"keep_state", parsed.session.checkpoint.keep_state},
                                     std::pair{"preview", parsed.session.preview_seconds > 0.0},
-                                    std::pair{"display", parsed.session.display.has_value()},
-                                    std::pair{"denoise", parsed.job.denoise}}) {
+                                    std::pair{"display", parsed.session.display.has_value()}}) {
     if (given && !to_file) {
       throw InvalidInput(setting(name) + " is for a render to a file: give " + setting("output"));
     }

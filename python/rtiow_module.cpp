@@ -51,10 +51,25 @@ struct Render {
   RenderSettings settings;
   RenderResult result;
   bool stats_channels = false;
-  bool share = false;               // a share of the samples: written as a part file
-  std::uint64_t samples_asked = 0;  // the whole job's count, which the shares are cut from
-  std::string written;              // rendered with output=: where the image or part went
+  bool passes_asked = false;              // passes the caller named (denoise=True keeps them all)
+  bool share = false;                     // a share of the samples: written as a part file
+  std::uint64_t samples_asked = 0;        // the whole job's count, which the shares are cut from
+  std::string written;                    // rendered with output=: where the image or part went
+  std::optional<DenoisedImage> denoised;  // denoise=True: the image and its estimates
 };
+
+// denoise=True for a render held in memory: the denoiser's image and estimates, or a warning
+// (a render stopped before each half of every pixel had a sample keeps its noisy image).
+void denoise_in_memory(Render& render) {
+  const std::string missing = why_not_denoised(render.result);
+  if (!missing.empty()) {
+    const std::string warning = "the image is not denoised: " + missing;
+    if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) != 0) throw py::error_already_set();
+    return;
+  }
+  const py::gil_scoped_release released;
+  render.denoised = denoise(denoise_input(render.result));
+}
 
 // A render run on a thread of its own while this one, holding the GIL between naps, checks
 // for signals and reports progress. A signal (or an exception from the callback) stops the
@@ -144,7 +159,7 @@ WatchedRender render_watched(const RenderSettings& settings, const py::object& p
 std::shared_ptr<Render> render_in_memory(const Scene& scene, const py::object& progress,
                                          const ParsedOptions& parsed) {
   const JobRequest& job = parsed.job;
-  ResolvedRender resolved = resolve(scene, job.request);
+  ResolvedRender resolved = resolve(scene, job_render_request(job));
   auto out = std::make_shared<Render>();
   if (const auto* fixed = std::get_if<FixedSamples>(&resolved.settings.samples)) {
     out->samples_asked = std::uint64_t(fixed->per_pixel);
@@ -170,6 +185,8 @@ std::shared_ptr<Render> render_in_memory(const Scene& scene, const py::object& p
   out->scene = std::move(resolved.scene);
   out->settings = resolved.settings;
   out->stats_channels = job.request.estimate_error;
+  out->passes_asked = job.request.passes.any();
+  if (job.denoise && !out->share) denoise_in_memory(*out);
   return out;
 }
 
@@ -204,6 +221,8 @@ std::shared_ptr<Render> render_to_file(const Scene& scene, const py::object& pro
   out->scene = std::move(job.scene);
   out->settings = job.settings;
   out->stats_channels = parsed.job.stats_channels;
+  out->passes_asked = parsed.job.request.passes.any();
+  out->denoised = std::move(end.denoised_image);
   return out;
 }
 
@@ -243,15 +262,46 @@ std::shared_ptr<Render> render_like(const std::string& image, const py::object& 
                                  : render_in_memory(chosen, progress, parsed);
 }
 
-// The film as an array of height x width x 3 float32 over the render's own memory.
-py::array image_of(const std::shared_ptr<Render>& render) {
-  const Film& film = render->result.film;
+// A film as an array of height x width x 3 float32 over the render's own memory.
+py::array film_array(const Film& film, const std::shared_ptr<Render>& render) {
   static_assert(sizeof(Color) == 3 * sizeof(float), "a Color is three packed floats");
   const auto h = py::ssize_t(film.height()), w = py::ssize_t(film.width());
   return py::array_t<float>(
       {h, w, py::ssize_t(3)},
       {w * py::ssize_t(sizeof(Color)), py::ssize_t(sizeof(Color)), py::ssize_t(sizeof(float))},
       &film.pixels().data()->x, py::cast(render));
+}
+
+// The image: denoised where the render was.
+py::array image_of(const std::shared_ptr<Render>& render) {
+  return film_array(render->denoised ? render->denoised->image : render->result.film, render);
+}
+
+py::object noisy_of(const std::shared_ptr<Render>& render) {
+  if (!render->denoised) return py::none();
+  return film_array(render->result.film, render);
+}
+
+// The denoiser's estimate of each pixel's squared error, per channel.
+py::object denoise_mse_of(const Render& render) {
+  if (!render.denoised) return py::none();
+  const std::vector<Vec3d>& mse = render.denoised->mse;
+  py::array_t<float> out({py::ssize_t(render.result.film.height()),
+                          py::ssize_t(render.result.film.width()), py::ssize_t(3)});
+  float* v = out.mutable_data();
+  for (std::size_t p = 0; p < mse.size(); ++p) {
+    for (std::size_t c = 0; c < 3; ++c) v[3 * p + c] = float(mse[p][c]);
+  }
+  return out;
+}
+
+py::object denoise_figures(const std::optional<DenoiseFigures>& figures) {
+  if (!figures) return py::none();
+  py::dict out;
+  out["estimated_error"] = figures->estimated_error;
+  out["noisy_error"] = figures->noisy_error;
+  out["seconds"] = figures->seconds;
+  return out;
 }
 
 py::array samples_of(const std::shared_ptr<Render>& render) {
@@ -321,12 +371,14 @@ py::dict summary_of(const Render& render) {
   d["time_limited"] = r.time_limited;
   d["output"] =
       render.written.empty() ? py::object(py::none()) : py::object(py::str(render.written));
+  d["denoise"] =
+      denoise_figures(render.denoised ? std::optional(figures_of(*render.denoised)) : std::nullopt);
   return d;
 }
 
 void write_render(const Render& render, const std::string& path, bool reproducible) {
   const py::gil_scoped_release released;
-  const bool channels = render.share || render.stats_channels || render.settings.passes.any();
+  const bool channels = render.share || render.stats_channels || render.passes_asked;
   check_image_output(path, {}, channels);
   Metadata metadata = render_metadata(render.scene, render.settings, render.result, reproducible);
   if (render.share) {  // a part file, as rtiow render --part writes it
@@ -334,9 +386,20 @@ void write_render(const Render& render, const std::string& path, bool reproducib
                                metadata));
     return;
   }
-  write_image(path, render.result.film, metadata,
-              image_channels(render.result, render.stats_channels, render.settings.passes),
-              frame_placement(render.settings));
+  std::vector<ExtraChannel> extra =
+      image_channels(render.result, render.stats_channels, render.settings.passes);
+  if (!render.denoised) {
+    write_image(path, render.result.film, metadata, extra, frame_placement(render.settings));
+    return;
+  }
+  const ImageFormat* format = image_format(path);
+  DenoisedOutput out =
+      denoised_output(*render.denoised, format && format->extra_channels, metadata);
+  if (format && format->extra_channels) {
+    out.channels.insert(out.channels.end(), std::make_move_iterator(extra.begin()),
+                        std::make_move_iterator(extra.end()));
+  }
+  write_image(path, out.image, metadata, out.channels, frame_placement(render.settings));
 }
 
 // rtiow merge: the part files added into the image one render of all their samples gives.
@@ -354,12 +417,7 @@ py::object merge_files(const std::vector<std::string>& parts, const std::string&
     const py::gil_scoped_release released;
     figures = merge_and_write(parts, output, stats_channels, denoise);
   }
-  if (!figures) return py::none();
-  py::dict out;
-  out["estimated_error"] = figures->estimated_error;
-  out["noisy_error"] = figures->noisy_error;
-  out["seconds"] = figures->seconds;
-  return out;
+  return denoise_figures(figures);
 }
 
 py::object denoise_files(const std::vector<std::string>& parts, const std::string& output,
@@ -367,11 +425,12 @@ py::object denoise_files(const std::vector<std::string>& parts, const std::strin
   return merge_files(parts, output, stats_channels, true);
 }
 
-
 // An image to compare: a file, or a render (with its variances where it has them).
 DiffInput diff_input_of(const py::handle& image) {
   if (py::isinstance<py::str>(image)) return read_diff_input(image.cast<std::string>());
   const auto render = image.cast<std::shared_ptr<Render>>();
+  // A denoised image has no variances (its error is partly bias): it is compared plainly.
+  if (render->denoised) return diff_input(render->denoised->image);
   DiffInput input = diff_input(render->result.film);
   if (render->result.replicates == kReplicates) {
     const std::vector<Vec3d> variances = pixel_mean_variances(render->result);
@@ -438,6 +497,24 @@ py::dict scene_to_dict(const Scene& scene) {
   return py::module_::import("json").attr("loads")(scene_to_json(scene));
 }
 
+// Every channel of an image file, by name: height x width float32 each.
+py::dict read_channels(const std::string& path) {
+  ImageChannels in;
+  {
+    const py::gil_scoped_release released;
+    in = read_image_channels(path, "image " + quote_value(path), 1);
+  }
+  py::dict out;
+  const auto h = py::ssize_t(in.height), w = py::ssize_t(in.width);
+  for (std::size_t c = 0; c < in.names.size(); ++c) {
+    py::array_t<float> values({h, w});
+    const std::vector<float> plane = in.plane(c);
+    std::copy(plane.begin(), plane.end(), values.mutable_data());
+    out[py::str(in.names[c])] = values;
+  }
+  return out;
+}
+
 py::array read_image(const std::string& path) {
   DiffInput input = read_diff_input(path);
   py::array_t<float> out({py::ssize_t(input.height), py::ssize_t(input.width), py::ssize_t(3)});
@@ -497,6 +574,13 @@ void bind_renders(py::module_& m) {
       .def_property_readonly(
           "passes", [](const Render& r) { return passes_of(r); },
           "The first-hit passes asked (passes=...), by channel name: height x width float32.")
+      .def_property_readonly("noisy", &noisy_of,
+                             "With denoise=True, the noisy image the denoiser started from "
+                             "(height x width x 3 float32, no copy); else None.")
+      .def_property_readonly(
+          "denoise_mse", [](const Render& r) { return denoise_mse_of(r); },
+          "With denoise=True, the denoiser's estimate of each pixel's squared error, bias "
+          "included (height x width x 3); else None.")
       .def_property_readonly(
           "summary", [](const Render& r) { return summary_of(r); },
           "What --summary-json says of the render.")
@@ -542,6 +626,9 @@ void bind_images(py::module_& m) {
         "(relative RMS, offset 0.01), the noisy image's and the denoiser's seconds.");
   m.def("read_image", &read_image, py::arg("path"),
         "An image file's R, G, B as height x width x 3 float32 (linear files as stored).");
+  m.def("read_channels", &read_channels, py::arg("path"),
+        "Every channel of an image file by name (R, G, B, spp, variance.R, albedo.R, ...): "
+        "height x width float32 each.");
 }
 }  // namespace
 }  // namespace rtiow::python

@@ -5,23 +5,10 @@
 #include <cstddef>
 #include <cstdio>
 
-#include "core/io/image_backend.h"
-#include "core/io/image_file.h"
+#include "core/io/image_channels.h"
 #include "core/limits/error.h"
-#include "core/limits/image_size.h"
-#include "core/limits/input_limits.h"
 
 namespace rtiow {
-namespace {
-
-int channel_index(const ImageHeader& header, const std::string& name) {
-  const auto& names = header.channel_names;
-  const auto it = std::find(names.begin(), names.end(), name);
-  return it == names.end() ? -1 : int(it - names.begin());
-}
-
-}  // namespace
-
 void check_comparable(const DiffInput& a, const DiffInput& b) {
   if (a.width != b.width || a.height != b.height) {
     throw ImagesNotComparable("the images differ in size: " + std::to_string(a.width) + "x" +
@@ -55,38 +42,20 @@ std::string to_string(DiffVerdict verdict) {
 }
 
 DiffInput read_diff_input(const std::string& path) {
-  const std::string name = "image " + quote_value(path);
-  auto in = open_input_image(path, name, limits::kMaxPartFileBytes, "image");
-  std::string reason;
-  const ImageHeader& header = in->header();
-  const std::size_t channels = header.channel_names.size();
-  if (header.width < 1 || header.height < 1 || header.width > limits::kMaxImageSide ||
-      header.height > limits::kMaxImageSide || channels < 3 || channels > 64) {
-    throw InvalidInput(name + ": " + std::to_string(header.width) + "x" +
-                       std::to_string(header.height) + " with " + std::to_string(channels) +
-                       " channels is not an image rtiow compares (R, G, B needed)");
-  }
-  try {  // the header decides what is allocated: the float values of every channel
-    check_image_size(header.width, header.height, channels * sizeof(float));
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(name + ": " + e.what());
-  }
-  const std::size_t pixels = std::size_t(header.width) * std::size_t(header.height);
-  std::vector<float> values(pixels * channels);
-  if (!in->read_pixels(PixelType::Float, values.data(), reason)) {
-    throw InvalidInput(name + ": cannot read its pixels: " + one_line(reason, 200));
-  }
+  const ImageChannels in = read_image_channels(path, "image " + quote_value(path), 3);
+  const std::size_t channels = in.names.size();
+  const std::size_t pixels = std::size_t(in.width) * std::size_t(in.height);
   int rgb[3], variance[3];
   bool has_variance = true;
   for (int c = 0; c < 3; ++c) {
-    const int named = channel_index(header, std::string(1, "RGB"[c]));
+    const int named = in.index(std::string(1, "RGB"[c]));
     rgb[c] = named >= 0 ? named : c;  // unnamed channels: the first three
-    variance[c] = channel_index(header, std::string("variance.") + "RGB"[c]);
+    variance[c] = in.index(std::string("variance.") + "RGB"[c]);
     has_variance = has_variance && variance[c] >= 0;
   }
   DiffInput image;
-  image.width = header.width, image.height = header.height;
-  switch (header.channel_types[std::size_t(rgb[0])]) {
+  image.width = in.width, image.height = in.height;
+  switch (in.types[std::size_t(rgb[0])]) {
     case PixelType::Float:
       image.linear = true;
       break;
@@ -105,8 +74,9 @@ DiffInput read_diff_input(const std::string& path) {
   if (has_variance) image.variance.resize(pixels * 3);
   for (std::size_t p = 0; p < pixels; ++p) {
     for (std::size_t c = 0; c < 3; ++c) {
-      image.rgb[3 * p + c] = values[p * channels + std::size_t(rgb[c])];
-      if (has_variance) image.variance[3 * p + c] = values[p * channels + std::size_t(variance[c])];
+      image.rgb[3 * p + c] = in.values[p * channels + std::size_t(rgb[c])];
+      if (has_variance)
+        image.variance[3 * p + c] = in.values[p * channels + std::size_t(variance[c])];
     }
   }
   return image;

@@ -66,6 +66,10 @@ DenoiseInput denoise_input(const RenderResult& r) {
   return in;
 }
 
+DenoiseFigures figures_of(const DenoisedImage& d) {
+  return {d.estimated_error, d.noisy_error, d.seconds};
+}
+
 std::string describe(const DenoiseFigures& f) {
   char line[160];
   std::snprintf(line, sizeof line, "denoised in %.2f s: image error %.4f estimated (noisy %.4f)",
@@ -75,9 +79,12 @@ std::string describe(const DenoiseFigures& f) {
 
 DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels,
                                Metadata& metadata) {
-  DenoisedImage d = denoise(denoise_input(result));
+  return denoised_output(denoise(denoise_input(result)), extra_channels, metadata);
+}
+
+DenoisedOutput denoised_output(DenoisedImage d, bool extra_channels, Metadata& metadata) {
   DenoisedOutput out;
-  out.figures = {d.estimated_error, d.noisy_error, d.seconds};
+  out.figures = figures_of(d);
   metadata.emplace_back(metadata_key::kDenoisedError, d.estimated_error);
   metadata.emplace_back(metadata_key::kDenoisedNoisyError, d.noisy_error);
   if (extra_channels) {

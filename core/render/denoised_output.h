@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/denoise/denoise_input.h"
+#include "core/denoise/denoiser.h"
 #include "core/film/film.h"
 #include "core/io/image_output.h"
 
@@ -20,6 +21,8 @@ struct DenoiseFigures {
   double noisy_error = 0.0;      // the noisy image's, by the same estimate from the halves
   double seconds = 0.0;          // the denoiser's own time
 };
+
+DenoiseFigures figures_of(const DenoisedImage& denoised);
 
 // "denoised in 1.32 s: image error 0.0660 estimated (noisy 0.0966)": the summary's line.
 std::string describe(const DenoiseFigures& figures);
@@ -42,5 +45,8 @@ std::string why_not_denoised(const RenderResult& result);
 // channels only where `extra_channels` (the output can hold them). Throws InvalidInput where
 // the result lacks what the denoiser needs (core/denoise/denoise_input.h).
 DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels, Metadata& metadata);
+
+// The same for an image already denoised (a render denoised in memory, written later).
+DenoisedOutput denoised_output(DenoisedImage denoised, bool extra_channels, Metadata& metadata);
 
 }  // namespace rtiow

@@ -122,15 +122,14 @@ void check_denoise_options(const JobRequest& r) {
   }
 }
 
-// What the denoiser needs kept: the two independent halves (the error estimate's replicates)
-// and the first hits it regresses on.
-RenderRequest denoised_request(const JobRequest& r) {
+}  // namespace
+
+RenderRequest job_render_request(const JobRequest& r) {
+  check_denoise_options(r);
   RenderRequest q = r.request;
   if (r.denoise) q.estimate_error = true, q.passes = {true, true, true};
   return q;
 }
-
-}  // namespace
 
 std::vector<std::string> input_files(const JobRequest& r) {
   std::vector<std::string> inputs;
@@ -154,9 +153,8 @@ RenderJob prepare_job(const JobRequest& r) {
 RenderJob prepare_job(const JobRequest& r, Scene scene) {
   RenderJob job;
   job.output = output_path(r, scene);
-  check_denoise_options(r);
   // The whole job, resolved and checked before it is cut into a share.
-  ResolvedRender resolved = resolve(std::move(scene), denoised_request(r));
+  ResolvedRender resolved = resolve(std::move(scene), job_render_request(r));
   job.scene = std::move(resolved.scene);
   job.settings = resolved.settings;
   // A shared job's whole count, which the shares are cut from and which combines them again.
@@ -172,9 +170,9 @@ RenderJob prepare_job(const JobRequest& r, Scene scene) {
   return job;
 }
 
-std::optional<DenoiseFigures> write_job_result(const JobRequest& r, const RenderJob& job,
-                                               const RenderResult& result,
-                                               const Metadata& metadata) {
+std::optional<DenoisedImage> write_job_result(const JobRequest& r, const RenderJob& job,
+                                              const RenderResult& result,
+                                              const Metadata& metadata) {
   if (job.share) {
     // The sums are copied: kept in the result, should the write fail.
     write_part(job.output, make_part(job.scene, job.settings, job.samples_asked, result, metadata));
@@ -192,7 +190,8 @@ std::optional<DenoiseFigures> write_job_result(const JobRequest& r, const Render
     return std::nullopt;
   }
   Metadata with_figures = metadata;
-  DenoisedOutput denoised = denoised_output(result, extra, with_figures);
+  DenoisedImage made = denoise(denoise_input(result));
+  DenoisedOutput denoised = denoised_output(made, extra, with_figures);
   std::vector<ExtraChannel> channels;
   if (extra) {
     channels = std::move(denoised.channels);
@@ -200,7 +199,7 @@ std::optional<DenoiseFigures> write_job_result(const JobRequest& r, const Render
       channels.push_back(std::move(c));
   }
   write_image(job.output, denoised.image, with_figures, channels, frame_placement(job.settings));
-  return denoised.figures;
+  return made;
 }
 
 }  // namespace rtiow

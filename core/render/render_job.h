@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "core/render/denoised_output.h"
 #include "core/io/image_output.h"
+#include "core/render/denoised_output.h"
 #include "core/render/render_request.h"
 #include "core/render/render_settings.h"
 #include "core/scene/builtin_scenes.h"
@@ -49,6 +49,11 @@ struct RenderJob {
   bool share = false;               // written as a part file
 };
 
+// The request the job renders: with --denoise, checked against what the denoiser cannot
+// combine with, and keeping what it needs (the two independent halves, the first hits).
+// Throws InvalidInput naming the conflict.
+RenderRequest job_render_request(const JobRequest& request);
+
 // Throws InvalidInput naming what is wrong, before any work (a bad -o before a large scene
 // loads).
 RenderJob prepare_job(const JobRequest& request);
@@ -62,10 +67,10 @@ RenderJob prepare_job(const JobRequest& request, Scene scene);
 Scene load_job_scene(const JobRequest& request);
 
 // The image (with the statistics channels where asked; denoised where asked) or, for a share,
-// the part file. Returns the denoiser's figures where it denoised (not where a render stopped
+// the part file. Returns what the denoiser made where it denoised (not where a render stopped
 // before each half of every pixel had a sample: its noisy image is written).
-std::optional<DenoiseFigures> write_job_result(const JobRequest& request, const RenderJob& job, const RenderResult& result,
-                      const Metadata& metadata);
+std::optional<DenoisedImage> write_job_result(const JobRequest& request, const RenderJob& job,
+                                              const RenderResult& result, const Metadata& metadata);
 
 // The files the request reads: the scene file and the others.
 std::vector<std::string> input_files(const JobRequest& request);

@@ -101,15 +101,16 @@ SessionEnd RenderSession::deliver(const RenderResult& result) {
     check_output_path(job_.output, {asked});
     partial_claim_.emplace(job_.output);
   }
-  end.denoised = write_or_keep(result);
+  end.denoised_image = write_or_keep(result);
+  if (end.denoised_image) end.denoised = figures_of(*end.denoised_image);
   end.written = job_.output;
   return end;
 }
 
 // Writes the image; if that fails after the render, keeps the render's state and says where.
-std::optional<DenoiseFigures> RenderSession::write_or_keep(const RenderResult& result) {
+std::optional<DenoisedImage> RenderSession::write_or_keep(const RenderResult& result) {
   CheckpointSession* checkpoint = checkpoint_.get();
-  std::optional<DenoiseFigures> denoised;
+  std::optional<DenoisedImage> denoised;
   try {
     Metadata metadata = render_metadata(job_.scene, job_.settings, result, options_.reproducible);
     if (!request_.scene_file.empty()) {

@@ -47,7 +47,8 @@ struct SessionEnd {
   std::string written;     // where the image went (empty: its samples are in the checkpoint)
   std::string left_alone;  // an image that was at the output before, left as it was
   bool kept_in_checkpoint = false;
-  std::optional<DenoiseFigures> denoised;  // what the denoiser delivered (--denoise)
+  std::optional<DenoiseFigures> denoised;       // what the denoiser delivered (--denoise)
+  std::optional<DenoisedImage> denoised_image;  // and the image it made, with its estimates
 };
 
 class RenderSession {
@@ -78,7 +79,7 @@ class RenderSession {
   int removed_temporaries() const { return removed_temporaries_; }
 
  private:
-  std::optional<DenoiseFigures> write_or_keep(const RenderResult& result);
+  std::optional<DenoisedImage> write_or_keep(const RenderResult& result);
 
   RenderJob& job_;
   const JobRequest& request_;

@@ -36,6 +36,12 @@ class Render:
     def passes(self) -> Dict[str, npt.NDArray[np.float32]]:
         """The first-hit passes asked, by channel name."""
     @property
+    def noisy(self) -> Optional[npt.NDArray[np.float32]]:
+        """With denoise=True, the noisy image the denoiser started from; else None."""
+    @property
+    def denoise_mse(self) -> Optional[npt.NDArray[np.float32]]:
+        """With denoise=True, each pixel's estimated squared error (bias included); else None."""
+    @property
     def summary(self) -> Dict[str, Any]:
         """What --summary-json says of the render."""
     def write(self, path: str, reproducible: bool = False) -> None:
@@ -149,3 +155,4 @@ def diff(
     fail_percent: float = 0.0,
 ) -> Dict[str, Any]: ...
 def read_image(path: str) -> npt.NDArray[np.float32]: ...
+def read_channels(path: str) -> Dict[str, npt.NDArray[np.float32]]: ...

@@ -1,6 +1,8 @@
 """Denoising from Python: a render written denoised, and a render kept as parts denoised after
 their merge, give the command line's pixels and report the estimated error."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -24,9 +26,43 @@ def test_parts_denoise_to_the_commands_pixels(run_rtiow, tmp_path):
     assert np.array_equal(py, rtiow.read_image(str(whole)))
 
 
-def test_denoise_is_for_a_render_to_a_file(tmp_path):
-    with pytest.raises(ValueError, match="denoise"):
-        rtiow.render(rtiow.builtin_scene("cover"), width=16, spp=4, denoise=True)
+def test_a_render_in_memory_is_denoised_as_the_command_line_denoises_it(run_rtiow, tmp_path):
+    cli = tmp_path / "cli.exr"
+    summary = tmp_path / "cli.json"
+    code, err = run_rtiow("render", "-q", "--scene", "cover", "--width", 48, "--spp", 8,
+                          "--denoise", "-o", cli, "--summary-json", summary)
+    assert code == 0, err
+    render = rtiow.render(rtiow.builtin_scene("cover"), width=48, spp=8, denoise=True)
+    channels = rtiow.read_channels(str(cli))
+    rgb = np.stack([channels[c] for c in "RGB"], axis=-1)
+    assert np.array_equal(render.image, rgb)
+    assert np.array_equal(render.noisy, np.stack([channels["noisy." + c] for c in "RGB"], -1))
+    assert np.array_equal(render.denoise_mse,
+                          np.stack([channels["denoise.mse." + c] for c in "RGB"], -1))
+    assert not np.array_equal(render.image, render.noisy)
+    reported = json.loads(summary.read_text())["denoise"]
+    figures = render.summary["denoise"]
+    assert figures["estimated_error"] == pytest.approx(reported["estimated_error"], rel=1e-9)
+    assert figures["noisy_error"] == pytest.approx(reported["noisy_error"], rel=1e-9)
+    written = tmp_path / "py.exr"
+    render.write(str(written))
+    again = rtiow.read_channels(str(written))
+    assert sorted(again) == sorted(channels)
+    for name, values in channels.items():
+        assert np.array_equal(again[name], values), name
+
+
+def test_a_plain_render_has_no_denoised_parts():
+    render = rtiow.render(rtiow.builtin_scene("cover"), width=16, spp=4)
+    assert render.noisy is None and render.denoise_mse is None
+    assert render.summary["denoise"] is None
+
+
+def test_denoise_refusals(tmp_path):
+    with pytest.raises(ValueError, match="at least 2 spp"):
+        rtiow.render(rtiow.builtin_scene("cover"), width=16, spp=1, denoise=True)
+    with pytest.raises(ValueError, match="image_error"):
+        rtiow.render(rtiow.builtin_scene("cover"), width=16, image_error=0.1, denoise=True)
     part = str(tmp_path / "plain.exr")
     rtiow.render(rtiow.builtin_scene("cover"), width=16, spp=4, part="0/1", output=part)
     with pytest.raises(ValueError, match="render them with denoise"):

@@ -52,3 +52,20 @@ def test_a_scene_file_renders_as_the_command_line_renders_it(run_rtiow, tmp_path
     assert code == 0, err
     render = rtiow.render(rtiow.load_scene(str(scene_file)), width=40, spp=4)
     assert np.array_equal(render.image, rtiow.read_image(str(out)))
+
+
+def test_the_passes_counts_and_variances_are_the_command_lines_channels(run_rtiow, tmp_path):
+    out = tmp_path / "cli.exr"
+    code, err = run_rtiow("render", "-q", "--scene", "cover", "--width", 48, "--spp", 6,
+                          "--passes", "albedo,normal,depth", "--stats-channels", "-o", out)
+    assert code == 0, err
+    render = rtiow.render(rtiow.builtin_scene("cover"), width=48, spp=6,
+                          passes="albedo,normal,depth", stats_channels=True)
+    channels = rtiow.read_channels(str(out))
+    statistics = {"R", "G", "B", "spp", "variance.R", "variance.G", "variance.B"}
+    assert sorted(render.passes) == sorted(set(channels) - statistics)
+    for name, values in render.passes.items():
+        assert np.array_equal(values, channels[name]), name
+    assert np.array_equal(render.spp.astype(np.float32), channels["spp"])
+    for c, name in enumerate("RGB"):
+        assert np.array_equal(render.variance[..., c], channels["variance." + name]), name
