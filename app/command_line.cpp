@@ -240,7 +240,9 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
                 "Write the denoised image (a feature regression on the first hits' albedo, "
                 "normal and depth; its estimated error on the summary line); an .exr also keeps "
                 "the noisy image (noisy.R/G/B) and each pixel's estimated squared error "
-                "(denoise.mse.R/G/B). With --part, the part keeps what 'rtiow denoise' needs");
+                "(denoise.mse.R/G/B). With --image-error, renders until the denoised image's "
+                "estimated error is below it, every pixel the same count. With --part, the part "
+                "keeps what 'rtiow denoise' needs");
   cmd->add_flag("--stats-channels", o.stats_channels,
                 "Add per-pixel channels to an .exr output: spp and the variance of the pixel's "
                 "mean (variance.R/G/B). For that estimate the samples alternate between two "

@@ -68,7 +68,8 @@ void denoise_in_memory(Render& render) {
     return;
   }
   const py::gil_scoped_release released;
-  render.denoised = denoise(denoise_input(render.result));
+  render.denoised =
+      render.result.denoised ? *render.result.denoised : denoise(denoise_input(render.result));
 }
 
 // A render run on a thread of its own while this one, holding the GIL between naps, checks

@@ -64,6 +64,29 @@ TEST(CliDenoise, LikeRendersADenoisedImageAgainDenoised) {
   EXPECT_EQ(slurp(first), slurp(again));
 }
 
+TEST(CliDenoise, AnImageErrorTargetJudgesTheDenoisedImage) {
+  const fs::path image = output_path("target.exr"), summary = output_path("target.json");
+  const fs::path again = output_path("again.exr");
+  const std::string args = "--width 64 --height 40 --seed 3 --image-error 0.15 --denoise";
+  const CommandResult r = run_rtiow("render --reproducible " + args + " -o " + image.string() +
+                                    " --summary-json " + summary.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find(" spp (denoised image error 0.15)"), std::string::npos)
+      << r.stderr_text;
+  const auto j = nlohmann::json::parse(slurp(summary));
+  EXPECT_EQ(j["error"]["target"]["kind"], "denoised image") << j.dump();
+  EXPECT_TRUE(j["error"]["target"]["reached"].get<bool>()) << j.dump();
+  EXPECT_EQ(j["error"]["estimated"], j["denoise"]["estimated_error"]) << j.dump();
+  EXPECT_LE(j["denoise"]["estimated_error"].get<double>(), 0.15);
+  EXPECT_EQ(j["spp"]["least"], j["spp"]["most"]) << j.dump();
+  EXPECT_EQ(summary_schema_violations({summary}), "");
+  // The image records its target: --like renders it again, to the same bytes.
+  const CommandResult like =
+      run_rtiow("render -q --reproducible --like " + image.string() + " -o " + again.string());
+  ASSERT_EQ(like.exit_code, 0) << like.stderr_text;
+  EXPECT_EQ(slurp(image), slurp(again));
+}
+
 TEST(CliDenoise, ARenderStoppedBeforeTwoSamplesKeepsItsNoisyImage) {
   // A time limit that ends the render after its first pass of 1 spp: nothing to compare.
   const fs::path image = output_path("first-pass.png");
@@ -78,8 +101,7 @@ TEST(CliDenoise, ARenderStoppedBeforeTwoSamplesKeepsItsNoisyImage) {
 }
 
 TEST(CliDenoise, RefusesWhatItCannotDenoiseInOneLine) {
-  expect_refused("--denoise --image-error 0.05", "the target would be the noisy image's error");
-  expect_refused("--denoise --target-error 0.05", "the target would be the noisy image's error");
+  expect_refused("--denoise --target-error 0.05", "the target would be each noisy pixel's error");
   expect_refused("--denoise --spp 1", "--denoise needs at least 2 spp");
   // Parts rendered without --denoise keep no halves or first hits.
   const fs::path part = output_path("plain.exr"), out = output_path("out.png");

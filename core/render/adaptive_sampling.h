@@ -91,6 +91,17 @@ void render_round(const RenderContext<Accel>& ctx, bool first_round, RoundDeadli
   }
 }
 
+// The least and the most samples a pixel of an error target takes (the least no more than the
+// most).
+struct CountRange {
+  std::uint32_t least, most;
+};
+template <typename Target>
+CountRange count_range(const Target& target) {
+  const auto most = std::uint32_t(target.most);
+  return {std::min(most, std::uint32_t(target.least)), most};
+}
+
 // Whether a round has anything to render: some pixel's target above its count.
 inline bool any_target_above(const RenderState& state) {
   for (std::size_t p = 0; p < state.targets.size(); ++p) {
@@ -131,8 +142,7 @@ void render_adaptive(const RenderContext<Accel>& ctx, const PixelErrorTarget& ta
   RenderState& state = journal.state();
   PixelAccumulators& pixels = state.pixels;
   RoundDeadline deadline(settings, progress, journal);
-  const auto most = std::uint32_t(target.most);
-  const auto least = std::min(most, std::uint32_t(target.least));
+  const auto [least, most] = count_range(target);
   const double target_variance = target.error * target.error;
   // How fast a pixel's variance falls with its count: 1/n for independent samples, about
   // n^-1.2 for the Sobol samplers (the cover's RMSE slope is -0.6, docs/accuracy.md).

@@ -5,6 +5,7 @@
 
 #include "core/denoise/denoiser.h"
 #include "core/film/replicate_variance.h"
+#include "core/film/sample_sum.h"
 #include "core/limits/error.h"
 #include "core/limits/setting_name.h"
 #include "core/render/render_metadata.h"
@@ -14,19 +15,25 @@ namespace rtiow {
 
 namespace {
 
-// Why a result cannot be denoised, or empty.
-std::string what_is_missing(const RenderResult& r) {
-  if (r.replicates < kReplicates || !r.sums.keeps(SumGroup::Odd))
+// Why sums cannot be denoised, or empty.
+std::string what_is_missing(const DenoiseSource& s) {
+  if (s.replicates < kReplicates || !s.sums.keeps(SumGroup::Odd))
     return "the render kept one sequence of samples, not the two independent halves the "
            "denoiser compares";
-  if (!r.sums.keeps(SumGroup::FirstHit))
+  if (!s.sums.keeps(SumGroup::FirstHit))
     return "the render kept no first hits (albedo, normal, depth) for the denoiser to follow";
-  if (r.pixel_samples.size() != r.sums.size()) return "the render has no sample counts";
-  for (std::uint32_t n : r.pixel_samples) {
-    if (odd_samples(r.first_sample, n) == 0 || n - odd_samples(r.first_sample, n) == 0)
+  if (s.samples.size() != s.sums.size() ||
+      s.sums.size() != std::size_t(s.width) * std::size_t(s.height))
+    return "the render has no sample counts";
+  for (std::uint32_t n : s.samples) {
+    if (odd_samples(s.first_sample, n) == 0 || n - odd_samples(s.first_sample, n) == 0)
       return "a pixel has fewer than one sample in each half (at least 2 spp are needed)";
   }
   return {};
+}
+
+DenoiseSource source_of(const RenderResult& r) {
+  return {r.sums, r.pixel_samples, r.first_sample, r.replicates, r.film.width(), r.film.height()};
 }
 
 Color half_mean(const PixelSum& sum, std::uint64_t samples) {
@@ -35,35 +42,45 @@ Color half_mean(const PixelSum& sum, std::uint64_t samples) {
 
 }  // namespace
 
-std::string why_not_denoised(const RenderResult& result) {
-  return what_is_missing(result);
+std::string why_not_denoised(const DenoiseSource& source) {
+  return what_is_missing(source);
 }
 
-DenoiseInput denoise_input(const RenderResult& r) {
-  if (const std::string missing = what_is_missing(r); !missing.empty())
+std::string why_not_denoised(const RenderResult& result) {
+  return what_is_missing(source_of(result));
+}
+
+DenoiseInput denoise_input(const DenoiseSource& s) {
+  if (const std::string missing = what_is_missing(s); !missing.empty())
     throw InvalidInput(setting("denoise") + ": " + missing);
   DenoiseInput in;
-  in.width = r.film.width();
-  in.height = r.film.height();
-  const std::size_t n = r.sums.size();
-  in.mean = r.film.pixels();
+  in.width = s.width;
+  in.height = s.height;
+  const std::size_t n = s.sums.size();
+  Film mean(s.width, s.height);
+  resolve(s.sums.color, s.samples, mean);  // as the render's film is
+  in.mean = mean.pixels();
   in.even.resize(n), in.odd.resize(n), in.features.resize(n);
   in.even_samples.resize(n), in.odd_samples.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
-    const std::uint32_t samples = r.pixel_samples[p];
-    const auto odd = std::uint32_t(odd_samples(r.first_sample, samples));
-    const PixelSum& odd_sum = r.sums.spreads[p].odd;
+    const std::uint32_t samples = s.samples[p];
+    const auto odd = std::uint32_t(odd_samples(s.first_sample, samples));
+    const PixelSum& odd_sum = s.sums.spreads[p].odd;
     PixelSum even_sum;
     for (int c = 0; c < 3; ++c)
-      even_sum.set_channel(c, r.sums.color[p].channel(c) - odd_sum.channel(c));
+      even_sum.set_channel(c, s.sums.color[p].channel(c) - odd_sum.channel(c));
     in.even[p] = half_mean(even_sum, samples - odd);
     in.odd[p] = half_mean(odd_sum, odd);
     in.even_samples[p] = samples - odd;
     in.odd_samples[p] = odd;
     for (std::size_t c = 0; c < FirstHitSum::kChannels; ++c)
-      in.features[p][c] = r.sums.first_hits[p].mean(c, samples);
+      in.features[p][c] = s.sums.first_hits[p].mean(c, samples);
   }
   return in;
+}
+
+DenoiseInput denoise_input(const RenderResult& r) {
+  return denoise_input(source_of(r));
 }
 
 DenoiseFigures figures_of(const DenoisedImage& d) {

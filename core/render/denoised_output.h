@@ -10,6 +10,7 @@
 #include "core/denoise/denoise_input.h"
 #include "core/denoise/denoiser.h"
 #include "core/film/film.h"
+#include "core/film/pixel_sums.h"
 #include "core/io/image_output.h"
 
 namespace rtiow {
@@ -33,12 +34,23 @@ struct DenoisedOutput {
   std::vector<ExtraChannel> channels;  // noisy.R/G/B, denoise.mse.R/G/B, denoise.kept
 };
 
-// The halves and features of a render's result. Throws InvalidInput naming what it lacks: the
+// The sums a denoiser reads: a render's result, or a render's state between its rounds.
+struct DenoiseSource {
+  const PixelSums& sums;
+  const std::vector<std::uint32_t>& samples;
+  std::uint64_t first_sample = 0;
+  int replicates = 0;
+  int width = 0, height = 0;
+};
+
+// The halves and features of a render's sums. Throws InvalidInput naming what they lack: the
 // odd samples' sums (a render that kept one sequence), the first hits' sums (no passes), or a
 // pixel with fewer than one sample in each half.
+DenoiseInput denoise_input(const DenoiseSource& source);
 DenoiseInput denoise_input(const RenderResult& result);
 
-// Why `result` cannot be denoised (what denoise_input() would refuse), or empty.
+// Why the sums cannot be denoised (what denoise_input() would refuse), or empty.
+std::string why_not_denoised(const DenoiseSource& source);
 std::string why_not_denoised(const RenderResult& result);
 
 // Denoises `result` (core/denoise/denoiser.h) and records its figures in `metadata`; the

@@ -20,6 +20,7 @@
 #include "core/parallel/ieee_floating_point.h"
 #include "core/parallel/thread_count.h"
 #include "core/render/adaptive_sampling.h"
+#include "core/render/denoised_rounds.h"
 #include "core/render/render_loop.h"
 #include "core/render/render_state.h"
 #include "core/render/render_statistics.h"
@@ -117,6 +118,12 @@ void validate_crop(const RenderSettings& s) {
                        " image (X0,Y0,X1,Y1 in pixels from its top left, X1 and Y1 excluded: "
                        "0 <= X0 < X1 <= width, 0 <= Y0 < Y1 <= height)");
   }
+  const auto* image = std::get_if<ImageErrorTarget>(&s.samples);
+  if (image && image->denoised) {
+    throw InvalidInput(
+        "a crop renders a region as the frame would, but a denoised image error target would "
+        "judge the region's error alone: render the frame, or give the region a sample count");
+  }
   if (is_adaptive(s)) {
     throw InvalidInput(
         "a crop renders a region with uniform sampling only: adaptive sampling shares samples out "
@@ -166,6 +173,9 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
                                 .count();
   if (const auto* target = std::get_if<PixelErrorTarget>(&settings.samples)) {
     render_adaptive(ctx, *target, progress, journal, result);
+  } else if (const auto* image = std::get_if<ImageErrorTarget>(&settings.samples);
+             image && image->denoised) {
+    render_by_denoised_error(ctx, *image, progress, journal, result);
   } else if (is_adaptive(settings)) {
     render_by_image_error(ctx, progress, journal, result);
   } else {
@@ -250,6 +260,13 @@ void validate(const RenderSettings& s) {
   }
   validate_crop(s);
   if (s.crop) check_image_size(film_width(s), film_height(s), film_bytes_per_pixel(s));
+  const auto* image = std::get_if<ImageErrorTarget>(&s.samples);
+  if (image && image->denoised &&
+      (replicates(s) != kReplicates || !(s.passes.albedo && s.passes.normal && s.passes.depth))) {
+    throw InvalidInput(
+        "an ImageErrorTarget of the denoised image needs what the denoiser reads: "
+        "estimate_error (two independent halves) and the albedo, normal and depth passes");
+  }
 }
 
 void validate(const Scene& scene, const RenderSettings& settings) {

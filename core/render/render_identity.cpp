@@ -24,7 +24,8 @@ std::string sampling_words(const SampleBudget& samples) {
     return "pixel error " + shortest_text(t->error) + ", " + range(t->least, t->most);
   }
   if (const auto* i = std::get_if<ImageErrorTarget>(&samples)) {
-    return "image error " + shortest_text(i->error) + ", " + range(i->least, i->most);
+    return "image error " + shortest_text(i->error) + (i->denoised ? " denoised" : "") + ", " +
+           range(i->least, i->most);
   }
   if (const auto* a = std::get_if<AdaptiveBudget>(&samples)) {
     return "adaptive, " +

@@ -103,16 +103,15 @@ void check_adaptive_options(const JobRequest& r, const std::string& output) {
   // can write the whole render's variances; the part file holds its exact spreads, not channels.)
 }
 
-// The denoiser renders to no error target of its own yet: the targets measure the noisy image.
+// A pixel's error target would judge the noisy pixels, not the denoised image; the image's
+// error target judges the denoised image (core/render/denoised_rounds.h).
 void check_denoise_options(const JobRequest& r) {
   if (!r.denoise) return;
-  const char* target = r.request.target_error > 0  ? "target_error"
-                       : r.request.image_error > 0 ? "image_error"
-                                                   : nullptr;
-  if (target) {
-    throw InvalidInput(setting("denoise") + " with " + setting(target) +
-                       ": the target would be the noisy image's error, not the denoised "
-                       "image's; give a sample count, " +
+  if (r.request.target_error > 0) {
+    throw InvalidInput(setting("denoise") + " with " + setting("target_error") +
+                       ": the target would be each noisy pixel's error, not the denoised "
+                       "image's; give " +
+                       setting("image_error") + " (the denoised image's error), a sample count, " +
                        setting("time_limit") + " or " + setting("adaptive") + " instead");
   }
   if (r.request.spp && *r.request.spp < 2 && !r.request.adaptive) {
@@ -127,7 +126,10 @@ void check_denoise_options(const JobRequest& r) {
 RenderRequest job_render_request(const JobRequest& r) {
   check_denoise_options(r);
   RenderRequest q = r.request;
-  if (r.denoise) q.estimate_error = true, q.passes = {true, true, true};
+  if (r.denoise) {
+    q.estimate_error = true, q.passes = {true, true, true};
+    q.image_error_denoised = q.image_error > 0;
+  }
   return q;
 }
 
@@ -190,7 +192,8 @@ std::optional<DenoisedImage> write_job_result(const JobRequest& r, const RenderJ
     return std::nullopt;
   }
   Metadata with_figures = metadata;
-  DenoisedImage made = denoise(denoise_input(result));
+  // An image-error target's last judgement denoised these very sums already.
+  DenoisedImage made = result.denoised ? *result.denoised : denoise(denoise_input(result));
   DenoisedOutput denoised = denoised_output(made, extra, with_figures);
   std::vector<ExtraChannel> channels;
   if (extra) {

@@ -22,14 +22,15 @@ std::string adaptive_goal(const RenderSettings& s, const RenderResult& r, std::u
     }
   }
   if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) {
+    const char* of = i->denoised ? "denoised image error" : "image error";
     if (!error_target_reached(s, r) && r.estimated_image_error == 0.0) {
-      std::snprintf(goal, sizeof goal, "image error %g not reached: no estimate yet at %u spp",
-                    i->error, most);
+      std::snprintf(goal, sizeof goal, "%s %g not reached: no estimate yet at %u spp", of, i->error,
+                    most);
     } else if (!error_target_reached(s, r)) {
-      std::snprintf(goal, sizeof goal, "image error %g not reached: %.3g at %u spp", i->error,
+      std::snprintf(goal, sizeof goal, "%s %g not reached: %.3g at %u spp", of, i->error,
                     r.estimated_image_error, most);
     } else {
-      std::snprintf(goal, sizeof goal, "image error %g", i->error);
+      std::snprintf(goal, sizeof goal, "%s %g", of, i->error);
     }
   }
   return goal;
@@ -63,11 +64,16 @@ bool error_target_reached(const RenderSettings& s, const RenderResult& r) {
 RenderOutcome describe_outcome(const RenderSettings& s, const RenderResult& r) {
   RenderOutcome o;
   char text[192];
+  const auto* image = std::get_if<ImageErrorTarget>(&s.samples);
   if (is_adaptive(s.samples)) {
     const auto [least, most] = std::minmax_element(r.pixel_samples.begin(), r.pixel_samples.end());
     o.least = *least, o.most = *most, o.mean = mean_samples(r);
-    std::snprintf(text, sizeof text, "%u-%u spp (mean %.1f, %s)", o.least, o.most, o.mean,
-                  adaptive_goal(s, r, o.most).c_str());
+    if (image && image->denoised && o.least == o.most) {  // every pixel the same count
+      std::snprintf(text, sizeof text, "%u spp (%s)", o.most, adaptive_goal(s, r, o.most).c_str());
+    } else {
+      std::snprintf(text, sizeof text, "%u-%u spp (mean %.1f, %s)", o.least, o.most, o.mean,
+                    adaptive_goal(s, r, o.most).c_str());
+    }
   } else {
     o.least = o.most = std::uint32_t(r.samples_completed), o.mean = r.samples_completed;
     std::snprintf(text, sizeof text, "%d spp", r.samples_completed);

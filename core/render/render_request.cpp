@@ -79,7 +79,7 @@ SampleBudget budget_asked(const RenderRequest& r, const ImageSettings& image) {
   }
   const int cap = r.spp.value_or(kDefaultErrorDrivenMaxSpp);
   if (by_pixel) return PixelErrorTarget{r.target_error, cap, least};
-  if (by_image) return ImageErrorTarget{r.image_error, cap, least};
+  if (by_image) return ImageErrorTarget{r.image_error, cap, least, r.image_error_denoised};
   const bool timed = r.time_limit_seconds > 0.0;
   if (r.adaptive) {
     // With only a time limit, the time is the budget; with neither, the scene's count.

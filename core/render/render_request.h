@@ -38,9 +38,10 @@ struct RenderRequest {
   int threads = RenderSettings{}.threads;
   double time_limit_seconds = RenderSettings{}.time_limit_seconds;
   // The adaptive modes, at most one (0 and false: off), and their minimum per pixel.
-  double target_error = 0.0;  // --target-error: each pixel's relative standard error
-  double image_error = 0.0;   // --image-error: the image's relative RMS error
-  bool adaptive = false;      // --adaptive: spend the budget where the variance is
+  double target_error = 0.0;          // --target-error: each pixel's relative standard error
+  double image_error = 0.0;           // --image-error: the image's relative RMS error
+  bool image_error_denoised = false;  // ... of the denoised image (--denoise)
+  bool adaptive = false;              // --adaptive: spend the budget where the variance is
   // --stats-channels: keep what an estimate of each pixel's error needs (RenderSettings).
   bool estimate_error = false;
   bool russian_roulette = RenderSettings{}.russian_roulette;  // --roulette

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -18,6 +19,8 @@
 #include "core/sampling/sampler.h"
 
 namespace rtiow {
+
+struct DenoisedImage;  // core/denoise/denoiser.h
 
 enum class AccelKind { Embree, Naive };
 
@@ -181,6 +184,9 @@ struct RenderResult {
   double estimated_image_error = 0.0;
   ErrorEstimate error_estimate = ErrorEstimate::None;
   std::uint64_t pixels_above_target = 0;
+  // --image-error with --denoise: the denoiser's image of these very sums, made by the last
+  // judgement (not made again to be written); empty where the render ended otherwise.
+  std::shared_ptr<const DenoisedImage> denoised;
 };
 
 }  // namespace rtiow

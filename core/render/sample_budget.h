@@ -44,6 +44,10 @@ struct ImageErrorTarget {
   double error = 0.0;
   int most = kDefaultErrorDrivenMaxSpp;
   int least = kDefaultLeastSamples;
+  // The denoised image's error (--image-error with --denoise): every pixel takes the same
+  // count, each round as many as the denoiser's estimate says the target needs
+  // (core/render/denoised_rounds.h).
+  bool denoised = false;
 };
 
 using SampleBudget =

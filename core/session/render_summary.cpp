@@ -49,8 +49,9 @@ std::string render_summary_json(const RenderJob& job, const RenderResult& result
   const bool estimated = result.error_estimate != ErrorEstimate::None;
   json target;
   if (const auto* image = std::get_if<ImageErrorTarget>(&s.samples)) {
-    target = {
-        {"kind", "image"}, {"asked", image->error}, {"reached", error_target_reached(s, result)}};
+    target = {{"kind", image->denoised ? "denoised image" : "image"},
+              {"asked", image->error},
+              {"reached", error_target_reached(s, result)}};
   } else if (const auto* pixel = std::get_if<PixelErrorTarget>(&s.samples)) {
     target = {{"kind", "pixel"},
               {"asked", pixel->error},

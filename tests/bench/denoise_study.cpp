@@ -3,6 +3,7 @@
 //
 //   rtiow_denoise_study calibrate SCENE WIDTH REFERENCE_SPP SEEDS SPP...
 //   rtiow_denoise_study trade SCENE WIDTH REFERENCE_SPP
+//   rtiow_denoise_study target SCENE WIDTH REFERENCE_SPP SEEDS ERROR...
 //
 // The truth is a render of REFERENCE_SPP with another seed, its own variance (from its halves)
 // taken out of the squared error. Relative errors use rtiow's offset of 0.01.
@@ -144,17 +145,41 @@ void trade(const Scene& scene, int width, int height, int reference_spp) {
   }
 }
 
+// --image-error E --denoise: the error each render delivers against the reference, as a
+// fraction of E, and what the render and its judgements cost.
+void target(const Scene& scene, int width, int height, int reference_spp, int seeds,
+            const std::vector<double>& errors) {
+  const Reference ref = reference_of(scene, width, height, reference_spp);
+  for (const double e : errors) {
+    for (int seed = 1; seed <= seeds; ++seed) {
+      RenderSettings s = denoise_settings(width, height, 0, std::uint64_t(seed));
+      s.samples = ImageErrorTarget{e, kDefaultErrorDrivenMaxSpp, kDefaultLeastSamples, true};
+      RenderProgress progress;
+      const RenderResult r = render(scene, s, &progress);
+      const double truth = ref.image_error(r.denoised->image.pixels());
+      std::printf(
+          "%s %dx%d image error %.3f denoised seed %d: %u spp, %d judgements, estimated %.5f, "
+          "true %.5f = %.3f E | %.2f s\n",
+          scene.name.c_str(), width, height, e, seed, r.pixel_samples.front(),
+          int(progress.judgements.load()), r.estimated_image_error, truth, truth / e,
+          r.render_seconds);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rtiow
 
 int main(int argc, char** argv) {
   using namespace rtiow;
   const std::string mode = argc > 1 ? argv[1] : "";
-  if ((mode != "calibrate" || argc < 7) && (mode != "trade" || argc != 5)) {
+  if ((mode != "calibrate" || argc < 7) && (mode != "trade" || argc != 5) &&
+      (mode != "target" || argc < 7)) {
     std::fprintf(stderr,
                  "usage: %s calibrate SCENE WIDTH REFERENCE_SPP SEEDS SPP...\n"
-                 "       %s trade SCENE WIDTH REFERENCE_SPP\n",
-                 argv[0], argv[0]);
+                 "       %s trade SCENE WIDTH REFERENCE_SPP\n"
+                 "       %s target SCENE WIDTH REFERENCE_SPP SEEDS ERROR...\n",
+                 argv[0], argv[0], argv[0]);
     return 2;
   }
   try {
@@ -165,6 +190,12 @@ int main(int argc, char** argv) {
       return 0;
     }
     const int height = int(width / scene.image.aspect_ratio);  // truncated, as the study ran
+    if (mode == "target") {
+      std::vector<double> errors;
+      for (int i = 6; i < argc; ++i) errors.push_back(std::stod(argv[i]));
+      target(scene, width, height, reference_spp, std::stoi(argv[5]), errors);
+      return 0;
+    }
     std::vector<int> counts;
     for (int i = 6; i < argc; ++i) counts.push_back(std::stoi(argv[i]));
     calibrate(scene, width, height, reference_spp, std::stoi(argv[5]), counts);

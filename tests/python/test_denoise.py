@@ -61,8 +61,8 @@ def test_a_plain_render_has_no_denoised_parts():
 def test_denoise_refusals(tmp_path):
     with pytest.raises(ValueError, match="at least 2 spp"):
         rtiow.render(rtiow.builtin_scene("cover"), width=16, spp=1, denoise=True)
-    with pytest.raises(ValueError, match="image_error"):
-        rtiow.render(rtiow.builtin_scene("cover"), width=16, image_error=0.1, denoise=True)
+    with pytest.raises(ValueError, match="target_error"):
+        rtiow.render(rtiow.builtin_scene("cover"), width=16, target_error=0.1, denoise=True)
     part = str(tmp_path / "plain.exr")
     rtiow.render(rtiow.builtin_scene("cover"), width=16, spp=4, part="0/1", output=part)
     with pytest.raises(ValueError, match="render them with denoise"):

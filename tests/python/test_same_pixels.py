@@ -12,6 +12,7 @@ CASES = [
     {"sampler": "padded-sobol", "spp": 8},
     {"sampler": "sobol", "spp": 8, "roulette": "off", "depth": 5},
     {"image_error": 0.2, "spp": 64},
+    {"image_error": 0.2, "denoise": True},
     {"target_error": 0.3, "spp": 64},
     {"adaptive": True, "spp": 32},
     {"spp": 4, "crop": "8,4,40,20"},
