@@ -30,8 +30,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/session/progress_status.h"
 #include "core/rtiow.h"
+#include "core/session/progress_status.h"
 #include "tests/cli_helpers.h"
 
 namespace {
@@ -221,6 +221,18 @@ TEST(Cli, QuickRunsTakeTheirOwnSettingsButTheOptionsGiven) {
   EXPECT_EQ(accuracy["max_spp"], 256);
   EXPECT_EQ(accuracy["reference_spp"], 1024);
   EXPECT_EQ(accuracy["repeat"], 1);
+  // The denoised curve: 2 to 256 spp, each with the error the denoiser reported, its time in
+  // the row's, and a lower error at each doubling of the samples.
+  const auto& denoised = accuracy["denoised"];
+  ASSERT_EQ(denoised.size(), 8u) << denoised.dump();
+  EXPECT_EQ(accuracy["denoised_sampler"], "sobol");
+  for (std::size_t i = 0; i < denoised.size(); ++i) {
+    EXPECT_GT(denoised[i]["estimated_error"].get<double>(), 0.0);
+    EXPECT_GE(denoised[i]["seconds"].get<double>(), denoised[i]["denoise_seconds"].get<double>());
+    if (i > 0) {
+      EXPECT_LT(denoised[i]["rel_mse"].get<double>(), denoised[i - 1]["rel_mse"].get<double>());
+    }
+  }
 }
 
 // bench and accuracy --summary-json: the shared head, and headline figures that are the ones
@@ -415,16 +427,19 @@ TEST(Cli, AccuracyMeasuresWritesFiguresAndReusesItsReference) {
   EXPECT_NE(first.stdout_text.find("bit-identical to embree"), std::string::npos);
   EXPECT_EQ(first.stdout_text.find("reused from the cache"), std::string::npos);
   const std::string figures = slurp(dir / "accuracy.json");
-  for (const char* key : {"\"rmse_slope\"", "\"equal_time_factor\"", "\"budget_equal_time_factor\"",
-                          "\"book_quality\"", "\"padded-sobol\"", "\"image_error\"",
-                          "\"depth_sweep\"", "\"fresnel\"", "\"adaptive\"", "\"intersector\""}) {
+  for (const char* key :
+       {"\"rmse_slope\"", "\"equal_time_factor\"", "\"budget_equal_time_factor\"",
+        "\"book_quality\"", "\"padded-sobol\"", "\"image_error\"", "\"depth_sweep\"", "\"fresnel\"",
+        "\"adaptive\"", "\"intersector\"", "\"denoised_equal_time_factor\""}) {
     EXPECT_NE(figures.find(key), std::string::npos) << key;
   }
   const std::string csv = slurp(dir / "accuracy.csv");
   EXPECT_EQ(csv.rfind("group,choice,parameter", 0), 0u) << csv;
   // Header, 3 samplers x spp 1..64, 3 x budgets 32 and 64, the book's estimator at spp
-  // 1..64, one image error, 3 depths, two intersectors, two Fresnel models, one target error.
-  EXPECT_EQ(count_lines(csv), 1 + 3 * 7 + 3 * 2 + 7 + 1 + 3 + 2 + 2 + 1) << csv;
+  // 1..64, one image error, 3 depths, two intersectors, two Fresnel models, one target error,
+  // denoised at spp 2..64.
+  EXPECT_EQ(count_lines(csv), 1 + 3 * 7 + 3 * 2 + 7 + 1 + 3 + 2 + 2 + 1 + 6) << csv;
+  EXPECT_NE(csv.find("\ndenoised,sobol --denoise,64.0,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\nbook,independent without roulette,64.0,"), std::string::npos) << csv;
   EXPECT_NE(first.stdout_text.find("time to the book's quality"), std::string::npos);
   EXPECT_NE(first.stdout_text.find("without Russian roulette"), std::string::npos);

@@ -138,6 +138,9 @@ json summarise(const json& r, const AccuracyOptions& o) {
   s["adaptive_equal_time_factors"] = equal_time_factors(independent, r["adaptive"]);
   s["image_error_equal_time_factors"] =
       equal_time_factors(r["spp"][r["image_error_sampler"].get<std::string>()], r["image_error"]);
+  const json& denoised_baseline = r["spp"][r["denoised_sampler"].get<std::string>()];
+  s["denoised_equal_time_factors"] = equal_time_factors(denoised_baseline, r["denoised"]);
+  s["denoised_equal_time_factor"] = median_factor(s["denoised_equal_time_factors"], 16);
   s["book_quality"] = book_quality(r, o.book_spp);
   return s;
 }

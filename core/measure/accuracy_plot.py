@@ -27,6 +27,9 @@ def main(figures, png):
     ax1.plot(*xy(r["image_error"], "seconds", "rel_mse"), "v-",
              label="%s --image-error" % r["image_error_sampler"])
     ax1.plot(*xy(r["adaptive"], "seconds", "rel_mse"), "<-", label="--target-error")
+    ax1.plot(*xy(r["denoised"], "seconds", "rel_mse"), "*-", ms=8,
+             label="%s --denoise (spp 2..%d, denoiser's time included)"
+             % (r["denoised_sampler"], r["max_spp"]))
     for row in r["adaptive"]:
         ax1.annotate("%g" % row["parameter"], (row["seconds"], row["rel_mse"]),
                      textcoords="offset points", xytext=(4, 4), fontsize=7)

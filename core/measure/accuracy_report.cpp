@@ -101,6 +101,24 @@ void print_image_error_table(const json& r) {
   print_error_rows(r["image_error"], r["summary"]["image_error_equal_time_factors"], "vs uniform");
 }
 
+// --denoise against the same sampler's uniform renders at equal time, and the error the
+// denoiser reported beside the error it delivered.
+void print_denoised_table(const json& r) {
+  std::printf("\ndenoised (%s, %s with %s; seconds: the render's and the denoiser's)\n",
+              setting("denoise").c_str(), setting("spp").c_str(),
+              r["denoised_sampler"].get<std::string>().c_str());
+  std::printf("  %6s %9s %9s %10s %9s %9s %11s\n", "spp", "seconds", "denoise", "relMSE",
+              "achieved", "reported", "vs uniform");
+  const json& factors = r["summary"]["denoised_equal_time_factors"];
+  for (std::size_t i = 0; i < r["denoised"].size(); ++i) {
+    const json& row = r["denoised"][i];
+    std::printf("  %6.0f %9.4f %9.4f %10.3e %9.4f %9.4f %10.2fx\n", row["parameter"].get<double>(),
+                row["seconds"].get<double>(), row["denoise_seconds"].get<double>(),
+                row["rel_mse"].get<double>(), row["achieved_error"].get<double>(),
+                row["estimated_error"].get<double>(), factors[i]["factor"].get<double>());
+  }
+}
+
 void print_book_quality(const json& r) {
   const json& q = r["summary"]["book_quality"];
   std::printf(
@@ -190,7 +208,7 @@ void write_csv(const json& r, const std::string& path) {
     }
   }
   for (const char* group :
-       {"book", "image_error", "depth_sweep", "intersector", "fresnel", "adaptive"}) {
+       {"book", "image_error", "depth_sweep", "intersector", "fresnel", "adaptive", "denoised"}) {
     for (const json& row : r[group]) rows.push_back(&row);
   }
   for (const json* row : rows) {
@@ -214,6 +232,7 @@ void print_table(const json& r) {
   print_spp_table(r);
   print_budget_table(r);
   print_image_error_table(r);
+  print_denoised_table(r);
   print_book_quality(r);
   print_depth_table(r);
   print_choice_tables(r);

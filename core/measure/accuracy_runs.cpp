@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/denoise/denoiser.h"
+#include "core/render/denoised_output.h"
 #include "core/render/render.h"
 #include "core/render/render_statistics.h"
 
@@ -15,11 +18,22 @@ namespace {
 
 using json = nlohmann::json;
 
+constexpr SamplerKind kDenoisedSampler = RenderRequest{}.sampler;
+
 // One measured render: its image error against the reference and its median time.
 struct Trial {
   json row;
   RenderResult result;
 };
+
+// What a trial measures of its render: the image itself, or what a step after the render makes
+// of it (the denoiser), with that step's seconds and figures of its own for the row.
+struct Delivered {
+  ImageEstimate image;
+  double seconds = 0.0;
+  json figures = json::object();
+};
+using Deliver = std::function<Delivered(const RenderResult&)>;
 
 class Experiment {
  public:
@@ -30,7 +44,7 @@ class Experiment {
   // Renders `repeat` times (the image is the same each time; only the time varies) and
   // measures the first against the reference.
   Trial run(const std::string& group, const std::string& choice, double parameter,
-            const RenderRequest& request) const {
+            const RenderRequest& request, const Deliver& deliver = {}) const {
     const ResolvedRender job = resolve(scene_, request);
     const RenderSettings& settings = job.settings;
     std::vector<double> seconds;
@@ -41,8 +55,10 @@ class Experiment {
       if (i == 0) trial.result = std::move(r);
     }
     std::sort(seconds.begin(), seconds.end());
-    const double median = seconds[seconds.size() / 2];
-    const ImageError e = measure_error(to_estimate(trial.result), reference_);
+    const Delivered delivered =
+        deliver ? deliver(trial.result) : Delivered{to_estimate(trial.result)};
+    const double median = seconds[seconds.size() / 2] + delivered.seconds;
+    const ImageError e = measure_error(delivered.image, reference_);
     trial.row = {{"group", group},
                  {"choice", choice},
                  {"parameter", parameter},
@@ -60,6 +76,7 @@ class Experiment {
     // One sequence (--adaptive where no error is asked) has no estimate of its error: the
     // reference's alone would understate the difference's.
     if (trial.result.replicates < kReplicates) trial.row["mean_difference_error"] = nullptr;
+    trial.row.update(delivered.figures);
     if (!o_.quiet) {
       std::fprintf(stderr, "accuracy: %-10s %-12s %8g: %7.3f s, relMSE %.3g\n", group.c_str(),
                    choice.c_str(), parameter, median, e.rel_mse);
@@ -150,6 +167,31 @@ json compare_fresnel(const Experiment& x, const AccuracyOptions& o) {
   return rows;
 }
 
+// --denoise at 2, 4, ... max_spp with the command line's default sampler (Sobol): the denoised
+// image's error against the reference beside the error the denoiser reports, its time the render's
+// and the denoiser's. The denoised image has no variances: its error is partly bias, and all of it
+// counts here.
+json sweep_denoised(const Experiment& x, const AccuracyOptions& o) {
+  const Deliver denoised = [](const RenderResult& r) {
+    const DenoisedImage d = denoise(denoise_input(r));
+    return Delivered{{d.image, {}},
+                     d.seconds,
+                     {{"denoise_seconds", d.seconds},
+                      {"estimated_error", d.estimated_error},
+                      {"noisy_estimated_error", d.noisy_error}}};
+  };
+  json rows = json::array();
+  for (int spp = 2; spp <= o.max_spp; spp *= 2) {
+    RenderRequest s = x.request();
+    s.spp = spp, s.sampler = kDenoisedSampler, s.estimate_error = true;
+    s.passes = {true, true, true};
+    Trial t = x.run("denoised", to_string(s.sampler) + " --denoise", spp, s, denoised);
+    t.row["achieved_error"] = std::sqrt(t.row["rel_mse"].get<double>());
+    rows.push_back(t.row);
+  }
+  return rows;
+}
+
 json sweep_adaptive(const Experiment& x, const AccuracyOptions& o) {
   json rows = json::array();
   for (const double target : o.target_errors) {
@@ -178,6 +220,8 @@ void run_sweeps(const AccuracyOptions& o, const Scene& scene, const RenderReques
   r["intersector"] = compare_intersectors(x, o);
   r["fresnel"] = compare_fresnel(x, o);
   r["adaptive"] = sweep_adaptive(x, o);
+  r["denoised_sampler"] = to_string(kDenoisedSampler);
+  r["denoised"] = sweep_denoised(x, o);
 }
 
 }  // namespace rtiow
