@@ -11,8 +11,11 @@
 namespace rtiow {
 
 int run_merge(const MergeOptions& o) {
-  const MergedImage merged = merge_to_file(o.parts, o.output, {o.stats_channels, true, o.denoise});
-  if (merged.passes.any() && !merged.passes_kept) {
+  MergeRequest request;
+  request.statistics = o.stats_channels, request.denoise = o.denoise;
+  const MergedImage merged = merge_to_file(o.parts, o.output, request);
+  // (Denoised, the passes were the denoiser's to follow: an image without them is what was asked.)
+  if (merged.passes.any() && !merged.passes_kept && !o.denoise) {
     std::fprintf(stderr,
                  "rtiow: warning: the parts hold the passes %s, which %s cannot: merge to .exr "
                  "to keep them\n",

@@ -12,16 +12,13 @@
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <exception>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
 #include <string_view>
-#include <thread>
 #include <vector>
 
 #include "core/compare/image_comparison.h"
@@ -39,6 +36,7 @@
 #include "core/session/render_session.h"
 #include "core/session/session_report.h"
 #include "python/render_options.h"
+#include "python/watched_work.h"
 
 namespace py = pybind11;
 
@@ -67,15 +65,18 @@ void denoise_in_memory(Render& render) {
     if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) != 0) throw py::error_already_set();
     return;
   }
-  const py::gil_scoped_release released;
-  render.denoised =
-      render.result.denoised ? *render.result.denoised : denoise(denoise_input(render.result));
+  if (render.result.denoised) {
+    render.denoised = *render.result.denoised;
+    return;
+  }
+  const DenoiseInput input = denoise_input(render.result);
+  render.denoised = interruptible<DenoisedImage>(
+      [&](const std::function<bool()>& cancelled) { return denoise(input, cancelled); });
 }
 
-// A render run on a thread of its own while this one, holding the GIL between naps, checks
-// for signals and reports progress. A signal (or an exception from the callback) stops the
-// render at its next safe point; it is kept in `raised`, for the caller to raise once it has
-// put the stopped render where it goes.
+// A render watched (python/watched_work.h): a signal, or an exception from the progress
+// callback, stops it at its next safe point and is kept in `raised`, for the caller to raise
+// once it has put the stopped render where it goes.
 struct WatchedRender {
   RenderResult result;
   std::optional<py::error_already_set> raised;
@@ -97,53 +98,21 @@ WatchedRender render_watched(const RenderSettings& settings, const py::object& p
   RenderProgress progress;
   progress.stop_cause = "interrupted by a signal";
   WatchedRender out;
-  std::exception_ptr failure;
-  std::mutex mutex;
-  std::condition_variable ended;
-  bool done = false;
   const std::uint64_t pixels =
       std::uint64_t(film_width(settings)) * std::uint64_t(film_height(settings));
   const auto start = std::chrono::steady_clock::now();
-  {
-    py::gil_scoped_release released;
-    std::thread worker([&] {
-      try {
-        out.result = run(progress);
-      } catch (...) {
-        failure = std::current_exception();
-      }
-      const std::lock_guard lock(mutex);
-      done = true;
-      ended.notify_all();
-    });
-    for (;;) {
-      {
-        std::unique_lock lock(mutex);
-        if (ended.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; })) break;
-      }
-      if (out.raised) continue;  // stopping: wait for the render's safe point
-      const py::gil_scoped_acquire held;
-      if (PyErr_CheckSignals() != 0) {
-        out.raised.emplace();  // fetches KeyboardInterrupt (or what the handler raised)
-        progress.stop_requested = true;
-        continue;
-      }
-      if (progress_callback.is_none()) continue;
-      const double elapsed =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const ProgressStatus status = progress_status(settings, pixels, snapshot(progress, elapsed));
-      try {
-        progress_callback(status.fraction >= 0.0 ? status.fraction : 0.0);
-      } catch (py::error_already_set& e) {
-        out.raised.emplace(std::move(e));
-        progress.stop_requested = true;
-      }
-    }
-    worker.join();
-  }
-  if (failure) {
+  const auto report = [&] {
+    if (progress_callback.is_none()) return;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const ProgressStatus status = progress_status(settings, pixels, snapshot(progress, elapsed));
+    progress_callback(status.fraction >= 0.0 ? status.fraction : 0.0);
+  };
+  Watched w = watch([&] { out.result = run(progress); }, progress.stop_requested, report);
+  out.raised = std::move(w.raised);
+  if (w.failure) {
     if (out.raised) throw std::move(*out.raised);
-    std::rethrow_exception(failure);
+    std::rethrow_exception(w.failure);
   }
   if (!out.raised) report_whole(progress_callback, out);
   return out;
@@ -404,21 +373,21 @@ void write_render(const Render& render, const std::string& path, bool reproducib
 }
 
 // rtiow merge: the part files added into the image one render of all their samples gives.
+// Ctrl-C stops the denoiser (nothing is written; the parts stay); the merge itself runs on.
 std::optional<DenoiseFigures> merge_and_write(const std::vector<std::string>& parts,
                                               const std::string& output, bool stats_channels,
                                               bool denoise) {
-  return merge_to_file(parts, output, {stats_channels, true, denoise}).denoised;
+  return interruptible<std::optional<DenoiseFigures>>([&](const std::function<bool()>& cancelled) {
+    MergeRequest request;
+    request.statistics = stats_channels, request.denoise = denoise, request.cancelled = cancelled;
+    return merge_to_file(parts, output, request).denoised;
+  });
 }
 
 // With `denoise`, the denoiser's figures (estimated_error, noisy_error, seconds); else None.
 py::object merge_files(const std::vector<std::string>& parts, const std::string& output,
                        bool stats_channels, bool denoise) {
-  std::optional<DenoiseFigures> figures;
-  {
-    const py::gil_scoped_release released;
-    figures = merge_and_write(parts, output, stats_channels, denoise);
-  }
-  return denoise_figures(figures);
+  return denoise_figures(merge_and_write(parts, output, stats_channels, denoise));
 }
 
 py::object denoise_files(const std::vector<std::string>& parts, const std::string& output,

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -231,6 +232,21 @@ TEST(Denoiser, TheSameBitsOnAnyNumberOfThreads) {
   const DenoisedImage two = denoise(denoise_input(render(scene, s)));
   EXPECT_EQ(one.image.pixels(), two.image.pixels());
   EXPECT_EQ(one.estimated_error, two.estimated_error);
+}
+
+// Its caller may stop it (a render's stop or time limit while it judges a round): asked
+// between rows, it throws soon after; never asked to stop, the same bits as without the question.
+TEST(Denoiser, StopsWhenItsCallerSaysSo) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  RenderSettings s;
+  s.width = 48, s.height = 32, s.samples = FixedSamples{8};
+  s.estimate_error = true, s.passes = {true, true, true};
+  const DenoiseInput in = denoise_input(render(scene, s));
+  std::atomic<int> asked{0};
+  EXPECT_THROW(denoise(in, [&] { return ++asked > 40; }), DenoiseCancelled);
+  EXPECT_LT(asked.load(), 4 * 32);  // it stopped within the pass it was in
+  const DenoisedImage plain = denoise(in), asked_never = denoise(in, [] { return false; });
+  EXPECT_EQ(plain.image.pixels(), asked_never.image.pixels());
 }
 
 TEST(Denoiser, RefusesARenderWithoutHalvesOrFirstHits) {

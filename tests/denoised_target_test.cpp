@@ -72,6 +72,19 @@ TEST(DenoisedTarget, ResumedFromASaveEndsAsTheWholeRender) {
   EXPECT_EQ(resumed.denoised->image.pixels(), whole.denoised->image.pixels());
 }
 
+// The time limit (or a stop) ends a judgement as it ends a round: past it, the render ends after
+// its first round with no judgement, and the image is denoised when it is written.
+TEST(DenoisedTarget, ATimeLimitEndsTheJudgementToo) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  RenderSettings s = denoised_target(0.01, 3);
+  s.time_limit_seconds = 1e-6;
+  const RenderResult r = render(scene, s);
+  EXPECT_TRUE(r.time_limited);
+  EXPECT_EQ(r.pixel_samples.front(), 8u);  // the first round is never cut short
+  EXPECT_FALSE(r.denoised);
+  EXPECT_EQ(r.estimated_image_error, 0.0);
+}
+
 // The error delivered, against a 1024-spp reference of another seed (its own noise taken out),
 // over four seeds: at most the target, and not far below it (the rounds aim at 0.92 of it and
 // overshoot by at most one round's step).

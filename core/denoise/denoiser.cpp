@@ -97,8 +97,15 @@ std::vector<Vec3d> noisy_variance(const DenoiseInput& in) {
 
 // The two passes (core/denoise/feature_regression.h): the second pass's image at each
 // bandwidth. `variance` is the noisy mean's.
-std::vector<Combined> second_pass_images(const DenoiseInput& in,
-                                         const std::vector<Vec3d>& variance) {
+std::vector<Combined> second_pass_images(const DenoiseInput& in, const std::vector<Vec3d>& variance,
+                                         const std::function<bool()>& cancelled) {
+  // Each pass's rows stop once `cancelled` is true; what they left is thrown away here.
+  const auto filter = [&](const std::vector<Color>& half, const Guide& guide,
+                          const std::vector<float>& bandwidths) {
+    std::vector<FilteredHalf> out = filter_half(in, half, guide, bandwidths, cancelled);
+    if (cancelled && cancelled()) throw DenoiseCancelled();
+    return out;
+  };
   const std::size_t n = in.size();
   // The per-sample variance, the guides' noise level, pooled over a window.
   std::vector<Vec3d> sample_variance(n);
@@ -107,8 +114,8 @@ std::vector<Combined> second_pass_images(const DenoiseInput& in,
   sample_variance = window_mean(sample_variance, in.width, in.height, kNoiseLevelRadius, false);
   // First pass: each half regressed on the features with its neighbours weighted equally; a
   // function of that half's samples alone.
-  const FilteredHalf first_even = filter_half(in, in.even, {}, {}).front();
-  const FilteredHalf first_odd = filter_half(in, in.odd, {}, {}).front();
+  const FilteredHalf first_even = filter(in.even, {}, {}).front();
+  const FilteredHalf first_odd = filter(in.odd, {}, {}).front();
   // Second pass: each half weighted by the patches of the other's first pass, whose noise is
   // about its own weight times the half's (a regression's hat rows have squares summing to it).
   const auto guide_variance = [&](const FilteredHalf& f, const std::vector<std::uint32_t>& count) {
@@ -120,10 +127,8 @@ std::vector<Combined> second_pass_images(const DenoiseInput& in,
   const std::vector<Vec3d> odd_guide_variance = guide_variance(first_odd, in.odd_samples);
   const std::vector<Vec3d> even_guide_variance = guide_variance(first_even, in.even_samples);
   const std::vector<float> bandwidths(kBandwidths.begin(), kBandwidths.end());
-  const auto second_even =
-      filter_half(in, in.even, {&first_odd.color, &odd_guide_variance}, bandwidths);
-  const auto second_odd =
-      filter_half(in, in.odd, {&first_even.color, &even_guide_variance}, bandwidths);
+  const auto second_even = filter(in.even, {&first_odd.color, &odd_guide_variance}, bandwidths);
+  const auto second_odd = filter(in.odd, {&first_even.color, &even_guide_variance}, bandwidths);
   std::vector<Combined> images;
   for (std::size_t k = 0; k < bandwidths.size(); ++k)
     images.push_back(combine(in, second_even[k], second_odd[k]));
@@ -170,11 +175,11 @@ std::vector<Vec3d> stein_estimate(const DenoiseInput& in, const Candidate& candi
 
 }  // namespace
 
-DenoisedImage denoise(const DenoiseInput& in) {
+DenoisedImage denoise(const DenoiseInput& in, const std::function<bool()>& cancelled) {
   const auto start = std::chrono::steady_clock::now();
   const std::size_t n = in.size();
   const std::vector<Vec3d> variance = noisy_variance(in);
-  const std::vector<Combined> filtered = second_pass_images(in, variance);
+  const std::vector<Combined> filtered = second_pass_images(in, variance, cancelled);
   const std::vector<float> ones(n, 1.0f);
   std::vector<Candidate> candidates;
   for (const Combined& f : filtered) candidates.push_back({&f.color, &f.own_weight});

@@ -21,6 +21,8 @@
 // as rtiow's image error (relative RMS, offset 0.01); bias and noise are both in it.
 
 #include <cstdint>
+#include <exception>
+#include <functional>
 #include <vector>
 
 #include "core/denoise/denoise_input.h"
@@ -39,7 +41,14 @@ struct DenoisedImage {
   double seconds = 0.0;           // the denoiser's own time
 };
 
-// Deterministic: the same bits for the same input on any number of threads.
-DenoisedImage denoise(const DenoiseInput& input);
+// The denoiser stopped by its caller (a render's stop or time limit while it judges a round).
+class DenoiseCancelled : public std::exception {
+ public:
+  const char* what() const noexcept override { return "the denoiser was stopped"; }
+};
+
+// Deterministic: the same bits for the same input on any number of threads. With `cancelled`,
+// asked between rows (and true for good once true), throws DenoiseCancelled soon after it is.
+DenoisedImage denoise(const DenoiseInput& input, const std::function<bool()>& cancelled = {});
 
 }  // namespace rtiow

@@ -161,7 +161,8 @@ Regressed fit(const Design& x, const Weights& w, const Values& y, int self) {
 }  // namespace
 
 std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<Color>& half,
-                                      const Guide& guide, const std::vector<float>& bandwidths) {
+                                      const Guide& guide, const std::vector<float>& bandwidths,
+                                      const std::function<bool()>& cancelled) {
   const std::size_t n = in.size();
   const std::size_t results = guide.image ? bandwidths.size() : 1;
   std::vector<FilteredHalf> out(results);
@@ -175,6 +176,7 @@ std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<
     std::optional<PatchDistances> patches;
     if (guide.image) patches.emplace(in, guide);
     for (int py = int(y0); py < int(y1); ++py) {
+      if (cancelled && cancelled()) return;
       if (patches) patches->at_row(py);
       for (int px = 0; px < in.width; ++px) {
         const std::size_t p = std::size_t(py) * std::size_t(in.width) + std::size_t(px);

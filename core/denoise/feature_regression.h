@@ -9,6 +9,7 @@
 // error estimate needs (core/denoise/denoiser.h).
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "core/denoise/denoise_input.h"
@@ -37,7 +38,10 @@ struct FilteredHalf {
 // `half` (one of `in`'s halves) filtered at each bandwidth k of `bandwidths` (how far, in
 // standard deviations of the guide's noise, a neighbour's patch may differ and still count; one
 // result for an equal-weights guide). Deterministic: the same bits for any thread count.
+// Rows are left unfiltered once `cancelled` (if given) returns true, which must then stay true:
+// the caller asks it again and throws the work away.
 std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<Color>& half,
-                                      const Guide& guide, const std::vector<float>& bandwidths);
+                                      const Guide& guide, const std::vector<float>& bandwidths,
+                                      const std::function<bool()>& cancelled = {});
 
 }  // namespace rtiow

@@ -117,33 +117,41 @@ double neighbours_sample_variance(int width, int height, const std::vector<Vec3d
 // For a render whose pixels all have one count: each pixel's ratio over the window's
 // neighbours of about its own level of noise (at most kReplicateTrimFactor times the larger of
 // its 3x3 neighbours' level and its own, at least its own over kReplicateQuietFactor), where at
-// least kReplicateMinNeighbours remain (else the whole window's, already in `ratios`).
+// least kReplicateMinNeighbours remain (else the whole window's, already in `ratios`). The three
+// channels in one walk over the window (each with its own bounds and sums, added in the same
+// order as one at a time: the same bits, a third of the walking).
 void trimmed_ratios(int width, int height, const std::vector<Vec3d>& replicate,
                     const std::vector<Vec3d>& sample, const std::vector<int>& classes,
-                    std::size_t channel, std::vector<Vec3d>& ratios) {
+                    std::vector<Vec3d>& ratios) {
   const int r = kReplicateWindowRadius;
   parallel_for_range(std::size_t(height), 1, [&](std::size_t row_begin, std::size_t row_end) {
     for (auto y = int(row_begin); y < int(row_end); ++y) {
       for (int x = 0; x < width; ++x) {
         const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
         if (classes[p] < 0) continue;
-        const double own = sample[p][channel];
-        const double level =
-            neighbours_sample_variance(width, height, sample, classes, channel, x, y);
-        const double limit = kReplicateTrimFactor * std::max(level, own);
-        const double low = own / kReplicateQuietFactor;
-        double replicates = 0, samples = 0;
-        int kept = 0;
+        double limit[3], low[3], replicates[3] = {0, 0, 0}, samples[3] = {0, 0, 0};
+        int kept[3] = {0, 0, 0};
+        for (std::size_t c = 0; c < 3; ++c) {
+          const double own = sample[p][c];
+          const double level = neighbours_sample_variance(width, height, sample, classes, c, x, y);
+          limit[c] = kReplicateTrimFactor * std::max(level, own);
+          low[c] = own / kReplicateQuietFactor;
+        }
         for (int ny = std::max(0, y - r); ny <= std::min(height - 1, y + r); ++ny) {
           for (int nx = std::max(0, x - r); nx <= std::min(width - 1, x + r); ++nx) {
             const std::size_t q = std::size_t(ny) * std::size_t(width) + std::size_t(nx);
-            const double spread = sample[q][channel];
-            if (q == p || classes[q] < 0 || spread > limit || spread < low || spread == 0.0)
-              continue;
-            replicates += replicate[q][channel], samples += sample[q][channel], ++kept;
+            if (q == p || classes[q] < 0) continue;
+            for (std::size_t c = 0; c < 3; ++c) {
+              const double spread = sample[q][c];
+              if (spread > limit[c] || spread < low[c] || spread == 0.0) continue;
+              replicates[c] += replicate[q][c], samples[c] += spread, ++kept[c];
+            }
           }
         }
-        if (kept >= kReplicateMinNeighbours) ratios[p][channel] = ratio_of(replicates, samples);
+        for (std::size_t c = 0; c < 3; ++c) {
+          if (kept[c] >= kReplicateMinNeighbours)
+            ratios[p][c] = ratio_of(replicates[c], samples[c]);
+        }
       }
     }
   });
@@ -184,10 +192,7 @@ std::vector<Vec3d> replicate_ratios(int width, int height, const std::vector<Pix
     const WindowTotals all = class_windows(width, height, replicate, sample, channel, classes, -1);
     for (std::size_t p = 0; p < sums.size(); ++p)
       ratios[p][channel] = ratio_of_window(all.replicate[p], all.sample[p], all.pixels[p]);
-    if (uniform_counts) {
-      trimmed_ratios(width, height, replicate, sample, classes, channel, ratios);
-      continue;
-    }
+    if (uniform_counts) continue;  // trimmed below, the three channels at once
     for (int c = 0; c <= most; ++c) {
       if (std::find(classes.begin(), classes.end(), c) == classes.end()) continue;
       const WindowTotals own = class_windows(width, height, replicate, sample, channel, classes, c);
@@ -198,6 +203,7 @@ std::vector<Vec3d> replicate_ratios(int width, int height, const std::vector<Pix
       }
     }
   }
+  if (uniform_counts) trimmed_ratios(width, height, replicate, sample, classes, ratios);
   return ratios;
 }
 

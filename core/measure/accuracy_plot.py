@@ -14,10 +14,7 @@ def xy(rows, x, y):
     return [r[x] for r in rows], [r[y] for r in rows]
 
 
-def main(figures, png):
-    r = json.load(figures)
-    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(16, 5))
-
+def plot_error_against_time(ax1, r):
     for sampler, marker in zip(r["spp"], "os^"):
         ax1.plot(*xy(r["spp"][sampler], "seconds", "rel_mse"), marker + "-",
                  label="%s (spp 1..%d)" % (sampler, r["max_spp"]))
@@ -49,6 +46,8 @@ def main(figures, png):
     ax1.grid(True, which="both", alpha=0.3)
     ax1.legend(fontsize=7)
 
+
+def plot_convergence(ax2, r):
     s = r["summary"]
     for sampler, marker in zip(r["spp"], "os^"):
         ax2.plot(*xy(r["spp"][sampler], "parameter", "rmse"), marker + "-",
@@ -65,6 +64,8 @@ def main(figures, png):
     ax2.grid(True, which="both", alpha=0.3)
     ax2.legend(fontsize=8)
 
+
+def plot_depth_limit(ax3, r):
     # Bias against time for the depth limit: values at or below the noise floor are drawn
     # on it (the floor is the difference's standard error, so they are indistinguishable).
     rows = r["depth_sweep"]
@@ -87,6 +88,13 @@ def main(figures, png):
     ax3.grid(True, which="both", alpha=0.3)
     ax3.legend(fontsize=8)
 
+
+def main(figures, png):
+    r = json.load(figures)
+    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(16, 5))
+    plot_error_against_time(ax1, r)
+    plot_convergence(ax2, r)
+    plot_depth_limit(ax3, r)
     fig.suptitle("rtiow accuracy: %s %dx%d, reference %d spp" %
                  (r["scene"], r["width"], r["height"], r["reference_spp"]))
     fig.tight_layout()

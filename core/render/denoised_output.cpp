@@ -94,9 +94,9 @@ std::string describe(const DenoiseFigures& f) {
   return line;
 }
 
-DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels,
-                               Metadata& metadata) {
-  return denoised_output(denoise(denoise_input(result)), extra_channels, metadata);
+DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels, Metadata& metadata,
+                               const std::function<bool()>& cancelled) {
+  return denoised_output(denoise(denoise_input(result), cancelled), extra_channels, metadata);
 }
 
 DenoisedOutput denoised_output(DenoisedImage d, bool extra_channels, Metadata& metadata) {

@@ -56,7 +56,9 @@ std::string why_not_denoised(const RenderResult& result);
 // Denoises `result` (core/denoise/denoiser.h) and records its figures in `metadata`; the
 // channels only where `extra_channels` (the output can hold them). Throws InvalidInput where
 // the result lacks what the denoiser needs (core/denoise/denoise_input.h).
-DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels, Metadata& metadata);
+// `cancelled` as denoise() takes it.
+DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels, Metadata& metadata,
+                               const std::function<bool()>& cancelled = {});
 
 // The same for an image already denoised (a render denoised in memory, written later).
 DenoisedOutput denoised_output(DenoisedImage denoised, bool extra_channels, Metadata& metadata);

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 #include "core/denoise/denoiser.h"
@@ -30,12 +31,13 @@ inline std::uint32_t next_denoised_count(std::uint32_t n, double error, double a
   return std::uint32_t(std::min(double(most), next));
 }
 
-// The denoiser's image of the state's sums.
-inline DenoisedImage denoise_state(const RenderSettings& settings,
-                                   const PixelAccumulators& pixels) {
+// The denoiser's image of the state's sums; throws DenoiseCancelled once `cancelled` is true.
+inline DenoisedImage denoise_state(const RenderSettings& settings, const PixelAccumulators& pixels,
+                                   const std::function<bool()>& cancelled) {
   return denoise(
       denoise_input(DenoiseSource{pixels.sums, pixels.samples, settings.first_sample,
-                                  replicates(settings), settings.width, settings.height}));
+                                  replicates(settings), settings.width, settings.height}),
+      cancelled);
 }
 
 template <typename Accel>
@@ -49,8 +51,16 @@ void render_by_denoised_error(const RenderContext<Accel>& ctx, const ImageErrorT
   for (bool first = start_rounds(state, least);; first = false) {
     render_round(ctx, first, deadline, journal, progress, result);
     if (deadline.ended()) break;
-    auto denoised = std::make_shared<const DenoisedImage>(with_threads(
-        ctx.settings.threads, [&] { return denoise_state(ctx.settings, state.pixels); }));
+    // A stop or the time limit ends the judgement too (a large image's takes seconds): the
+    // render ends as one stopped in a round does, judged by its last finished judgement.
+    std::shared_ptr<const DenoisedImage> denoised;
+    try {
+      denoised = std::make_shared<const DenoisedImage>(with_threads(ctx.settings.threads, [&] {
+        return denoise_state(ctx.settings, state.pixels, [&] { return deadline(); });
+      }));
+    } catch (const DenoiseCancelled&) {
+      break;
+    }
     result.estimated_image_error = denoised->estimated_error;
     progress->image_error = result.estimated_image_error;
     ++progress->judgements;

@@ -122,7 +122,7 @@ MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeR
   }
   if (request.denoise) {
     DenoisedOutput denoised = denoised_output(merged_for_denoising(merged), request.extra_channels,
-                                              image.metadata);
+                                              image.metadata, request.cancelled);
     image.channels.insert(image.channels.begin(),
                           std::make_move_iterator(denoised.channels.begin()),
                           std::make_move_iterator(denoised.channels.end()));

@@ -6,13 +6,14 @@
 // the parts were rendered with.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "core/render/denoised_output.h"
 #include "core/film/film.h"
 #include "core/io/image_output.h"
+#include "core/render/denoised_output.h"
 #include "core/render/first_hit_passes.h"
 
 namespace rtiow {
@@ -21,6 +22,8 @@ struct MergeRequest {
   bool statistics = false;     // the spp and variance channels (--stats-channels)
   bool extra_channels = true;  // the output holds channels beyond R, G, B (EXR)
   bool denoise = false;        // the image denoised (core/denoise/denoised_output.h)
+  // Asked while denoising: once true, the merge throws DenoiseCancelled and writes nothing.
+  std::function<bool()> cancelled;
 };
 
 struct MergedImage {
@@ -30,8 +33,8 @@ struct MergedImage {
   FramePlacement placement;            // where a crop's parts lie in the frame
   std::uint64_t samples = 0;           // per pixel, the whole job's
   std::size_t parts = 0;
-  FirstHitPasses passes;     // the passes the parts hold
-  bool passes_kept = false;  // false: the output cannot hold them (they are left out)
+  FirstHitPasses passes;                   // the passes the parts hold
+  bool passes_kept = false;                // false: the output cannot hold them (they are left out)
   std::optional<DenoiseFigures> denoised;  // what the denoiser delivered, where asked
 };
 

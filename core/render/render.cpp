@@ -143,6 +143,23 @@ RenderSettings film_settings(RenderSettings settings) {
   return settings;
 }
 
+// The sample loop the budget asks for.
+template <typename Accel>
+void render_samples(const RenderContext<Accel>& ctx, RenderProgress* progress,
+                    RenderJournal& journal, RenderResult& result) {
+  const SampleBudget& samples = ctx.settings.samples;
+  if (const auto* target = std::get_if<PixelErrorTarget>(&samples)) {
+    render_adaptive(ctx, *target, progress, journal, result);
+  } else if (const auto* image = std::get_if<ImageErrorTarget>(&samples);
+             image && image->denoised) {
+    render_by_denoised_error(ctx, *image, progress, journal, result);
+  } else if (is_adaptive(samples)) {
+    render_by_image_error(ctx, progress, journal, result);
+  } else {
+    render_uniform(ctx, progress, journal, result);
+  }
+}
+
 template <typename Accel>
 RenderResult render_with(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                          const FramePlacement& frame, RenderProgress* progress,
@@ -171,16 +188,7 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   progress->loop_start_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
                                 std::chrono::steady_clock::now().time_since_epoch())
                                 .count();
-  if (const auto* target = std::get_if<PixelErrorTarget>(&settings.samples)) {
-    render_adaptive(ctx, *target, progress, journal, result);
-  } else if (const auto* image = std::get_if<ImageErrorTarget>(&settings.samples);
-             image && image->denoised) {
-    render_by_denoised_error(ctx, *image, progress, journal, result);
-  } else if (is_adaptive(settings)) {
-    render_by_image_error(ctx, progress, journal, result);
-  } else {
-    render_uniform(ctx, progress, journal, result);
-  }
+  render_samples(ctx, progress, journal, result);
   result.render_seconds = journal.elapsed();
   journal.save(result, result.stopped ? SaveReason::Stopped : SaveReason::Finished);
   PixelAccumulators& pixels = state.pixels;
