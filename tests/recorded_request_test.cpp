@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -12,6 +13,7 @@
 #include "core/io/image_output.h"
 #include "core/limits/error.h"
 #include "core/render/render.h"
+#include "core/render/render_identity.h"
 #include "core/render/render_job.h"
 #include "core/render/render_metadata.h"
 #include "core/scene/builtin_scenes.h"
@@ -103,6 +105,47 @@ TEST_F(RecordedRequestTest, WhatNoRenderRepeatsIsRefusedUnlessTheCallerGivesIt) 
   EXPECT_EQ(again.request.spp, 4);
   EXPECT_FALSE(again.request.adaptive);
   EXPECT_FALSE(reproducible) << "the image recorded its time: it was not reproducible";
+}
+
+// The image's metadata carries the render's identity: each field the identity table gives a
+// metadata key is written from the identity, and the request read back makes a render of the
+// same identity, field for field (a crop, the passes, seeds past 2^63 and a sampler, depth and
+// roulette other than the defaults).
+TEST_F(RecordedRequestTest, TheImageCarriesTheRenderIdentity) {
+  JobRequest job;
+  job.scene = "spheres:12", job.scene_seed = 18446744073709551614ull;
+  job.request.width = 32, job.request.height = 20, job.request.spp = 2;
+  job.request.seed = 18446744073709551615ull;  // the largest: above what an int64 holds
+  job.request.max_depth = 7, job.request.russian_roulette = false;
+  job.request.sampler = SamplerKind::Independent;
+  job.request.crop = PixelRegion{4, 3, 20, 15};
+  job.request.passes = parse_passes("albedo,depth");
+  for (const char* name : {"identity.png", "identity.exr"}) {
+    image_ = fs::path(::testing::TempDir()) / name;
+    job.output = (fs::path(::testing::TempDir()) / "unwritten.exr").string();
+    job.output_given = true;
+    const RenderJob made = render_to_image(job, true);
+    const RenderIdentity identity = render_identity(made.scene, made.settings);
+    const RenderResult result = render(made.scene, made.settings);
+    const Metadata metadata = render_metadata(made.scene, made.settings, result, true);
+    for (const IdentityFieldDeclaration& d : kIdentityFields) {
+      if (!d.metadata_key) continue;
+      const auto entry = std::find_if(metadata.begin(), metadata.end(),
+                                      [&](const auto& e) { return e.first == d.metadata_key; });
+      ASSERT_NE(entry, metadata.end()) << d.metadata_key;
+      EXPECT_EQ(*entry, identity_metadata(identity, d.field)) << d.metadata_key;
+    }
+    const RecordedRequest image = read_recorded_request(image_.string(), "image");
+    bool reproducible = false;
+    JobRequest asked;
+    asked.output = job.output, asked.output_given = true;
+    const RenderJob remade = prepare_job(overlay_recorded(image, asked, {}, true, reproducible));
+    const RenderIdentity again = render_identity(remade.scene, remade.settings);
+    for (const IdentityFieldDeclaration& d : kIdentityFields) {
+      EXPECT_EQ(again[d.field], identity[d.field]) << name << ": " << d.label;
+    }
+    TearDown();
+  }
 }
 
 }  // namespace

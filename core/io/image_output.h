@@ -7,6 +7,7 @@
 // only when complete, so a failed write never leaves a truncated image or touches another file.
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <variant>
@@ -19,6 +20,13 @@ namespace rtiow {
 // Metadata stored with the image: typed where the format allows, as strings otherwise.
 using MetadataValue = std::variant<std::int64_t, double, std::string>;
 using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
+
+// A count or a seed as metadata: a whole number, or its digits where it is past what an int64
+// holds (a seed's 64 bits), so that it reads back as itself.
+inline MetadataValue whole_metadata(std::uint64_t value) {
+  if (value > std::uint64_t(std::numeric_limits<std::int64_t>::max())) return std::to_string(value);
+  return std::int64_t(value);
+}
 
 // Every metadata key is stored in a file with this prefix (the keys:
 // core/render/render_metadata.h).

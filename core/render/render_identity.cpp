@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cstdio>
+#include <stdexcept>
 #include <variant>
 
 #include "core/limits/error.h"
@@ -66,6 +67,20 @@ std::string identity_mismatch(const RenderIdentity& stored, const RenderIdentity
             quote_value(b, 60);
   }
   return text;
+}
+
+std::pair<std::string, MetadataValue> identity_metadata(const RenderIdentity& identity,
+                                                        IdentityField field) {
+  const IdentityFieldDeclaration& d = declaration_of(field);
+  if (!d.metadata_key) throw std::logic_error(std::string(d.key) + " has no metadata key");
+  const std::string& text = identity[field];
+  if (!d.whole_number) return {d.metadata_key, text};
+  std::uint64_t bits = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), bits);
+  if (error != std::errc() || end != text.data() + text.size()) {
+    throw std::logic_error(std::string(d.key) + " is not a whole number: " + text);
+  }
+  return {d.metadata_key, whole_metadata(bits)};
 }
 
 std::string shared_digest(const RenderIdentity& identity) {

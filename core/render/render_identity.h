@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <string>
 
+#include "core/io/image_output.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
@@ -33,21 +34,42 @@ struct IdentityFieldDeclaration {
   const char* key;    // in files (a checkpoint's header)
   const char* label;  // in messages
   bool shared;        // whether every share of one render has it (then it is in the digest)
+  // In an image's metadata ("rtiow:<key>", core/render/render_metadata.h), where one key holds
+  // it: that key, and whether it is written as a whole number. Null where the metadata says it
+  // in other words: the size as the image's own with its crop and frame, the sampling as its
+  // mode and where it ended, the passes as their list, a share's first sample in a part's own
+  // fields.
+  const char* metadata_key;
+  bool whole_number;
 };
 
 inline constexpr std::array<IdentityFieldDeclaration, 11> kIdentityFields = {{
-    {IdentityField::Version, "version", "rtiow version", false},  // merge names it first
-    {IdentityField::Scene, "scene", "scene", true},
-    {IdentityField::Size, "size", "image size", true},
-    {IdentityField::Depth, "depth", "depth", true},
-    {IdentityField::Seed, "seed", "seed", true},
-    {IdentityField::Sampler, "sampler", "sampler", true},
-    {IdentityField::Replicates, "replicates", "replicates", true},
-    {IdentityField::Roulette, "roulette", "Russian roulette", true},
-    {IdentityField::FirstSample, "first_sample", "first sample", false},
-    {IdentityField::Sampling, "sampling", "sampling", false},
-    {IdentityField::Passes, "passes", "passes", false},
+    // merge names the version first
+    {IdentityField::Version, "version", "rtiow version", false, "version", false},
+    {IdentityField::Scene, "scene", "scene", true, "scene_digest", false},
+    {IdentityField::Size, "size", "image size", true, nullptr, false},
+    {IdentityField::Depth, "depth", "depth", true, "depth", true},
+    {IdentityField::Seed, "seed", "seed", true, "seed", true},
+    {IdentityField::Sampler, "sampler", "sampler", true, "sampler", false},
+    {IdentityField::Replicates, "replicates", "replicates", true, "replicates", true},
+    {IdentityField::Roulette, "roulette", "Russian roulette", true, "russian_roulette", false},
+    {IdentityField::FirstSample, "first_sample", "first sample", false, nullptr, false},
+    {IdentityField::Sampling, "sampling", "sampling", false, nullptr, false},
+    {IdentityField::Passes, "passes", "passes", false, nullptr, false},
 }};
+
+constexpr const IdentityFieldDeclaration& declaration_of(IdentityField f) {
+  return kIdentityFields[std::size_t(f)];
+}
+
+// The table is in the enum's order, so declaration_of() is an index.
+constexpr bool declared_in_order() {
+  for (std::size_t i = 0; i < kIdentityFields.size(); ++i) {
+    if (std::size_t(kIdentityFields[i].field) != i) return false;
+  }
+  return true;
+}
+static_assert(declared_in_order());
 
 // Each field's value as text, in kIdentityFields' order.
 struct RenderIdentity {
@@ -70,6 +92,12 @@ std::string sampling_words(const SampleBudget& samples);
 // words ("seed: the checkpoint's '1', this render's '2'; ..."); empty when they agree.
 std::string identity_mismatch(const RenderIdentity& stored, const RenderIdentity& now,
                               const std::string& whose);
+
+// `field` as an image's metadata records it: its declaration's metadata key, with the value as
+// text, or as a whole number where declared so (as its digits where a whole number's 64 bits
+// cannot hold it: a seed above 2^63 - 1). `field` must have a metadata key.
+std::pair<std::string, MetadataValue> identity_metadata(const RenderIdentity& identity,
+                                                        IdentityField field);
 
 // A digest of the fields every share of one render has (IdentityFieldDeclaration::shared):
 // parts and ranks with the same digest add up to one render.

@@ -15,8 +15,6 @@
 #include "core/limits/number_text.h"
 #include "core/render/render_outcome.h"
 #include "core/render/render_statistics.h"
-#include "core/scene_file/scene_digest.h"
-#include "core/version.h"
 
 namespace rtiow {
 namespace {
@@ -158,27 +156,25 @@ void add_adaptive_sampling(const RenderSettings& s, const RenderResult& r,
 Metadata render_metadata(const Scene& scene, const RenderSettings& s, const RenderResult& r,
                          bool reproducible) {
   namespace key = metadata_key;
+  using F = IdentityField;
+  const RenderIdentity identity = render_identity(scene, s);
   Metadata metadata{{key::kScene, scene.name},
-                    {key::kSceneDigest, scene_digest(scene)},
+                    identity_metadata(identity, F::Scene),
                     {key::kCamera, camera_record(scene.camera)},
-                    {key::kVersion, std::string(version())}};
+                    identity_metadata(identity, F::Version)};
   if (const std::string fresnel = glass_reflectance(scene); !fresnel.empty())
     metadata.emplace_back(key::kFresnel, fresnel);
-  if (scene.layout_seed) metadata.emplace_back(key::kSceneSeed, std::int64_t(*scene.layout_seed));
+  if (scene.layout_seed) metadata.emplace_back(key::kSceneSeed, whole_metadata(*scene.layout_seed));
   if (s.crop) {
     metadata.emplace_back(key::kCrop, to_string(*s.crop));
     metadata.emplace_back(key::kFrame, std::to_string(s.width) + "x" + std::to_string(s.height));
   }
   if (s.passes.any()) metadata.emplace_back(key::kPasses, to_string(s.passes));
-  metadata.insert(metadata.end(), {
-                                      {key::kDepth, std::int64_t(s.max_depth)},
-                                      {key::kSeed, std::int64_t(s.seed)},
-                                      {key::kSampler, to_string(s.sampler)},
-                                      {key::kReplicates, std::int64_t(replicates(s))},
-                                      {key::kRussianRoulette, roulette_name(s.russian_roulette)},
-                                      {key::kAccelerator, to_string(s.accel)},
-                                      {key::kRaysTraced, std::int64_t(r.rays_traced)},
-                                  });
+  for (const F field : {F::Depth, F::Seed, F::Sampler, F::Replicates, F::Roulette}) {
+    metadata.push_back(identity_metadata(identity, field));
+  }
+  metadata.insert(metadata.end(), {{key::kAccelerator, to_string(s.accel)},
+                                   {key::kRaysTraced, std::int64_t(r.rays_traced)}});
   const RenderOutcome outcome = describe_outcome(s, r);
   if (is_adaptive(s)) {
     add_adaptive_sampling(s, r, outcome, metadata);

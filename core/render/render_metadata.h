@@ -1,9 +1,11 @@
 #pragma once
 // The provenance an image or part file carries: what was rendered, how, and how far it got,
 // stored as "rtiow:<key>" attributes. The keys are named here once, because merging parts
-// reads back what rendering wrote.
+// reads back what rendering wrote; the keys of the render's identity are its table's
+// (core/render/render_identity.h), which also gives their values.
 
 #include "core/io/image_output.h"
+#include "core/render/render_identity.h"
 #include "core/render/render_request.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
@@ -12,13 +14,14 @@ namespace rtiow::metadata_key {
 
 inline constexpr const char* kScene = "scene";
 inline constexpr const char* kSceneSeed = "scene_seed";
-inline constexpr const char* kDepth = "depth";
-inline constexpr const char* kSeed = "seed";
-inline constexpr const char* kSampler = "sampler";
+inline constexpr const char* kDepth = declaration_of(IdentityField::Depth).metadata_key;
+inline constexpr const char* kSeed = declaration_of(IdentityField::Seed).metadata_key;
+inline constexpr const char* kSampler = declaration_of(IdentityField::Sampler).metadata_key;
 // How many independent replicates the samples alternate between: 2 where the render kept what
 // an error estimate needs (absent in files of an older rtiow, which always kept two), 1 else.
-inline constexpr const char* kReplicates = "replicates";
-inline constexpr const char* kRussianRoulette = "russian_roulette";  // "on" or "off"
+inline constexpr const char* kReplicates = declaration_of(IdentityField::Replicates).metadata_key;
+inline constexpr const char* kRussianRoulette =  // "on" or "off"
+    declaration_of(IdentityField::Roulette).metadata_key;
 inline constexpr const char* kAccelerator = "accelerator";
 inline constexpr const char* kRaysTraced = "rays_traced";
 inline constexpr const char* kSpp = "spp";                     // uniform sampling
@@ -48,8 +51,8 @@ inline constexpr const char* kRenderSeconds = "render_seconds";  // left out if 
 // What makes the render again, beyond the scene's name: rtiow's version, the digest of the
 // scene rendered (core/scene_file/scene_digest.h: its spheres, materials, camera, sky and image
 // settings), the camera used (after any override) and the glass's reflectance model.
-inline constexpr const char* kVersion = "version";
-inline constexpr const char* kSceneDigest = "scene_digest";
+inline constexpr const char* kVersion = declaration_of(IdentityField::Version).metadata_key;
+inline constexpr const char* kSceneDigest = declaration_of(IdentityField::Scene).metadata_key;
 inline constexpr const char* kCamera = "camera";
 inline constexpr const char* kFresnel = "fresnel";
 inline constexpr const char* kSceneFile = "scene_file";  // the file it was read from, if any
