@@ -201,6 +201,12 @@ TEST(Cli, BenchComparesTwoFiguresFilesByTheirRuns) {
                                      "one)"),
             std::string::npos)
       << refused.stderr_text;
+  // Read as every JSON input is: a nesting no bench.json has is refused, not followed.
+  std::ofstream(other) << std::string(200000, '[') << std::string(200000, ']');
+  const CommandResult deep = run_rtiow("bench --compare " + other.string() + " " + a.string());
+  EXPECT_EQ(deep.exit_code, 2);
+  EXPECT_EQ(count_lines(deep.stderr_text), 1) << deep.stderr_text;
+  EXPECT_NE(deep.stderr_text.find("not a bench.json"), std::string::npos) << deep.stderr_text;
 }
 
 // --quick gives bench and accuracy the settings of a short run, but for the options given.

@@ -1,9 +1,9 @@
 #include "core/measure/bench_compare.h"
 #include "core/limits/setting_name.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -11,23 +11,53 @@
 
 #include "core/io/input_file.h"
 #include "core/limits/error.h"
+#include "core/limits/number_text.h"
+#include "core/scene_file/json_stream.h"
 
 namespace rtiow {
 namespace {
 
-using json = nlohmann::json;
-
 constexpr std::uint64_t kMostBenchBytes = std::uint64_t(16) << 20;
 
-json read_bench(const std::string& path) {
+// The member `key` of `value` where it is an object that has one, else null.
+const JsonValue* member_of(const JsonValue& value, const char* key) {
+  return value.IsObject() ? find_member(value, key) : nullptr;
+}
+
+// A number member of `object`, if it has one.
+std::optional<double> number_of(const JsonValue& object, const char* key) {
+  const JsonValue* value = member_of(object, key);
+  if (!value || !value->IsNumber()) return std::nullopt;
+  return value->GetDouble();
+}
+
+// An object member of `object`, or null.
+const JsonValue* object_of(const JsonValue& object, const char* key) {
+  const JsonValue* value = member_of(object, key);
+  return value && value->IsObject() ? value : nullptr;
+}
+
+// A sphere count as bench.json wrote it ("100000", not "1e+05").
+std::string count_text(double n) {
+  return n == std::floor(n) && std::fabs(n) < 9e15 ? std::to_string(std::int64_t(n))
+                                                   : shortest_text(n);
+}
+
+// Read by the reader every JSON input goes through: bounded, no duplicate keys.
+void read_bench(const std::string& path, JsonDocument& figures) {
   const InputFile file(path, kMostBenchBytes, "bench figures");
-  json figures = json::parse(file.first_bytes(std::size_t(file.size())), nullptr, false);
-  if (figures.is_discarded() || !figures.is_object() || !figures.contains("cover") ||
-      !figures["cover"].is_object()) {
-    throw InvalidInput("bench figures " + quote_value(path) + ": not a bench.json (rtiow bench " +
-                       setting("out", "DIR") + " writes one)");
+  const std::string text = file.first_bytes(std::size_t(file.size()));
+  const std::string source = "bench figures " + quote_value(path);
+  try {
+    JsonInput input(JsonInput::from_text(text), text.size(), source);
+    parse_json_stream(input, source, {}, figures);
+  } catch (const InvalidInput&) {
+    figures.SetNull();
   }
-  return figures;
+  if (!object_of(figures, "cover")) {
+    throw InvalidInput(source + ": not a bench.json (rtiow bench " + setting("out", "DIR") +
+                       " writes one)");
+  }
 }
 
 // A rate: its median, and its least and most where the file kept them (else the median).
@@ -36,38 +66,33 @@ struct Rate {
   bool spread = false;
 };
 
-std::optional<Rate> rate_of(const json& figures) {
-  if (!figures.is_object() || !figures.contains("mrays_per_second") ||
-      !figures["mrays_per_second"].is_number()) {
-    return std::nullopt;
-  }
+std::optional<Rate> rate_of(const JsonValue& figures) {
+  const std::optional<double> median = number_of(figures, "mrays_per_second");
+  if (!median) return std::nullopt;
   Rate r;
-  r.median = r.least = r.most = figures["mrays_per_second"].get<double>();
+  r.median = r.least = r.most = *median;
   // One run has no spread to judge a difference by.
-  const bool runs =
-      figures.contains("runs") && figures["runs"].is_number() && figures["runs"].get<double>() >= 2;
-  if (runs && figures.contains("mrays_per_second_min") &&
-      figures.contains("mrays_per_second_max") && figures["mrays_per_second_min"].is_number() &&
-      figures["mrays_per_second_max"].is_number()) {
-    r.least = figures["mrays_per_second_min"].get<double>();
-    r.most = figures["mrays_per_second_max"].get<double>();
+  const std::optional<double> runs = number_of(figures, "runs");
+  const std::optional<double> least = number_of(figures, "mrays_per_second_min");
+  const std::optional<double> most = number_of(figures, "mrays_per_second_max");
+  if (runs && *runs >= 2 && least && most) {
+    r.least = *least, r.most = *most;
     r.spread = true;
   }
   return r;
 }
 
-std::string machine_of(const json& figures) {
-  if (!figures.contains("context") || !figures["context"].is_object()) {
-    return "no context recorded";
-  }
-  const json& c = figures["context"];
+std::string machine_of(const JsonValue& figures) {
+  const JsonValue* c = object_of(figures, "context");
+  if (!c) return "no context recorded";
   const auto text = [&](const char* key) {
-    return c.contains(key) && c[key].is_string() ? c[key].get<std::string>() : std::string("?");
+    const JsonValue* value = member_of(*c, key);
+    return value && value->IsString() ? std::string(text_of(*value)) : std::string("?");
   };
   return text("cpu") + ", rtiow " + text("rtiow");
 }
 
-void compare_row(const std::string& label, const json& a, const json& b, int& beyond) {
+void compare_row(const std::string& label, const JsonValue& a, const JsonValue& b, int& beyond) {
   const std::optional<Rate> ra = rate_of(a), rb = rate_of(b);
   if (!ra || !rb) return;
   std::string verdict;
@@ -86,7 +111,8 @@ void compare_row(const std::string& label, const json& a, const json& b, int& be
 }  // namespace
 
 int compare_bench_files(const std::string& before, const std::string& after) {
-  const json a = read_bench(before), b = read_bench(after);
+  JsonDocument a, b;
+  read_bench(before, a), read_bench(after, b);
   std::printf("A: %s (%s)\nB: %s (%s)\n", one_line(before).c_str(), machine_of(a).c_str(),
               one_line(after).c_str(), machine_of(b).c_str());
   std::printf("  %-28s %9s %9s %8s  %s\n", "Mrays/s (medians)", "A", "B", "B/A",
@@ -99,19 +125,21 @@ int compare_bench_files(const std::string& before, const std::string& after) {
       {"trace", "cover, raw rtcIntersect1"},
       {"traversal", "cover, traversal alone"}};
   for (const auto& [key, label] : cover) {
-    if (a["cover"].contains(key) && b["cover"].contains(key)) {
-      compare_row(label, a["cover"][key], b["cover"][key], beyond);
-    }
+    const JsonValue* in_a = member_of(*object_of(a, "cover"), key);
+    const JsonValue* in_b = member_of(*object_of(b, "cover"), key);
+    if (in_a && in_b) compare_row(label, *in_a, *in_b, beyond);
   }
-  if (a.contains("scaling") && b.contains("scaling") && a["scaling"].is_array() &&
-      b["scaling"].is_array()) {
-    for (const json& pa : a["scaling"]) {
-      for (const json& pb : b["scaling"]) {
-        if (!pa.contains("n") || !pb.contains("n") || pa["n"] != pb["n"]) continue;
+  const JsonValue* scaling_a = member_of(a, "scaling");
+  const JsonValue* scaling_b = member_of(b, "scaling");
+  if (scaling_a && scaling_b && scaling_a->IsArray() && scaling_b->IsArray()) {
+    for (const JsonValue& pa : scaling_a->GetArray()) {
+      for (const JsonValue& pb : scaling_b->GetArray()) {
+        const std::optional<double> na = number_of(pa, "n"), nb = number_of(pb, "n");
+        if (!na || !nb || *na != *nb) continue;
         for (const char* accel : {"embree", "naive"}) {
-          if (pa.contains(accel) && pb.contains(accel)) {
-            compare_row("spheres:" + pa["n"].dump() + ", " + accel, pa[accel], pb[accel], beyond);
-          }
+          const JsonValue* ra = member_of(pa, accel);
+          const JsonValue* rb = member_of(pb, accel);
+          if (ra && rb) compare_row("spheres:" + count_text(*na) + ", " + accel, *ra, *rb, beyond);
         }
       }
     }

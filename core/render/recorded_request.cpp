@@ -1,7 +1,5 @@
 #include "core/render/recorded_request.h"
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -15,6 +13,7 @@
 #include "core/limits/number_text.h"
 #include "core/limits/setting_name.h"
 #include "core/render/render_metadata.h"
+#include "core/scene_file/json_stream.h"
 #include "core/scene_file/scene_digest.h"
 
 namespace rtiow {
@@ -22,19 +21,31 @@ namespace {
 
 using Recorded = std::map<std::string, std::string>;  // key (without "rtiow:") -> text
 
+// The rtiow:* keys of a JSON object in an image's description, read by the reader every JSON
+// input goes through (bounded, no duplicate keys); a description that is not such an object
+// (another program's text) holds none.
 void add_json_keys(const std::string& description, Recorded& recorded) {
-  const auto all = nlohmann::json::parse(description, nullptr, /*allow_exceptions=*/false);
-  if (!all.is_object()) return;
-  const std::string prefix = kMetadataPrefix;
-  for (const auto& [name, value] : all.items()) {
-    if (name.rfind(prefix, 0) != 0) continue;
-    const std::string key = name.substr(prefix.size());
-    if (value.is_string()) {
-      recorded[key] = value.get<std::string>();
-    } else if (value.is_number_integer()) {
-      recorded[key] = value.dump();
-    } else if (value.is_number_float()) {
-      recorded[key] = shortest_text(value.get<double>());
+  JsonDocument all;
+  try {
+    JsonInput input(JsonInput::from_text(description), description.size(), "image description");
+    parse_json_stream(input, "image description", {}, all);
+  } catch (const InvalidInput&) {
+    return;
+  }
+  if (!all.IsObject()) return;
+  const std::string_view prefix = kMetadataPrefix;
+  for (const JsonMember& m : members(all)) {
+    const std::string_view name = text_of(m.name);
+    if (!name.starts_with(prefix)) continue;
+    const std::string key(name.substr(prefix.size()));
+    if (m.value.IsString()) {
+      recorded[key] = std::string(text_of(m.value));
+    } else if (m.value.IsInt64()) {
+      recorded[key] = std::to_string(m.value.GetInt64());
+    } else if (m.value.IsUint64()) {
+      recorded[key] = std::to_string(m.value.GetUint64());
+    } else if (m.value.IsNumber()) {
+      recorded[key] = shortest_text(m.value.GetDouble());
     }
   }
 }
