@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "core/film/pixel_neighbours.h"
+#include "core/parallel/instruction_sets.h"
 #include "core/parallel/parallel_for_range.h"
 
 namespace rtiow {
@@ -114,43 +116,118 @@ double neighbours_sample_variance(int width, int height, const std::vector<Vec3d
   return count > 0 ? total / count : 0.0;
 }
 
+// One channel's trimmed window sums for a pixel: its neighbours whose sample variance lies in
+// [low, limit] (and is not 0, as a constant or sampleless pixel's is) added in the window's
+// order, row by row.
+struct TrimmedBounds {
+  double limit = 0, low = 0;
+};
+
+// Four pixels side by side, one per lane: each lane adds its own window in the same order as
+// one pixel at a time, so every lane's sums are the scalar sums' bits (adding +0.0, the bits of
+// a masked-out neighbour, leaves a sum as it is).
+using Lanes = double __attribute__((vector_size(4 * sizeof(double))));
+using LaneMask = long long __attribute__((vector_size(4 * sizeof(double))));
+constexpr int kLanes = 4;
+
+// The pixels (x .. x + 3, y) of one channel, each window whole inside the image. Compiled for
+// each instruction set the hot loops pick from (AVX2's four lanes at once, else two and two).
+RTIOW_DISPATCHED void trimmed_lanes(int width, const std::vector<double>& replicate,
+                                    const std::vector<double>& sample,
+                                    const TrimmedBounds (&bounds)[kLanes], int x, int y,
+                                    double (&replicates)[kLanes], double (&samples)[kLanes],
+                                    double (&kept)[kLanes]) {
+  const int r = kReplicateWindowRadius;
+  Lanes limit, low;
+  for (int i = 0; i < kLanes; ++i) limit[i] = bounds[i].limit, low[i] = bounds[i].low;
+  Lanes sum_replicate{}, sum_sample{}, count{};
+  const Lanes one = {1, 1, 1, 1}, zero{};
+  for (int ny = y - r; ny <= y + r; ++ny) {
+    const std::size_t row = std::size_t(ny) * std::size_t(width) + std::size_t(x - r);
+    for (int dx = 0; dx <= 2 * r; ++dx) {
+      if (ny == y && dx == r) continue;  // each lane's own pixel
+      Lanes spread, value;
+      std::memcpy(&spread, &sample[row + std::size_t(dx)], sizeof spread);
+      std::memcpy(&value, &replicate[row + std::size_t(dx)], sizeof value);
+      const LaneMask keep = (spread <= limit) & (spread >= low) & (spread != zero);
+      sum_replicate += Lanes(LaneMask(value) & keep);
+      sum_sample += Lanes(LaneMask(spread) & keep);
+      count += Lanes(LaneMask(one) & keep);
+    }
+  }
+  for (int i = 0; i < kLanes; ++i)
+    replicates[i] = sum_replicate[i], samples[i] = sum_sample[i], kept[i] = count[i];
+}
+
+// One pixel of one channel, its window clipped to the image.
+void trimmed_pixel(int width, int height, const std::vector<double>& replicate,
+                   const std::vector<double>& sample, const TrimmedBounds& bounds, int x, int y,
+                   double& replicates, double& samples, double& kept) {
+  const int r = kReplicateWindowRadius;
+  replicates = samples = kept = 0;
+  for (int ny = std::max(0, y - r); ny <= std::min(height - 1, y + r); ++ny) {
+    for (int nx = std::max(0, x - r); nx <= std::min(width - 1, x + r); ++nx) {
+      if (nx == x && ny == y) continue;
+      const std::size_t q = std::size_t(ny) * std::size_t(width) + std::size_t(nx);
+      const double spread = sample[q];
+      if (spread > bounds.limit || spread < bounds.low || spread == 0.0) continue;
+      replicates += replicate[q], samples += spread, kept += 1;
+    }
+  }
+}
+
 // For a render whose pixels all have one count: each pixel's ratio over the window's
 // neighbours of about its own level of noise (at most kReplicateTrimFactor times the larger of
 // its 3x3 neighbours' level and its own, at least its own over kReplicateQuietFactor), where at
-// least kReplicateMinNeighbours remain (else the whole window's, already in `ratios`). The three
-// channels in one walk over the window (each with its own bounds and sums, added in the same
-// order as one at a time: the same bits, a third of the walking).
+// least kReplicateMinNeighbours remain (else the whole window's, already in `ratios`). Each
+// channel's values laid out on their own, four pixels at a time where their windows are whole.
 void trimmed_ratios(int width, int height, const std::vector<Vec3d>& replicate,
                     const std::vector<Vec3d>& sample, const std::vector<int>& classes,
                     std::vector<Vec3d>& ratios) {
   const int r = kReplicateWindowRadius;
+  std::vector<double> channel_replicate[3], channel_sample[3];
+  for (std::size_t c = 0; c < 3; ++c) {
+    channel_replicate[c].resize(sample.size()), channel_sample[c].resize(sample.size());
+    for (std::size_t p = 0; p < sample.size(); ++p) {
+      // A pixel without an estimate has none of either (its sample variance 0 keeps it out).
+      channel_replicate[c][p] = classes[p] < 0 ? 0.0 : replicate[p][c];
+      channel_sample[c][p] = classes[p] < 0 ? 0.0 : sample[p][c];
+    }
+  }
+  const auto bounds_of = [&](std::size_t c, int x, int y) {
+    const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+    const double own = sample[p][c];
+    const double level = neighbours_sample_variance(width, height, sample, classes, c, x, y);
+    return TrimmedBounds{kReplicateTrimFactor * std::max(level, own), own / kReplicateQuietFactor};
+  };
+  const auto store = [&](std::size_t c, int x, int y, double replicates, double samples,
+                         double kept) {
+    const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+    if (classes[p] >= 0 && kept >= kReplicateMinNeighbours)
+      ratios[p][c] = ratio_of(replicates, samples);
+  };
   parallel_for_range(std::size_t(height), 1, [&](std::size_t row_begin, std::size_t row_end) {
     for (auto y = int(row_begin); y < int(row_end); ++y) {
-      for (int x = 0; x < width; ++x) {
-        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
-        if (classes[p] < 0) continue;
-        double limit[3], low[3], replicates[3] = {0, 0, 0}, samples[3] = {0, 0, 0};
-        int kept[3] = {0, 0, 0};
-        for (std::size_t c = 0; c < 3; ++c) {
-          const double own = sample[p][c];
-          const double level = neighbours_sample_variance(width, height, sample, classes, c, x, y);
-          limit[c] = kReplicateTrimFactor * std::max(level, own);
-          low[c] = own / kReplicateQuietFactor;
-        }
-        for (int ny = std::max(0, y - r); ny <= std::min(height - 1, y + r); ++ny) {
-          for (int nx = std::max(0, x - r); nx <= std::min(width - 1, x + r); ++nx) {
-            const std::size_t q = std::size_t(ny) * std::size_t(width) + std::size_t(nx);
-            if (q == p || classes[q] < 0) continue;
-            for (std::size_t c = 0; c < 3; ++c) {
-              const double spread = sample[q][c];
-              if (spread > limit[c] || spread < low[c] || spread == 0.0) continue;
-              replicates[c] += replicate[q][c], samples[c] += spread, ++kept[c];
-            }
+      const bool rows_whole = y >= r && y + r < height;
+      for (std::size_t c = 0; c < 3; ++c) {
+        const std::vector<double>& rep = channel_replicate[c];
+        const std::vector<double>& smp = channel_sample[c];
+        int x = 0;
+        while (x < width) {
+          if (rows_whole && x >= r && x + kLanes - 1 + r < width) {
+            TrimmedBounds bounds[kLanes];
+            for (int i = 0; i < kLanes; ++i) bounds[i] = bounds_of(c, x + i, y);
+            double replicates[kLanes], samples[kLanes], kept[kLanes];
+            trimmed_lanes(width, rep, smp, bounds, x, y, replicates, samples, kept);
+            for (int i = 0; i < kLanes; ++i) store(c, x + i, y, replicates[i], samples[i], kept[i]);
+            x += kLanes;
+            continue;
           }
-        }
-        for (std::size_t c = 0; c < 3; ++c) {
-          if (kept[c] >= kReplicateMinNeighbours)
-            ratios[p][c] = ratio_of(replicates[c], samples[c]);
+          double replicates = 0, samples = 0, kept = 0;
+          trimmed_pixel(width, height, rep, smp, bounds_of(c, x, y), x, y, replicates, samples,
+                        kept);
+          store(c, x, y, replicates, samples, kept);
+          ++x;
         }
       }
     }
