@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -288,6 +290,46 @@ TEST(ReplicateVariance, ScalesTheSampleVarianceByTheNeighboursReplicates) {
   for (const Vec3d& v : honest_variances(w, h, sums, spreads, samples, 0, SamplerKind::Sobol)) {
     EXPECT_NEAR(v.x, 1.0, 1e-9);
   }
+}
+
+// The trimmed windows are walked four pixels at a time where they lie whole inside the image
+// and one at a time elsewhere: a window gives the same ratio, bit for bit, whichever way it is
+// walked. A column without samples put before the image shifts which pixels share a walk
+// (and which take the one-at-a-time path at the right edge) but not any window of a pixel
+// seven or more columns in.
+TEST(ReplicateVariance, AWindowGivesTheSameRatioHoweverItIsWalked) {
+  constexpr int w = 41, h = 19, r = kReplicateWindowRadius;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> value(0.0f, 1.0f);
+  std::vector<PixelSum> sums(w * h), shifted_sums((w + 1) * h);
+  std::vector<PixelSpread> spreads(w * h), shifted_spreads((w + 1) * h);
+  std::vector<std::uint32_t> samples(w * h, 8), shifted_samples((w + 1) * h, 0);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const std::size_t p = std::size_t(y * w + x), q = std::size_t(y * (w + 1) + x + 1);
+      const float scale = x % 5 == 0 ? 8.0f : 1.0f;  // some noisier pixels for the trim
+      for (std::uint64_t i = 0; i < 8; ++i)
+        add_sample(sums[p], spreads[p],
+                   Color{scale * value(random), value(random), value(random) * value(random)}, i);
+      shifted_sums[q] = sums[p], shifted_spreads[q] = spreads[p], shifted_samples[q] = 8;
+    }
+  }
+  const std::vector<Vec3d> ratios =
+      replicate_ratios(w, h, sums, spreads, samples, 0, SamplerKind::Sobol);
+  const std::vector<Vec3d> shifted = replicate_ratios(w + 1, h, shifted_sums, shifted_spreads,
+                                                      shifted_samples, 0, SamplerKind::Sobol);
+  int compared = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = r; x < w; ++x) {
+      const Vec3d a = ratios[std::size_t(y * w + x)], b = shifted[std::size_t(y * (w + 1) + x + 1)];
+      for (std::size_t c = 0; c < 3; ++c) {
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(a[c]), std::bit_cast<std::uint64_t>(b[c]))
+            << "pixel " << x << "," << y << " channel " << c;
+      }
+      compared += a.x != 1.0;  // a trimmed ratio, not the fallback's 1
+    }
+  }
+  EXPECT_GT(compared, (w - r) * h / 2);
 }
 
 // Samples of one pixel: `values[i]` is sample i's value in every channel.
