@@ -65,13 +65,9 @@ void denoise_in_memory(Render& render) {
     if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) != 0) throw py::error_already_set();
     return;
   }
-  if (render.result.denoised) {
-    render.denoised = *render.result.denoised;
-    return;
-  }
-  const DenoiseInput input = denoise_input(render.result);
-  render.denoised = interruptible<DenoisedImage>(
-      [&](const std::function<bool()>& cancelled) { return denoise(input, cancelled); });
+  render.denoised = interruptible<DenoisedImage>([&](const std::function<bool()>& cancelled) {
+    return denoised_image(render.result, cancelled);
+  });
 }
 
 // A render watched (python/watched_work.h): a signal, or an exception from the progress

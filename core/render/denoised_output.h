@@ -53,7 +53,13 @@ DenoiseInput denoise_input(const RenderResult& result);
 std::string why_not_denoised(const DenoiseSource& source);
 std::string why_not_denoised(const RenderResult& result);
 
-// Denoises `result` (core/denoise/denoiser.h) and records its figures in `metadata`; the
+// The denoised image of `result`: its last judgement's where an image-error target judged
+// these very sums denoised (RenderResult::denoised), else the denoiser's (core/denoise/
+// denoiser.h) now. Throws as denoise_input() and denoise() do; `cancelled` as denoise() takes it.
+DenoisedImage denoised_image(const RenderResult& result,
+                             const std::function<bool()>& cancelled = {});
+
+// Denoises `result` (denoised_image()) and records its figures in `metadata`; the
 // channels only where `extra_channels` (the output can hold them). Throws InvalidInput where
 // the result lacks what the denoiser needs (core/denoise/denoise_input.h).
 // `cancelled` as denoise() takes it.

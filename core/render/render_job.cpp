@@ -192,8 +192,7 @@ std::optional<DenoisedImage> write_job_result(const JobRequest& r, const RenderJ
     return std::nullopt;
   }
   Metadata with_figures = metadata;
-  // An image-error target's last judgement denoised these very sums already.
-  DenoisedImage made = result.denoised ? *result.denoised : denoise(denoise_input(result));
+  DenoisedImage made = denoised_image(result);
   DenoisedOutput denoised = denoised_output(made, extra, with_figures);
   std::vector<ExtraChannel> channels;
   if (extra) {

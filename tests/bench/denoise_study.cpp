@@ -2,6 +2,7 @@
 // and the time it takes to reach the default image's error.
 //
 //   rtiow_denoise_study calibrate SCENE WIDTH REFERENCE_SPP SEEDS SPP...
+//   rtiow_denoise_study calibrate-adaptive SCENE WIDTH REFERENCE_SPP SEEDS SPP...  (--adaptive)
 //   rtiow_denoise_study trade SCENE WIDTH REFERENCE_SPP
 //   rtiow_denoise_study target SCENE WIDTH REFERENCE_SPP SEEDS ERROR...
 //
@@ -89,13 +90,15 @@ std::pair<int, int> blocks_over_estimate(const Reference& ref, const DenoisedIma
   return {over, blocks};
 }
 
+// `adaptive`: each count is an adaptive budget (--adaptive --spp N, at least N/4 a pixel).
 void calibrate(const Scene& scene, int width, int height, int reference_spp, int seeds,
-               const std::vector<int>& counts) {
+               const std::vector<int>& counts, bool adaptive) {
   const Reference ref = reference_of(scene, width, height, reference_spp);
   for (const int spp : counts) {
     for (int seed = 1; seed <= seeds; ++seed) {
-      const RenderResult r =
-          render(scene, denoise_settings(width, height, spp, std::uint64_t(seed)));
+      RenderSettings settings = denoise_settings(width, height, spp, std::uint64_t(seed));
+      if (adaptive) settings.samples = AdaptiveBudget{spp, std::max(2, spp / 4)};
+      const RenderResult r = render(scene, settings);
       const DenoisedImage d = denoise(denoise_input(r));
       const double truth = ref.image_error(d.image.pixels());
       const double noisy = ref.image_error(r.film.pixels());
@@ -173,10 +176,11 @@ void target(const Scene& scene, int width, int height, int reference_spp, int se
 int main(int argc, char** argv) {
   using namespace rtiow;
   const std::string mode = argc > 1 ? argv[1] : "";
-  if ((mode != "calibrate" || argc < 7) && (mode != "trade" || argc != 5) &&
+  const bool calibration = mode == "calibrate" || mode == "calibrate-adaptive";
+  if ((!calibration || argc < 7) && (mode != "trade" || argc != 5) &&
       (mode != "target" || argc < 7)) {
     std::fprintf(stderr,
-                 "usage: %s calibrate SCENE WIDTH REFERENCE_SPP SEEDS SPP...\n"
+                 "usage: %s calibrate[-adaptive] SCENE WIDTH REFERENCE_SPP SEEDS SPP...\n"
                  "       %s trade SCENE WIDTH REFERENCE_SPP\n"
                  "       %s target SCENE WIDTH REFERENCE_SPP SEEDS ERROR...\n",
                  argv[0], argv[0], argv[0]);
@@ -198,7 +202,8 @@ int main(int argc, char** argv) {
     }
     std::vector<int> counts;
     for (int i = 6; i < argc; ++i) counts.push_back(std::stoi(argv[i]));
-    calibrate(scene, width, height, reference_spp, std::stoi(argv[5]), counts);
+    calibrate(scene, width, height, reference_spp, std::stoi(argv[5]), counts,
+              mode == "calibrate-adaptive");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rtiow_denoise_study: %s\n", e.what());
     return 1;
