@@ -537,13 +537,21 @@ std::vector<Case> part_cases() {
        {"merge", "--stats-channels", "replicates-seven.exr", "stats1.exr", "-o", "merged.exr"}},
       // rtiow denoise: parts that keep no halves or no first hits, a tampered half, halves of
       // another size.
-      {"DenoisePartsWithoutHalves", 2, "render them with --denoise",
+      {"DenoisePartsWithoutHalves",
+       2,
+       "render them with --denoise",
        {"denoise", "part0.exr", "part1.exr", "-o", "denoised.png"}},
-      {"DenoisePartsWithoutFirstHits", 2, "render them with --denoise",
+      {"DenoisePartsWithoutFirstHits",
+       2,
+       "render them with --denoise",
        {"denoise", "stats0.exr", "stats1.exr", "-o", "denoised.png"}},
-      {"DenoiseTamperedHalf", 2, "odd.R is more than sum.R",
+      {"DenoiseTamperedHalf",
+       2,
+       "odd.R is more than sum.R",
        {"denoise", "denoise-odd-above-sum.exr", "denoise1.exr", "-o", "denoised.png"}},
-      {"DenoiseHalvesOfAnotherSize", 2, "a share of a different render",
+      {"DenoiseHalvesOfAnotherSize",
+       2,
+       "a share of a different render",
        {"denoise", "denoise0.exr", "denoise-smaller1.exr", "-o", "denoised.png"}},
       {"MergeWithoutJobField", 2, "header field rtiow:part_job_samples",
        merge({"no-job.exr", "part1.exr"})},
@@ -585,6 +593,11 @@ std::vector<Case> part_cases() {
       {"MergeZeros", 2, "is not an image rtiow reads", merge({"zeros.exr"})},
       {"LikeZeros", 2, "is not an image rtiow reads",
        render({"--like", "zeros.png", "-o", "again.png"})},
+      // A description's rtiow keys are read as every JSON input (core/scene_file/json_stream.h).
+      {"LikeDescriptionKeyTwice", 2, ": its description: line 1, column",
+       render({"--like", "like-key-twice.tif", "-o", "again.png"})},
+      {"LikeDescriptionTooDeep", 2, "nested deeper than the limit of 32",
+       render({"--like", "like-too-deep.tif", "-o", "again.png"})},
   };
 }
 

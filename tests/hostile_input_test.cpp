@@ -126,7 +126,7 @@ std::string png_claiming(std::uint32_t width, std::uint32_t height, std::size_t 
 
 fs::path fixtures() {
   // Named by version: a build tree keeps the fixtures of an older suite under another name.
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-7";
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-8";
   if (fs::exists(dir / "complete")) return dir;
   const fs::path work =
       fs::path(RTIOW_TEST_OUTPUT_DIR) / ("hostile-fixtures." + std::to_string(getpid()));
@@ -213,6 +213,28 @@ fs::path fixtures() {
       word(c + ".0") = 0, word(c + ".1") = 2, word(c + ".2") = 0, word(c + ".3") = 0;
     }
   });
+  // Images whose description holds rtiow keys that no JSON reader may take: a key twice, a
+  // nesting no description of rtiow's has.
+  render("-o like.tif");
+  const auto described = [&](const std::string& name,
+                             const std::function<std::string(std::string)>& edit) {
+    auto in = OIIO::ImageInput::open((work / "like.tif").string());
+    ASSERT_TRUE(in);
+    OIIO::ImageSpec spec = in->spec();
+    std::vector<std::uint8_t> data(spec.image_bytes());
+    ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, data.data()));
+    const std::string description = spec.get_string_attribute("ImageDescription");
+    ASSERT_NE(description.find("\"rtiow:seed\""), std::string::npos) << description;
+    spec.attribute("ImageDescription", edit(description));
+    auto out = OIIO::ImageOutput::create((work / name).string());
+    ASSERT_TRUE(out && out->open((work / name).string(), spec) &&
+                out->write_image(OIIO::TypeDesc::UINT8, data.data()) && out->close());
+  };
+  described("like-key-twice.tif",
+            [](std::string d) { return d.insert(d.find("\"rtiow:seed\""), "\"rtiow:seed\":3,"); });
+  described("like-too-deep.tif", [](std::string d) {
+    return d.insert(1, "\"deep\":" + std::string(100, '[') + std::string(100, ']') + ",");
+  });
   const std::string part = slurp(work / "part0.exr");
   write_file(work / "truncated.exr", part.substr(0, part.size() / 2));
   // Headers that claim far more pixels than their files hold: a part of 8192x8192 (10 GB of
@@ -238,7 +260,8 @@ fs::path make_users_directory(const Case& c) {
   fs::create_directories(dir / "bench-dir-clash" / "bench.json");  // where bench writes a file
   const fs::path fixture = fixtures();
   for (const auto& entry : fs::directory_iterator(fixture)) {
-    if (entry.path().extension() == ".exr" || entry.path().extension() == ".png")
+    const fs::path extension = entry.path().extension();
+    if (extension == ".exr" || extension == ".png" || extension == ".tif")
       fs::copy_file(entry.path(), dir / entry.path().filename());
   }
   write_file(dir / "scene.json", kScene);

@@ -22,15 +22,18 @@ namespace {
 using Recorded = std::map<std::string, std::string>;  // key (without "rtiow:") -> text
 
 // The rtiow:* keys of a JSON object in an image's description, read by the reader every JSON
-// input goes through (bounded, no duplicate keys); a description that is not such an object
-// (another program's text) holds none.
-void add_json_keys(const std::string& description, Recorded& recorded) {
+// input goes through (bounded, no duplicate keys). A description that is not JSON (another
+// program's text) holds none; one that holds rtiow keys but does not read is refused by name
+// (`source`: its description, where and why).
+void add_json_keys(const std::string& description, const std::string& source, Recorded& recorded) {
   JsonDocument all;
+  const std::string where = source + ": its description";
   try {
-    JsonInput input(JsonInput::from_text(description), description.size(), "image description");
-    parse_json_stream(input, "image description", {}, all);
+    JsonInput input(JsonInput::from_text(description), description.size(), where);
+    parse_json_stream(input, where, {}, all);
   } catch (const InvalidInput&) {
-    return;
+    if (description.find(std::string("\"") + kMetadataPrefix) == std::string::npos) return;
+    throw;
   }
   if (!all.IsObject()) return;
   const std::string_view prefix = kMetadataPrefix;
@@ -52,12 +55,13 @@ void add_json_keys(const std::string& description, Recorded& recorded) {
 
 // Every rtiow:* key of the header: its own attributes (PNG, EXR), or the JSON object in the
 // image description (JPEG, TIFF).
-Recorded recorded_keys(const ImageHeader& header) {
+Recorded recorded_keys(const ImageHeader& header, const std::string& source) {
   Recorded recorded;
   const std::string prefix = kMetadataPrefix;
   for (const ImageAttribute& a : header.attributes) {
     if (a.name == "ImageDescription") {
-      if (const auto* text = std::get_if<std::string>(&a.value)) add_json_keys(*text, recorded);
+      if (const auto* text = std::get_if<std::string>(&a.value))
+        add_json_keys(*text, source, recorded);
       continue;
     }
     if (a.name.rfind(prefix, 0) != 0) continue;
@@ -229,7 +233,7 @@ void read_channels(const KeyReader& keys, const ImageHeader& header, JobRequest&
 
 RecordedRequest recorded_request(const ImageHeader& header, const std::string& source) {
   namespace key = metadata_key;
-  const KeyReader keys(source, recorded_keys(header));
+  const KeyReader keys(source, recorded_keys(header, source));
   if (keys.empty()) {
     keys.refuse(
         "holds no rtiow provenance (HDR, PPM, BMP and TGA keep none; PNG, EXR, JPEG and TIFF "
