@@ -3,11 +3,10 @@
 #include "core/io/atomic_file.h"
 #include "core/io/image_backend.h"
 #include "core/io/image_file.h"
+#include "core/io/json_writer.h"
 #include "core/io/output_path.h"
 #include "core/io/png_encoder.h"
 #include "core/version.h"
-
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -60,12 +59,21 @@ void add_metadata(ImageHeader& header, const Metadata& unordered, bool typed,
   // Every key again as one JSON object in the description, which JPEG (EXIF) and TIFF keep where
   // they drop other attributes.
   if (provenance == Provenance::Description && !metadata.empty()) {
-    nlohmann::ordered_json all = nlohmann::ordered_json::object();
-    for (const auto& [key, value] : metadata) {
-      const std::string name = kMetadataPrefix + key;
-      std::visit([&](const auto& v) { all[name] = v; }, value);
+    // A key given twice keeps its first place and its last value.
+    Metadata unique;
+    for (const auto& entry : metadata) {
+      const auto same = std::find_if(unique.begin(), unique.end(),
+                                     [&](const auto& u) { return u.first == entry.first; });
+      if (same != unique.end()) {
+        same->second = entry.second;
+      } else {
+        unique.push_back(entry);
+      }
     }
-    header.attributes.push_back({"ImageDescription", all.dump()});
+    JsonWriter all;
+    all.begin_object();
+    for (const auto& [key, value] : unique) all.key(kMetadataPrefix + key).value(value);
+    header.attributes.push_back({"ImageDescription", all.end().text()});
   }
 }
 

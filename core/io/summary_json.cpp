@@ -10,21 +10,30 @@ namespace {
 // When the program started, as near as a static's initialisation comes to it.
 const std::chrono::steady_clock::time_point program_start = std::chrono::steady_clock::now();
 
+// The summaries' indentation (nlohmann-json's dump(2) layout).
+constexpr int kSummaryIndent = 2;
+
 }  // namespace
 
-nlohmann::ordered_json summary_head(const std::string& command, int exit_code) {
-  nlohmann::ordered_json head;
-  head["schema"] = kSummarySchema;
-  head["version"] = version();
-  head["command"] = command;
-  head["exit_code"] = exit_code;
-  head["seconds"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - program_start).count();
-  return head;
+Metadata summary_head(const std::string& command, int exit_code) {
+  return {
+      {"schema", std::int64_t(kSummarySchema)},
+      {"version", std::string(version())},
+      {"command", command},
+      {"exit_code", std::int64_t(exit_code)},
+      {"seconds",
+       std::chrono::duration<double>(std::chrono::steady_clock::now() - program_start).count()}};
 }
 
-std::string summary_text(const nlohmann::ordered_json& summary) {
-  return summary.dump(2) + "\n";
+JsonWriter begin_summary(const std::string& command, int exit_code) {
+  JsonWriter summary(kSummaryIndent);
+  summary.begin_object().members(summary_head(command, exit_code));
+  return summary;
+}
+
+std::string summary_text(JsonWriter& summary) {
+  summary.end();
+  return summary.text() + "\n";
 }
 
 }  // namespace rtiow

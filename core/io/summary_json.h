@@ -4,9 +4,10 @@
 // with the same keys in every command, then the command's own. The lines a command prints
 // are for people; this is for a script or a benchmark harness.
 
-#include <nlohmann/json.hpp>
-
 #include <string>
+
+#include "core/io/image_output.h"
+#include "core/io/json_writer.h"
 
 namespace rtiow {
 
@@ -18,9 +19,12 @@ inline constexpr int kSummarySchema = 2;
 
 // {"schema", "version", "command", "exit_code", "seconds"}: what every summary begins with;
 // `seconds` the command's time so far (since the program started).
-nlohmann::ordered_json summary_head(const std::string& command, int exit_code);
+Metadata summary_head(const std::string& command, int exit_code);
 
-// The summary as the file holds it: indented, ending in a newline.
-std::string summary_text(const nlohmann::ordered_json& summary);
+// A summary's writer, its object begun with the head: the command adds its own members.
+JsonWriter begin_summary(const std::string& command, int exit_code);
+
+// The summary as the file holds it: indented, ending in a newline (`summary`'s object ended).
+std::string summary_text(JsonWriter& summary);
 
 }  // namespace rtiow

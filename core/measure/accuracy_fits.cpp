@@ -6,7 +6,7 @@
 
 namespace rtiow {
 
-using json = nlohmann::json;
+using json = Figures;
 
 std::pair<double, double> log_log_fit(const std::vector<double>& x, const std::vector<double>& y) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;

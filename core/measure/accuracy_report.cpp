@@ -16,7 +16,7 @@ namespace rtiow {
 namespace {
 
 namespace fs = std::filesystem;
-using json = nlohmann::json;
+using json = Figures;
 
 void print_spp_table(const json& r) {
   std::printf("\nsamples per pixel (relMSE = mean (v-ref)^2/(ref+0.01)^2)\n");

@@ -16,7 +16,7 @@
 namespace rtiow {
 namespace {
 
-using json = nlohmann::json;
+using json = Figures;
 
 constexpr SamplerKind kDenoisedSampler = RenderRequest{}.sampler;
 

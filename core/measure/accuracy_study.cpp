@@ -10,8 +10,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/io/atomic_file.h"
 #include "core/io/output_claim.h"
 #include "core/io/output_path.h"
@@ -23,6 +21,7 @@
 #include "core/measure/accuracy_report.h"
 #include "core/measure/accuracy_runs.h"
 #include "core/measure/figure_outputs.h"
+#include "core/measure/figures.h"
 #include "core/measure/measure_summary.h"
 #include "core/parallel/thread_count.h"
 #include "core/render/render.h"
@@ -33,7 +32,7 @@ namespace rtiow {
 namespace {
 
 namespace fs = std::filesystem;
-using json = nlohmann::json;
+using json = Figures;
 
 // The seed of the reference: far from the seeds users pick, so the measured renders are
 // independent of it.

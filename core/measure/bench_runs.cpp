@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -22,6 +21,7 @@
 #include "core/measure/bench_compare.h"
 #include "core/measure/bench_report.h"
 #include "core/measure/figure_outputs.h"
+#include "core/measure/figures.h"
 #include "core/measure/measure_summary.h"
 #include "core/measure/trace_rate.h"
 #include "core/parallel/thread_count.h"
@@ -33,7 +33,7 @@
 namespace rtiow {
 namespace {
 
-using json = nlohmann::json;
+using json = Figures;
 using Clock = std::chrono::steady_clock;
 
 double median(std::vector<double> v) {

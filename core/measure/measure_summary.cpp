@@ -15,8 +15,7 @@ std::unique_ptr<OutputClaim> claim_summary(const std::string& path) {
 }
 namespace {
 
-using ordered = nlohmann::ordered_json;
-using json = nlohmann::json;
+using json = Figures;
 
 // A value of `results` by path, or null where the measurement did not take it.
 json at(const json& results, const std::string& path) {
@@ -24,26 +23,31 @@ json at(const json& results, const std::string& path) {
   return results.contains(pointer) ? results.at(pointer) : json();
 }
 
-ordered files_of(const MeasureFiles& files) {
-  ordered out;
-  out["figures"] = files.figures;
-  if (!files.csv.empty()) out["csv"] = files.csv;
-  out["plot"] = files.plot.empty() ? ordered() : ordered(files.plot);
-  return out;
+// `key`: the figure as the measurement took it.
+void copy(JsonWriter& j, const char* key, const json& figure) {
+  write_figures(j.key(key), figure);
 }
 
-ordered warnings_of(const std::vector<std::string>& candidates) {
-  ordered out = ordered::array();
+void write_files(JsonWriter& j, const MeasureFiles& files) {
+  j.key("files").begin_object();
+  j.key("figures").string(files.figures);
+  if (!files.csv.empty()) j.key("csv").string(files.csv);
+  files.plot.empty() ? j.key("plot").null() : j.key("plot").string(files.plot);
+  j.end();
+}
+
+void write_warnings(JsonWriter& j, const std::vector<std::string>& candidates) {
+  j.key("warnings").begin_array();
   for (const std::string& warning : candidates) {
-    if (!warning.empty()) out.push_back(warning);
+    if (!warning.empty()) j.string(warning);
   }
-  return out;
+  j.end();
 }
 
 // What every measurement's summary starts with: the shared head and the files it wrote.
-ordered measurement_head(const char* command, const MeasureFiles& files) {
-  ordered j = summary_head(command, 0);
-  j["files"] = files_of(files);
+JsonWriter measurement_head(const char* command, const MeasureFiles& files) {
+  JsonWriter j = begin_summary(command, 0);
+  write_files(j, files);
   return j;
 }
 
@@ -51,74 +55,79 @@ double rate(const json& results, const char* run) {
   return results["cover"][run]["mrays_per_second"].get<double>();
 }
 
-}  // namespace
-
-std::string bench_summary_json(const json& results, const MeasureFiles& files) {
-  ordered j = measurement_head("bench", files);
-  j["threads"] = results["threads"];
-  j["repeat"] = results["repeat"];
+void write_cover(JsonWriter& j, const json& results) {
   const json& c = results["cover"];
   const double embree = rate(results, "embree"), naive = rate(results, "naive");
   const double one = rate(results, "embree_1_thread");
-  j["cover"] = {{"width", c["width"]},
-                {"height", c["height"]},
-                {"spp", c["spp"]},
-                {"depth", c["depth"]},
-                {"spheres", c["spheres"]},
-                {"rays", c["embree"]["rays"]},
-                {"embree_mrays_per_second", embree},
-                {"naive_mrays_per_second", naive},
-                {"embree_1_thread_mrays_per_second", one},
-                {"raw_trace_mrays_per_second", c["trace"]["mrays_per_second"]},
-                {"traversal_mrays_per_second", c["traversal"]["mrays_per_second"]},
-                {"embree_over_naive", embree / naive},
-                {"thread_scaling", embree / one}};
-  ordered scaling = ordered::array();
+  j.key("cover").begin_object();
+  for (const char* key : {"width", "height", "spp", "depth", "spheres"}) copy(j, key, c[key]);
+  copy(j, "rays", c["embree"]["rays"]);
+  j.key("embree_mrays_per_second").number(embree);
+  j.key("naive_mrays_per_second").number(naive);
+  j.key("embree_1_thread_mrays_per_second").number(one);
+  copy(j, "raw_trace_mrays_per_second", c["trace"]["mrays_per_second"]);
+  copy(j, "traversal_mrays_per_second", c["traversal"]["mrays_per_second"]);
+  j.key("embree_over_naive").number(embree / naive);
+  j.key("thread_scaling").number(embree / one);
+  j.end();
+}
+
+}  // namespace
+
+std::string bench_summary_json(const json& results, const MeasureFiles& files) {
+  JsonWriter j = measurement_head("bench", files);
+  copy(j, "threads", results["threads"]);
+  copy(j, "repeat", results["repeat"]);
+  write_cover(j, results);
+  j.key("scaling").begin_array();
   for (const json& point : results["scaling"]) {
-    scaling.push_back({{"spheres", point["n"]},
-                       {"embree_mrays_per_second", at(point, "/embree/mrays_per_second")},
-                       {"embree_build_seconds", at(point, "/embree/build_seconds")},
-                       {"embree_peak_rss_mb", at(point, "/embree/peak_rss_mb")},
-                       {"naive_mrays_per_second", at(point, "/naive/mrays_per_second")}});
+    j.begin_object();
+    copy(j, "spheres", point["n"]);
+    copy(j, "embree_mrays_per_second", at(point, "/embree/mrays_per_second"));
+    copy(j, "embree_build_seconds", at(point, "/embree/build_seconds"));
+    copy(j, "embree_peak_rss_mb", at(point, "/embree/peak_rss_mb"));
+    copy(j, "naive_mrays_per_second", at(point, "/naive/mrays_per_second"));
+    j.end();
   }
-  j["scaling"] = scaling;
-  j["warnings"] = warnings_of({thread_scaling_warning(results["threads"].get<int>(), one, embree)});
+  j.end();
+  const double embree = rate(results, "embree"), one = rate(results, "embree_1_thread");
+  write_warnings(j, {thread_scaling_warning(results["threads"].get<int>(), one, embree)});
   return summary_text(j);
 }
 
 std::string accuracy_summary_json(const json& results, const MeasureFiles& files) {
-  ordered j = measurement_head("accuracy", files);
-  j["scene"] = results["scene"];
-  j["width"] = results["width"];
-  j["height"] = results["height"];
-  j["depth"] = results["depth"];
-  j["threads"] = results["threads"];
-  j["reference"] = {{"spp", results["reference_spp"]},
-                    {"seed", results["reference_seed"]},
-                    {"reused", results["reference_reused"]},
-                    {"path", results["reference_path"]}};
+  JsonWriter j = measurement_head("accuracy", files);
+  for (const char* key : {"scene", "width", "height", "depth", "threads"})
+    copy(j, key, results[key]);
+  j.key("reference").begin_object();
+  copy(j, "spp", results["reference_spp"]);
+  copy(j, "seed", results["reference_seed"]);
+  copy(j, "reused", results["reference_reused"]);
+  copy(j, "path", results["reference_path"]);
+  j.end();
   const json& summary = results["summary"];
   // The headline: the time each method takes to the book's quality, against the book's own.
-  j["book_quality"] = at(summary, "/book_quality");
-  j["equal_time_factor"] = at(summary, "/equal_time_factor");
-  j["budget_equal_time_factor"] = at(summary, "/budget_equal_time_factor");
-  j["rmse_slope"] = at(summary, "/rmse_slope");
+  for (const char* key :
+       {"book_quality", "equal_time_factor", "budget_equal_time_factor", "rmse_slope"})
+    copy(j, key, at(summary, std::string("/") + key));
   // --image-error: the error asked and the one delivered (against the reference).
-  ordered image_error = ordered::array();
+  j.key("image_error").begin_array();
   for (const json& row : results["image_error"]) {
-    image_error.push_back({{"sampler", row["choice"]},
-                           {"asked", row["parameter"]},
-                           {"delivered", at(row, "/achieved_error")},
-                           {"rmse", row["rmse"]},
-                           {"render_seconds", row["seconds"]}});
+    j.begin_object();
+    copy(j, "sampler", row["choice"]);
+    copy(j, "asked", row["parameter"]);
+    copy(j, "delivered", at(row, "/achieved_error"));
+    copy(j, "rmse", row["rmse"]);
+    copy(j, "render_seconds", row["seconds"]);
+    j.end();
   }
-  j["image_error"] = image_error;
+  j.end();
   std::vector<double> depths, times;
   for (const json& row : results["depth_sweep"]) {
     depths.push_back(row["parameter"].get<double>());
     times.push_back(row["seconds"].get<double>());
   }
-  j["warnings"] = warnings_of({depth_timing_warning(depths, times)});
+  write_warnings(j, {depth_timing_warning(depths, times)});
   return summary_text(j);
 }
 

@@ -3,11 +3,10 @@
 // headline figures in the summary schema every command shares (core/io/summary_json.h; the keys
 // in docs/usage.md), beside the full figures (bench.json, accuracy.json) and the table.
 
-#include <nlohmann/json.hpp>
-
 #include <memory>
 #include <string>
 #include <vector>
+#include "core/measure/figures.h"
 
 namespace rtiow {
 
@@ -25,9 +24,9 @@ struct MeasureFiles {
 };
 
 // `results` is what bench.json holds.
-std::string bench_summary_json(const nlohmann::json& results, const MeasureFiles& files);
+std::string bench_summary_json(const Figures& results, const MeasureFiles& files);
 
 // `results` is what accuracy.json holds.
-std::string accuracy_summary_json(const nlohmann::json& results, const MeasureFiles& files);
+std::string accuracy_summary_json(const Figures& results, const MeasureFiles& files);
 
 }  // namespace rtiow

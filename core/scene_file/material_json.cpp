@@ -2,12 +2,12 @@
 
 #include <cmath>
 #include <limits>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
 #include <type_traits>
 #include <vector>
 
+#include "core/io/json_writer.h"
 #include "core/scene_file/json_float.h"
 
 namespace rtiow {
@@ -128,7 +128,7 @@ std::string value_text(const NumberParameter<M>& d, const M& m) {
 }
 template <typename M, typename E, std::size_t N>
 std::string value_text(const ChoiceParameter<M, E, N>& d, const M& m) {
-  return nlohmann::ordered_json(to_string(m.*d.member)).dump();
+  return json_quoted(to_string(m.*d.member));
 }
 
 template <typename M>
@@ -213,7 +213,7 @@ std::optional<Material> material_from_fields(const MemberFields& fields) {
 std::string material_to_json(const Material& material) {
   return visit_material(material, [](const auto& m) {
     using M = std::decay_t<decltype(m)>;
-    std::string text = "{\"type\":" + nlohmann::ordered_json(M::kType).dump();
+    std::string text = "{\"type\":" + json_quoted(M::kType);
     for_each_parameter<M>([&](const auto& d) {
       if (!is_default(d, m))
         text.append(",\"").append(d.name).append("\":").append(value_text(d, m));

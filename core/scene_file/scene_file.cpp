@@ -14,7 +14,6 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -29,6 +28,7 @@
 #include <oneapi/tbb/task_group.h>
 
 #include "core/io/input_file.h"
+#include "core/io/json_writer.h"
 #include "core/limits/input_limits.h"
 #include "core/parallel/cancellation.h"
 #include "core/parallel/ieee_floating_point.h"
@@ -46,7 +46,6 @@
 namespace rtiow {
 namespace {
 
-using ordered_json = nlohmann::ordered_json;
 using scene_json::Place;
 using scene_json::Reader;
 using scene_json::shortest;
@@ -499,11 +498,11 @@ void append_material_key(std::string& out, std::size_t index) {
   out.append(digits, std::to_chars(digits, digits + sizeof digits, index).ptr);
 }
 
-ordered_json float3(const Vec3& v) {
-  return {shortest(v.x), shortest(v.y), shortest(v.z)};
+void write_float3(JsonWriter& out, const Vec3& v) {
+  out.begin_array().number(shortest(v.x)).number(shortest(v.y)).number(shortest(v.z)).end();
 }
-ordered_json double3(const Vec3d& v) {
-  return {v.x, v.y, v.z};
+void write_double3(JsonWriter& out, const Vec3d& v) {
+  out.begin_array().number(v.x).number(v.y).number(v.z).end();
 }
 
 // Hands `sink` the text of items [0, n) in order, each item's written by `format(i, text)`:
@@ -603,26 +602,43 @@ Scene load_scene_file(const std::string& path) {
   return read_scene_from(read, limits::kMaxSceneFileBytes, path);
 }
 
+// The settings before the materials, one per line: each as `"key": value` with its value on
+// one line, as nlohmann-json writes it.
 std::string scene_settings_json(const Scene& scene) {
-  ordered_json head;
-  head["version"] = kVersion;
-  head["name"] = scene.name;
-  if (scene.layout_seed) head["scene_seed"] = *scene.layout_seed;
-  const CameraSettings& c = scene.camera;
-  head["camera"] = {{"lookfrom", double3(c.lookfrom)}, {"lookat", double3(c.lookat)},
-                    {"vup", double3(c.vup)},           {"vfov", c.vfov_degrees},
-                    {"aperture", c.aperture},          {"focus_distance", focus_distance_of(c)}};
-  head["image"] = {{"width", scene.image.width},
-                   {"aspect_ratio", scene.image.aspect_ratio},
-                   {"spp", scene.image.samples_per_pixel},
-                   {"depth", scene.image.max_depth}};
-  head["background"] = {{"horizon", float3(scene.background.horizon)},
-                        {"zenith", float3(scene.background.zenith)}};
   std::string text = "{\n";
-  for (const auto& item : head.items()) {
-    text.append("  ").append(ordered_json(item.key()).dump()).append(": ");
-    text.append(item.value().dump()).append(",\n");
-  }
+  const auto member = [&](const char* key, const std::function<void(JsonWriter&)>& value) {
+    JsonWriter one;
+    value(one);
+    text.append("  ").append(json_quoted(key)).append(": ").append(one.text()).append(",\n");
+  };
+  member("version", [](JsonWriter& v) { v.whole(kVersion); });
+  member("name", [&](JsonWriter& v) { v.string(scene.name); });
+  if (scene.layout_seed) member("scene_seed", [&](JsonWriter& v) { v.whole(*scene.layout_seed); });
+  const CameraSettings& c = scene.camera;
+  member("camera", [&](JsonWriter& v) {
+    v.begin_object();
+    write_double3(v.key("lookfrom"), c.lookfrom);
+    write_double3(v.key("lookat"), c.lookat);
+    write_double3(v.key("vup"), c.vup);
+    v.key("vfov").number(c.vfov_degrees);
+    v.key("aperture").number(c.aperture);
+    v.key("focus_distance").number(focus_distance_of(c));
+    v.end();
+  });
+  member("image", [&](JsonWriter& v) {
+    v.begin_object();
+    v.key("width").whole(scene.image.width);
+    v.key("aspect_ratio").number(scene.image.aspect_ratio);
+    v.key("spp").whole(scene.image.samples_per_pixel);
+    v.key("depth").whole(scene.image.max_depth);
+    v.end();
+  });
+  member("background", [&](JsonWriter& v) {
+    v.begin_object();
+    write_float3(v.key("horizon"), scene.background.horizon);
+    write_float3(v.key("zenith"), scene.background.zenith);
+    v.end();
+  });
   return text;
 }
 
@@ -638,7 +654,7 @@ void write_scene_json(const Scene& scene, const std::function<void(std::string_v
   });
   sink("\n  },\n  \"spheres\": [");
   const SphereSet& s = scene.spheres;
-  // Each sphere as nlohmann writes {"center":[x,y,z],"radius":r,"material":"mN"}, built
+  // Each sphere as nlohmann-json writes {"center":[x,y,z],"radius":r,"material":"mN"}, built
   // without a JSON object per sphere (most of a million-sphere scene's time).
   write_lines_in_parallel(s.size(), sink, [&](std::size_t i, std::string& out) {
     out.append(i ? ",\n    " : "\n    ").append("{\"center\":[");

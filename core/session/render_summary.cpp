@@ -1,7 +1,5 @@
 #include "core/session/render_summary.h"
 
-#include <nlohmann/json.hpp>
-
 #include "core/io/summary_json.h"
 #include "core/parallel/thread_count.h"
 #include "core/render/render_outcome.h"
@@ -9,62 +7,96 @@
 #include "core/sampling/sampler.h"
 
 namespace rtiow {
+namespace {
+
+// The error-driven modes' goal: what was asked and whether it was reached; null for the others.
+void write_error_target(JsonWriter& j, const RenderSettings& s, const RenderResult& result) {
+  if (const auto* image = std::get_if<ImageErrorTarget>(&s.samples)) {
+    j.begin_object();
+    j.key("kind").string(image->denoised ? "denoised image" : "image");
+    j.key("asked").number(image->error);
+    j.key("reached").boolean(error_target_reached(s, result));
+    j.end();
+  } else if (const auto* pixel = std::get_if<PixelErrorTarget>(&s.samples)) {
+    j.begin_object();
+    j.key("kind").string("pixel");
+    j.key("asked").number(pixel->error);
+    j.key("pixels_above").whole(result.pixels_above_target);
+    j.key("reached").boolean(error_target_reached(s, result));
+    j.end();
+  } else {
+    j.null();
+  }
+}
+
+// How many samples each pixel took, and what was asked.
+void write_samples(JsonWriter& j, const RenderSettings& s, const RenderOutcome& outcome) {
+  j.key("spp").begin_object();
+  j.key("least").whole(outcome.least);
+  j.key("most").whole(outcome.most);
+  j.key("mean").number(outcome.mean);
+  const std::optional<int> asked = spp_option(s.samples);
+  asked ? j.key("asked").whole(*asked) : j.key("asked").null();
+  j.end();
+  j.key("samples").string(outcome.samples);
+  outcome.stopped.empty() ? j.key("stopped").null() : j.key("stopped").string(outcome.stopped);
+}
+
+}  // namespace
 
 std::string render_summary_json(const RenderJob& job, const RenderResult& result, int ranks,
                                 int exit_code, bool image_written,
                                 const std::optional<DenoiseFigures>& denoised) {
-  using json = nlohmann::ordered_json;
   const RenderSettings& s = job.settings;
-  const RenderOutcome outcome = describe_outcome(s, result);
   const double seconds = result.render_seconds;
-  json j = summary_head("render", exit_code);
-  j["output"] = image_written ? json(job.output) : json();
-  j["scene"] = job.scene.name;
-  j["width"] = s.width;
-  j["height"] = s.height;
-  j["crop"] = s.crop ? json{s.crop->x0, s.crop->y0, s.crop->x1, s.crop->y1} : json();
-  json passes = json::array();
-  if (s.passes.albedo) passes.push_back("albedo");
-  if (s.passes.normal) passes.push_back("normal");
-  if (s.passes.depth) passes.push_back("depth");
-  j["passes"] = passes;
-  j["depth"] = s.max_depth;
-  j["accelerator"] = to_string(s.accel);
-  j["sampler"] = to_string(s.sampler);
-  j["seed"] = s.seed;
-  j["threads"] = thread_count(s.threads);
-  j["ranks"] = ranks;
-  const std::optional<int> asked = spp_option(s.samples);
-  j["spp"] = {{"least", outcome.least},
-              {"most", outcome.most},
-              {"mean", outcome.mean},
-              {"asked", asked ? json(*asked) : json()}};
-  j["samples"] = outcome.samples;
-  j["stopped"] = outcome.stopped.empty() ? json() : json(outcome.stopped);
-  j["render_seconds"] = seconds;
-  j["build_seconds"] = result.build_seconds;
-  j["rays"] = result.rays_traced;
-  j["mrays_per_second"] = seconds > 0 ? double(result.rays_traced) / seconds * 1e-6 : 0.0;
-  // Every render's estimate of its image error, and the error-driven modes' goal.
-  const bool estimated = result.error_estimate != ErrorEstimate::None;
-  json target;
-  if (const auto* image = std::get_if<ImageErrorTarget>(&s.samples)) {
-    target = {{"kind", image->denoised ? "denoised image" : "image"},
-              {"asked", image->error},
-              {"reached", error_target_reached(s, result)}};
-  } else if (const auto* pixel = std::get_if<PixelErrorTarget>(&s.samples)) {
-    target = {{"kind", "pixel"},
-              {"asked", pixel->error},
-              {"pixels_above", result.pixels_above_target},
-              {"reached", error_target_reached(s, result)}};
+  JsonWriter j = begin_summary("render", exit_code);
+  image_written ? j.key("output").string(job.output) : j.key("output").null();
+  j.key("scene").string(job.scene.name);
+  j.key("width").whole(s.width);
+  j.key("height").whole(s.height);
+  j.key("crop");
+  if (s.crop) {
+    j.begin_array().whole(s.crop->x0).whole(s.crop->y0).whole(s.crop->x1).whole(s.crop->y1).end();
+  } else {
+    j.null();
   }
-  j["error"] = {{"estimated", estimated ? json(result.estimated_image_error) : json()},
-                {"estimate", to_string(result.error_estimate)},
-                {"target", target}};
-  j["denoise"] = denoised ? json{{"estimated_error", denoised->estimated_error},
-                                 {"noisy_error", denoised->noisy_error},
-                                 {"seconds", denoised->seconds}}
-                          : json();
+  j.key("passes").begin_array();
+  if (s.passes.albedo) j.string("albedo");
+  if (s.passes.normal) j.string("normal");
+  if (s.passes.depth) j.string("depth");
+  j.end();
+  j.key("depth").whole(s.max_depth);
+  j.key("accelerator").string(to_string(s.accel));
+  j.key("sampler").string(to_string(s.sampler));
+  j.key("seed").whole(s.seed);
+  j.key("threads").whole(thread_count(s.threads));
+  j.key("ranks").whole(ranks);
+  write_samples(j, s, describe_outcome(s, result));
+  j.key("render_seconds").number(seconds);
+  j.key("build_seconds").number(result.build_seconds);
+  j.key("rays").whole(result.rays_traced);
+  j.key("mrays_per_second").number(seconds > 0 ? double(result.rays_traced) / seconds * 1e-6 : 0.0);
+  // Every render's estimate of its image error, and the error-driven modes' goal.
+  j.key("error").begin_object();
+  if (result.error_estimate != ErrorEstimate::None) {
+    j.key("estimated").number(result.estimated_image_error);
+  } else {
+    j.key("estimated").null();
+  }
+  j.key("estimate").string(to_string(result.error_estimate));
+  j.key("target");
+  write_error_target(j, s, result);
+  j.end();
+  j.key("denoise");
+  if (denoised) {
+    j.begin_object();
+    j.key("estimated_error").number(denoised->estimated_error);
+    j.key("noisy_error").number(denoised->noisy_error);
+    j.key("seconds").number(denoised->seconds);
+    j.end();
+  } else {
+    j.null();
+  }
   return summary_text(j);
 }
 
