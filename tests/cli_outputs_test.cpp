@@ -30,8 +30,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/session/progress_status.h"
 #include "core/rtiow.h"
+#include "core/session/progress_status.h"
 #include "tests/cli_helpers.h"
 
 namespace {
@@ -271,6 +271,20 @@ TEST(Cli, TheSummaryForScriptsAgreesWithTheImage) {
 
 // diff --summary-json: the verdict and figures a script reads are those the command printed
 // and exited with.
+// An output named in another encoding than UTF-8, which JSON cannot hold: the image is written
+// and the summary names it with U+FFFD for the stray byte (it ended in nlohmann-json's
+// exception, exit 1, with the image written).
+TEST(Cli, TheSummaryNamesAnOutputWhoseNameIsNotUtf8) {
+  const fs::path out = output_path("latin1-\xe9.png"), summary = output_path("latin1.json");
+  const CommandResult r = run_rtiow("render -q --scene materials --width 16 --spp 1 -o " +
+                                    out.string() + " --summary-json " + summary.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_TRUE(fs::exists(out));
+  const auto j = nlohmann::json::parse(slurp(summary));
+  const std::string named = j["output"];
+  EXPECT_NE(named.find("latin1-\xef\xbf\xbd.png"), std::string::npos) << named;
+}
+
 TEST(Cli, TheDiffSummaryForScriptsIsTheVerdictPrinted) {
   const fs::path a = output_path("a.exr"), b = output_path("b.exr"), c = output_path("c.exr");
   const fs::path summary = output_path("diff.json");

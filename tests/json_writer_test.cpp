@@ -53,6 +53,8 @@ TEST(JsonWriter, WritesWhatNlohmannJsonDumps) {
   EXPECT_EQ(written(4), expected().dump(4));
   EXPECT_EQ(json_quoted("a\"b"), "\"a\\\"b\"");
   EXPECT_EQ(json_number(13.0), "13.0");
+  // A file name in another encoding: its stray bytes as U+FFFD, not an exception.
+  EXPECT_EQ(json_quoted("a\xff.png"), "\"a\xef\xbf\xbd.png\"");
 }
 
 TEST(JsonWriter, RefusesADocumentItCannotLayOut) {

@@ -8,7 +8,10 @@
 namespace rtiow {
 
 std::string json_quoted(std::string_view text) {
-  return nlohmann::json(std::string(text)).dump();
+  // JSON holds only UTF-8: a byte that is not (a file name in another encoding) is written as
+  // U+FFFD rather than ending the write in the library's exception.
+  return nlohmann::json(std::string(text)).dump(-1, ' ', false,
+                                                nlohmann::json::error_handler_t::replace);
 }
 
 std::string json_number(double value) {

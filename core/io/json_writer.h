@@ -58,7 +58,8 @@ class JsonWriter {
   bool after_key_ = false;
 };
 
-// `text` as a JSON string, quoted and escaped as nlohmann-json writes it.
+// `text` as a JSON string, quoted and escaped as nlohmann-json writes it; each byte that is not
+// UTF-8 as U+FFFD, the replacement character (JSON holds nothing else).
 std::string json_quoted(std::string_view text);
 
 // `value` as nlohmann-json writes a double (13.0, 0.1, 1e-05; null where not finite).
