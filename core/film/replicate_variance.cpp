@@ -116,8 +116,8 @@ double neighbours_sample_variance(int width, int height, const std::vector<Vec3d
   return count > 0 ? total / count : 0.0;
 }
 
-// One channel's trimmed window sums for a pixel: its neighbours whose sample variance lies in
-// [low, limit] (and is not 0, as a constant or sampleless pixel's is) added in the window's
+// Which neighbours one channel of a pixel's window keeps: those whose sample variance lies in
+// [low, limit] and is not 0 (as a constant or sampleless pixel's is), added in the window's
 // order, row by row.
 struct TrimmedBounds {
   double limit = 0, low = 0;

@@ -89,8 +89,10 @@ DenoiseFigures figures_of(const DenoisedImage& d) {
 
 std::string describe(const DenoiseFigures& f) {
   char line[160];
-  std::snprintf(line, sizeof line, "denoised in %.2f s: image error %.4f estimated (noisy %.4f)",
-                f.seconds, f.estimated_error, f.noisy_error);
+  std::snprintf(
+      line, sizeof line,
+      "denoised in %.2f s: image error %.4f estimated (the noisy image %.4f by the same estimate)",
+      f.seconds, f.estimated_error, f.noisy_error);
   return line;
 }
 

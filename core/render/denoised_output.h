@@ -25,7 +25,9 @@ struct DenoiseFigures {
 
 DenoiseFigures figures_of(const DenoisedImage& denoised);
 
-// "denoised in 1.32 s: image error 0.0660 estimated (noisy 0.0966)": the summary's line.
+// "denoised in 1.32 s: image error 0.0660 estimated (the noisy image 0.0966 by the same
+// estimate)": the summary's line. The noisy image's figure is the denoiser's estimate from the
+// halves, beside its own; the render's line before it gives the render's pooled one.
 std::string describe(const DenoiseFigures& figures);
 
 struct DenoisedOutput {
