@@ -5,37 +5,34 @@
 namespace rtiow {
 namespace {
 
+// Runs of scalar members go through JsonWriter::members: a whole number as int64, any other
+// figure as a double.
 void write_plain(JsonWriter& j, const PlainDiff& p, const PlainThresholds& t) {
   j.begin_object();
-  j.key("mean_error").number(p.mean_error);
-  j.key("rms_error").number(p.rms_error);
-  j.key("max_error").number(p.max_error);
+  j.members({{"mean_error", p.mean_error}, {"rms_error", p.rms_error}, {"max_error", p.max_error}});
   j.key("worst_pixel").begin_array().whole(p.worst_x).whole(p.worst_y).end();
-  j.key("fail_percent").number(p.fail_percent);
-  j.key("warn_percent").number(p.warn_percent);
+  j.members({{"fail_percent", p.fail_percent}, {"warn_percent", p.warn_percent}});
   j.key("thresholds").begin_object();
-  j.key("fail").number(t.fail);
-  j.key("failpercent").number(t.fail_percent);
+  j.members({{"fail", t.fail}, {"failpercent", t.fail_percent}});
   t.hard_fail < 1e300 ? j.key("hardfail").number(t.hard_fail) : j.key("hardfail").null();
-  j.key("warn").number(t.warn);
-  j.key("warnpercent").number(t.warn_percent);
+  j.members({{"warn", t.warn}, {"warnpercent", t.warn_percent}});
   j.end().end();
 }
 
 void write_noise(JsonWriter& j, const NoiseDiff& n) {
   j.begin_object();
-  j.key("renders").whole(n.renders);
-  j.key("alpha").number(n.alpha);
-  j.key("block_size").whole(n.block_size);
-  j.key("blocks").whole(n.blocks);
-  j.key("failing_blocks").whole(n.failing_blocks);
-  j.key("block_critical_z").number(n.block_critical_z);
-  j.key("worst_block_z").number(n.worst_block_z);
+  j.members({{"renders", std::int64_t(n.renders)},
+             {"alpha", n.alpha},
+             {"block_size", std::int64_t(n.block_size)},
+             {"blocks", std::int64_t(n.blocks)},
+             {"failing_blocks", std::int64_t(n.failing_blocks)},
+             {"block_critical_z", n.block_critical_z},
+             {"worst_block_z", n.worst_block_z}});
   j.key("worst_block").begin_array().whole(n.worst_block_x).whole(n.worst_block_y).end();
-  j.key("mean_difference").number(n.mean_difference);
-  j.key("mean_difference_error").number(n.mean_difference_error);
-  j.key("image_z").number(n.image_z);
-  j.key("image_critical_z").number(n.image_critical_z);
+  j.members({{"mean_difference", n.mean_difference},
+             {"mean_difference_error", n.mean_difference_error},
+             {"image_z", n.image_z},
+             {"image_critical_z", n.image_critical_z}});
   j.end();
 }
 

@@ -19,21 +19,16 @@ namespace {
 
 constexpr std::uint64_t kMostBenchBytes = std::uint64_t(16) << 20;
 
-// The member `key` of `value` where it is an object that has one, else null.
-const JsonValue* member_of(const JsonValue& value, const char* key) {
-  return value.IsObject() ? find_member(value, key) : nullptr;
-}
-
 // A number member of `object`, if it has one.
 std::optional<double> number_of(const JsonValue& object, const char* key) {
-  const JsonValue* value = member_of(object, key);
+  const JsonValue* value = find_member(object, key);
   if (!value || !value->IsNumber()) return std::nullopt;
   return value->GetDouble();
 }
 
 // An object member of `object`, or null.
 const JsonValue* object_of(const JsonValue& object, const char* key) {
-  const JsonValue* value = member_of(object, key);
+  const JsonValue* value = find_member(object, key);
   return value && value->IsObject() ? value : nullptr;
 }
 
@@ -86,7 +81,7 @@ std::string machine_of(const JsonValue& figures) {
   const JsonValue* c = object_of(figures, "context");
   if (!c) return "no context recorded";
   const auto text = [&](const char* key) {
-    const JsonValue* value = member_of(*c, key);
+    const JsonValue* value = find_member(*c, key);
     return value && value->IsString() ? std::string(text_of(*value)) : std::string("?");
   };
   return text("cpu") + ", rtiow " + text("rtiow");
@@ -125,20 +120,20 @@ int compare_bench_files(const std::string& before, const std::string& after) {
       {"trace", "cover, raw rtcIntersect1"},
       {"traversal", "cover, traversal alone"}};
   for (const auto& [key, label] : cover) {
-    const JsonValue* in_a = member_of(*object_of(a, "cover"), key);
-    const JsonValue* in_b = member_of(*object_of(b, "cover"), key);
+    const JsonValue* in_a = find_member(*object_of(a, "cover"), key);
+    const JsonValue* in_b = find_member(*object_of(b, "cover"), key);
     if (in_a && in_b) compare_row(label, *in_a, *in_b, beyond);
   }
-  const JsonValue* scaling_a = member_of(a, "scaling");
-  const JsonValue* scaling_b = member_of(b, "scaling");
+  const JsonValue* scaling_a = find_member(a, "scaling");
+  const JsonValue* scaling_b = find_member(b, "scaling");
   if (scaling_a && scaling_b && scaling_a->IsArray() && scaling_b->IsArray()) {
     for (const JsonValue& pa : scaling_a->GetArray()) {
       for (const JsonValue& pb : scaling_b->GetArray()) {
         const std::optional<double> na = number_of(pa, "n"), nb = number_of(pb, "n");
         if (!na || !nb || *na != *nb) continue;
         for (const char* accel : {"embree", "naive"}) {
-          const JsonValue* ra = member_of(pa, accel);
-          const JsonValue* rb = member_of(pb, accel);
+          const JsonValue* ra = find_member(pa, accel);
+          const JsonValue* rb = find_member(pb, accel);
           if (ra && rb) compare_row("spheres:" + count_text(*na) + ", " + accel, *ra, *rb, beyond);
         }
       }

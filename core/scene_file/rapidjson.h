@@ -33,8 +33,9 @@ inline std::string_view text_of(const JsonValue& string) {
   return {string.GetString(), string.GetStringLength()};
 }
 
-// The member of `object` named `key`, or null.
+// The member of `object` named `key`, or null (also where `object` is no object).
 inline const JsonValue* find_member(const JsonValue& object, std::string_view key) {
+  if (!object.IsObject()) return nullptr;
   for (const JsonMember& m : members(object)) {
     if (text_of(m.name) == key) return &m.value;
   }
