@@ -215,7 +215,8 @@ void write_csv(const json& r, const std::string& path) {
     std::string line;
     for (const char* k : keys) {
       const json& v = (*row)[k];
-      line.append(line.empty() ? "" : ",").append(v.is_string() ? v.get<std::string>() : v.dump());
+      line.append(line.empty() ? "" : ",")
+          .append(v.is_string() ? v.get<std::string>() : figures_text(v));
     }
     text += line + "\n";
   }
@@ -243,11 +244,11 @@ MeasureFiles write_figures(const AccuracyOptions& o, const json& r) {
   const std::string json_path = (fs::path(o.out_dir) / "accuracy.json").string();
   const std::string csv_path = (fs::path(o.out_dir) / "accuracy.csv").string();
   const std::string png_path = (fs::path(o.out_dir) / "accuracy.png").string();
-  write_text_atomically(json_path, r.dump(2) + "\n");
+  write_text_atomically(json_path, figures_text(r, 2) + "\n");
   write_csv(r, csv_path);
   std::printf("\nfigures: %s\n         %s\n", one_line(json_path).c_str(),
               one_line(csv_path).c_str());
-  const bool plotted = run_plot_script("accuracy_plot.py", r.dump(), png_path);
+  const bool plotted = run_plot_script("accuracy_plot.py", figures_text(r), png_path);
   return {json_path, csv_path, plotted ? png_path : std::string()};
 }
 

@@ -141,7 +141,7 @@ void print_bench_table(const json& r) {
 }
 
 void write_bench_json(const json& results, const std::string& path) {
-  write_text_atomically(path, results.dump(2) + "\n");
+  write_text_atomically(path, figures_text(results, 2) + "\n");
 }
 
 void write_bench_csv(const json& results, const std::string& path) {
@@ -149,7 +149,7 @@ void write_bench_csv(const json& results, const std::string& path) {
       "section,configuration,spheres,width,height,spp,depth,threads,accelerator,sampler,seed,"
       "run,build_seconds,render_seconds,rays,mrays_per_second\n";
   const auto number = [](const json& figures, const char* key) {
-    return figures.contains(key) ? figures[key].dump() : std::string();
+    return figures.contains(key) ? figures_text(figures[key]) : std::string();
   };
   const auto rows = [&](const std::string& section, const std::string& configuration,
                         const json& setup, const json& figures) {
@@ -174,7 +174,7 @@ void write_bench_csv(const json& results, const std::string& path) {
   for (const json& point : results["scaling"]) {
     json setup = scaling;
     setup["spheres"] = point["n"];
-    const std::string section = "spheres:" + point["n"].dump();
+    const std::string section = "spheres:" + figures_text(point["n"]);
     for (const char* key : {"embree", "naive"}) {
       if (point.contains(key)) rows(section, key, setup, point[key]);
     }
@@ -183,7 +183,7 @@ void write_bench_csv(const json& results, const std::string& path) {
 }
 
 bool plot_bench(const json& results, const std::string& plot_path) {
-  return run_plot_script("bench_plot.py", results.dump(), plot_path);
+  return run_plot_script("bench_plot.py", figures_text(results), plot_path);
 }
 
 }  // namespace rtiow

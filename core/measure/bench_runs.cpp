@@ -297,7 +297,7 @@ int run_point(const PointOptions& o) {
   result["scene_seconds"] = scene_seconds;
   result["peak_rss_mb"] = peak_rss_mb();
   result["startup_rss_mb"] = baseline_mb;
-  std::printf("%s\n", result.dump().c_str());
+  std::printf("%s\n", figures_text(result).c_str());
   return 0;
 }
 

@@ -2,6 +2,10 @@
 
 namespace rtiow {
 
+std::string figures_text(const Figures& value, int indent) {
+  return value.dump(indent, ' ', false, Figures::error_handler_t::replace);
+}
+
 void write_figures(JsonWriter& out, const Figures& value) {
   switch (value.type()) {
     case Figures::value_t::object:

@@ -12,6 +12,11 @@ namespace rtiow {
 
 using Figures = nlohmann::json;
 
+// `value` as JSON text (nlohmann-json's dump(indent)), a string's bytes that are not UTF-8 each
+// written as U+FFFD: JSON holds only UTF-8, and a path named in another encoding (a cache or
+// output directory) must not end a measurement in the library's exception with its work unsaved.
+std::string figures_text(const Figures& value, int indent = -1);
+
 // `value` written as one value of `out`.
 void write_figures(JsonWriter& out, const Figures& value);
 
