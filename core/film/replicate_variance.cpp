@@ -7,6 +7,7 @@
 
 #include "core/film/pixel_neighbours.h"
 #include "core/parallel/instruction_sets.h"
+#include "core/parallel/lanes.h"
 #include "core/parallel/parallel_for_range.h"
 
 namespace rtiow {
@@ -123,12 +124,9 @@ struct TrimmedBounds {
   double limit = 0, low = 0;
 };
 
-// Four pixels side by side, one per lane: each lane adds its own window in the same order as
-// one pixel at a time, so every lane's sums are the scalar sums' bits (adding +0.0, the bits of
-// a masked-out neighbour, leaves a sum as it is).
-using Lanes = double __attribute__((vector_size(4 * sizeof(double))));
-using LaneMask = long long __attribute__((vector_size(4 * sizeof(double))));
-constexpr int kLanes = 4;
+// Four pixels side by side, one per lane (core/parallel/lanes.h): each lane adds its own window
+// in the same order as one pixel at a time, so every lane's sums are the scalar sums' bits
+// (adding +0.0, the bits of a masked-out neighbour, leaves a sum as it is).
 
 // The pixels (x .. x + 3, y) of one channel, each window whole inside the image. Compiled for
 // each instruction set the hot loops pick from (AVX2's four lanes at once, else two and two).
