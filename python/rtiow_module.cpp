@@ -329,9 +329,9 @@ py::dict summary_of(const Render& render) {
   d["sampler"] = to_string(s.sampler);
   d["accelerator"] = to_string(s.accel);
   d["render_seconds"] = r.render_seconds;
+  d["judging_seconds"] = r.judging_seconds;
   d["rays"] = r.rays_traced;
-  d["mrays_per_second"] =
-      r.render_seconds > 0 ? double(r.rays_traced) / r.render_seconds * 1e-6 : 0.0;
+  d["mrays_per_second"] = tracing_mrays_per_second(r);
   d["error"] = error;
   d["stopped"] = r.stopped ? py::object(py::str(r.stop_cause)) : py::object(py::none());
   d["time_limited"] = r.time_limited;

@@ -79,6 +79,16 @@ TEST(CliDenoise, AnImageErrorTargetJudgesTheDenoisedImage) {
   EXPECT_EQ(j["error"]["estimated"], j["denoise"]["estimated_error"]) << j.dump();
   EXPECT_LE(j["denoise"]["estimated_error"].get<double>(), 0.15);
   EXPECT_EQ(j["spp"]["least"], j["spp"]["most"]) << j.dump();
+  // Its judgements' denoising is part of its time but not of its rate (the rate over the whole
+  // time read 1.1 Mrays/s where the rays were traced at about 12).
+  const double seconds = j["render_seconds"].get<double>();
+  const double judging = j["judging_seconds"].get<double>();
+  EXPECT_GT(judging, 0.0) << j.dump();
+  EXPECT_LT(judging, seconds) << j.dump();
+  EXPECT_DOUBLE_EQ(j["mrays_per_second"].get<double>(),
+                   j["rays"].get<double>() / (seconds - judging) * 1e-6)
+      << j.dump();
+  EXPECT_NE(r.stderr_text.find(" s of it denoising), "), std::string::npos) << r.stderr_text;
   EXPECT_EQ(summary_schema_violations({summary}), "");
   // The image records its target: --like renders it again, to the same bytes.
   const CommandResult like =

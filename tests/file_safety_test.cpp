@@ -425,6 +425,12 @@ TEST_F(CraftedCheckpoint, EveryFieldOutsideTheRequestsLimitsIsRefused) {
   refused(
       "a negative time", [](State& s) { s.render_seconds = -1e300; }, "render_seconds");
   refused(
+      "more time judging than rendering",
+      [](State& s) { s.judging_seconds = s.render_seconds + 1; }, "judging_seconds");
+  refused(
+      "a judging time that is not a number", [](State& s) { s.judging_seconds = std::nan(""); },
+      "judging_seconds");
+  refused(
       "an infinite time", [](State& s) { s.render_seconds = INFINITY; }, "render_seconds");
   refused(
       "more rays than the samples trace",

@@ -81,14 +81,17 @@ void print_summary(const RenderJob& job, const RenderResult& result, const MpiSe
   const int threads = thread_count(s.threads);  // the threads used (core/parallel/thread_count.h)
   const std::string ranks = mpi.distributed() ? std::to_string(mpi.size()) + " ranks x " : "";
   const RenderOutcome outcome = describe_outcome(s, result);
+  char judging[48] = "";
+  if (result.judging_seconds > 0)
+    std::snprintf(judging, sizeof judging, " (%.2f s of it denoising)", result.judging_seconds);
   std::fprintf(stderr,
-               "rendered %s %dx%d%s, %s%s, depth %d, %s, %s%d thread%s: %.2f s, %.3g rays, "
+               "rendered %s %dx%d%s, %s%s, depth %d, %s, %s%d thread%s: %.2f s%s, %.3g rays, "
                "%.2f Mrays/s -> %s\n",
                job.scene.name.c_str(), s.width, s.height,
                s.crop ? (" crop " + to_string(*s.crop)).c_str() : "", outcome.samples.c_str(),
                outcome.error.empty() ? "" : (", " + outcome.error).c_str(), s.max_depth,
                to_string(s.accel).c_str(), ranks.c_str(), threads, threads == 1 ? "" : "s",
-               result.render_seconds, rays, rays / result.render_seconds * 1e-6,
+               result.render_seconds, judging, rays, tracing_mrays_per_second(result),
                one_line(job.output).c_str());
   if (denoised) {
     std::fprintf(stderr, "%s\n", describe(*denoised).c_str());

@@ -92,6 +92,7 @@ std::string header_text(const RenderIdentity& id, const RenderState& state) {
   line("last_round", state.last_round ? "1" : "0");
   line("rays_traced", std::to_string(state.rays_traced));
   line("render_seconds", exact(state.render_seconds));
+  line("judging_seconds", exact(state.judging_seconds));
   line("estimated_image_error", exact(state.estimated_image_error));
   line("pixels_above_target", std::to_string(state.pixels_above_target));
   h.append("end\n");
@@ -455,6 +456,10 @@ RenderState state_of_header(const Header& header, const InputFile& file, const s
   totals.rays_traced =
       field_number(header, "rays_traced", path, std::numeric_limits<std::uint64_t>::max());
   const double seconds = field_double(header, "render_seconds", path, kMaxRenderSeconds);
+  // Of them, the denoiser's judgements: absent from a checkpoint of an rtiow before it (none).
+  const double judging = header.fields.count("judging_seconds")
+                             ? field_double(header, "judging_seconds", path, seconds)
+                             : 0.0;
   const double image_error = field_double(header, "estimated_image_error", path, 1e300);
   const std::uint64_t above = field_number(header, "pixels_above_target", path, pixels);
   if (!header.fixed_records) {
@@ -469,6 +474,7 @@ RenderState state_of_header(const Header& header, const InputFile& file, const s
   state.last_round = last_round;
   state.rays_traced = totals.rays_traced;
   state.render_seconds = seconds;
+  state.judging_seconds = judging;
   state.estimated_image_error = image_error;
   state.pixels_above_target = above;
   return state;

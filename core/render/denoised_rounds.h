@@ -54,13 +54,16 @@ void render_by_denoised_error(const RenderContext<Accel>& ctx, const ImageErrorT
     // A stop or the time limit ends the judgement too (a large image's takes seconds): the
     // render ends as one stopped in a round does, judged by its last finished judgement.
     std::shared_ptr<const DenoisedImage> denoised;
+    const auto judging = Clock::now();
     try {
       denoised = std::make_shared<const DenoisedImage>(with_threads(ctx.settings.threads, [&] {
         return denoise_state(ctx.settings, state.pixels, [&] { return deadline(); });
       }));
     } catch (const DenoiseCancelled&) {
+      result.judging_seconds += seconds_since(judging);
       break;
     }
+    result.judging_seconds += seconds_since(judging);
     result.estimated_image_error = denoised->estimated_error;
     progress->image_error = result.estimated_image_error;
     ++progress->judgements;

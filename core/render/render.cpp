@@ -177,6 +177,7 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
                           ? std::move(*checkpointing->resume)
                           : RenderState(n, settings.passes.any());
   result.rays_traced = state.rays_traced;
+  result.judging_seconds = state.judging_seconds;
   result.estimated_image_error = state.estimated_image_error;
   result.pixels_above_target = state.pixels_above_target;
   std::uint64_t resumed = 0;
@@ -329,6 +330,7 @@ RenderState state_of(const RenderResult& result) {
   state.last_round = result.last_round;
   state.rays_traced = result.rays_traced;
   state.render_seconds = result.render_seconds;
+  state.judging_seconds = result.judging_seconds;
   state.estimated_image_error = result.estimated_image_error;
   state.pixels_above_target = result.pixels_above_target;
   return state;

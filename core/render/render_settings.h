@@ -177,6 +177,8 @@ struct RenderResult {
   bool time_limited = false;    // the time limit ended it (with the samples completed)
   double build_seconds = 0.0;   // accelerator construction
   double render_seconds = 0.0;  // the sample loop
+  // Of render_seconds, the denoiser's judgements between rounds (--image-error with --denoise).
+  double judging_seconds = 0.0;
   std::uint64_t rays_traced = 0;
   // The image's estimated relative RMS error (offset 0.01), what it is worth, and
   // --target-error's count of pixels still above the target at the --spp cap. --image-error's
@@ -188,5 +190,12 @@ struct RenderResult {
   // judgement (not made again to be written); empty where the render ended otherwise.
   std::shared_ptr<const DenoisedImage> denoised;
 };
+
+// The rate the render traced its rays at, in millions a second: over its time less its
+// judgements' (a denoised error target spends as long denoising between rounds as tracing).
+inline double tracing_mrays_per_second(const RenderResult& r) {
+  const double seconds = r.render_seconds - r.judging_seconds;
+  return seconds > 0 ? double(r.rays_traced) / seconds * 1e-6 : 0.0;
+}
 
 }  // namespace rtiow

@@ -24,6 +24,7 @@ struct RenderState {
   bool last_round = false;        // --adaptive: the round under way spends the rest of the budget
   std::uint64_t rays_traced = 0;  // over the whole render so far
   double render_seconds = 0.0;    // spent so far: a time limit counts it
+  double judging_seconds = 0.0;   // of it, the denoiser's judgements between rounds
   // Where an error-driven render stands (as in RenderResult).
   double estimated_image_error = 0.0;
   std::uint64_t pixels_above_target = 0;
@@ -82,6 +83,7 @@ class RenderJournal {
     state_.estimated_image_error = result.estimated_image_error;
     state_.pixels_above_target = result.pixels_above_target;
     state_.render_seconds = elapsed();
+    state_.judging_seconds = result.judging_seconds;
     if (reason == SaveReason::Periodic && preview_due()) {
       checkpointing_->preview(state_);
       last_preview_ = Clock::now();

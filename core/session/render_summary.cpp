@@ -73,9 +73,10 @@ std::string render_summary_json(const RenderJob& job, const RenderResult& result
   j.key("ranks").whole(ranks);
   write_samples(j, s, describe_outcome(s, result));
   j.key("render_seconds").number(seconds);
+  j.key("judging_seconds").number(result.judging_seconds);
   j.key("build_seconds").number(result.build_seconds);
   j.key("rays").whole(result.rays_traced);
-  j.key("mrays_per_second").number(seconds > 0 ? double(result.rays_traced) / seconds * 1e-6 : 0.0);
+  j.key("mrays_per_second").number(tracing_mrays_per_second(result));
   // Every render's estimate of its image error, and the error-driven modes' goal.
   j.key("error").begin_object();
   if (result.error_estimate != ErrorEstimate::None) {
