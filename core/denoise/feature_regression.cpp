@@ -240,16 +240,24 @@ Regressed solve_lane(const LaneSystems& s, int l, double self_weight) {
   return {beta.block<1, 3>(0, 0).transpose(), self_weight * beta(0, 3)};
 }
 
-// The union window of the pixels (px0 .. px0 + kLanes - 1, py), each lane's rows its own. A
-// feature enters as its difference from the pixel's, on a scale of about one: albedo and normal
-// as they are, depth relative to the larger of the two (0 where both are the sky).
+// The union of the windows of the pixels (px0 .. px0 + kLanes - 1, py), clipped to the image.
+struct UnionWindow {
+  int x0, x1, y0, y1;  // inclusive
+};
+
+UnionWindow union_window(const DenoiseInput& in, int px0, int py) {
+  return {std::max(0, px0 - kRegressionRadius),
+          std::min(in.width - 1, px0 + kLanes - 1 + kRegressionRadius),
+          std::max(0, py - kRegressionRadius), std::min(in.height - 1, py + kRegressionRadius)};
+}
+
+// The union window's rows, each lane's its own. A feature enters as its difference from the
+// pixel's, on a scale of about one: albedo and normal as they are, depth relative to the larger
+// of the two (0 where both are the sky). With `patches`, each lane's distances one at a time
+// (where lay_out_lane_distances cannot take them), else 0.
 RTIOW_DISPATCHED void lay_out_rows(const DenoiseInput& in, const std::vector<Color>& half,
-                                   const PatchDistances* patches, int px0, int py, LaneRows& out,
-                                   int* self) {
-  const int ux0 = std::max(0, px0 - kRegressionRadius);
-  const int ux1 = std::min(in.width - 1, px0 + kLanes - 1 + kRegressionRadius);
-  const int qy0 = std::max(0, py - kRegressionRadius);
-  const int qy1 = std::min(in.height - 1, py + kRegressionRadius);
+                                   const UnionWindow& u, const PatchDistances* patches, int px0,
+                                   int py, LaneRows& out, int* self) {
   Lanes own[FirstHitSum::kChannels], lane_x;
   for (int l = 0; l < kLanes; ++l) {
     const int px = std::min(px0 + l, in.width - 1);  // a lane past the edge is masked
@@ -258,11 +266,10 @@ RTIOW_DISPATCHED void lay_out_rows(const DenoiseInput& in, const std::vector<Col
     lane_x[l] = double(px0 + l);
   }
   const std::size_t depth = FirstHitSum::kChannels - 1;
-  const bool whole_patches = patches && patches->lanes_inside(px0, py);
   int row = 0;
-  for (int qy = qy0; qy <= qy1; ++qy) {
+  for (int qy = u.y0; qy <= u.y1; ++qy) {
     const Lanes dy = Lanes{} + double(qy - py) / kRegressionRadius;
-    for (int qx = ux0; qx <= ux1; ++qx, ++row) {
+    for (int qx = u.x0; qx <= u.x1; ++qx, ++row) {
       const std::size_t q = std::size_t(qy) * std::size_t(in.width) + std::size_t(qx);
       LaneMask keep{};
       for (int l = 0; l < kLanes; ++l) {
@@ -285,25 +292,29 @@ RTIOW_DISPATCHED void lay_out_rows(const DenoiseInput& in, const std::vector<Col
       for (std::size_t c = 0; c < 3; ++c)
         out.y[row][c] = Lanes(LaneMask(Lanes{} + double(half[q][c])) & keep);
       Lanes distance{};
-      if (patches && !whole_patches)
+      if (patches)
         for (int l = 0; l < kLanes; ++l)
           if (keep[l]) distance[l] = patches->distance(px0 + l, py, qx - px0 - l, qy - py);
       out.distance[row] = distance;
     }
   }
   out.rows = row;
-  if (!whole_patches) return;
-  // The lanes' distances at one offset are four neighbouring terms of each row of patch terms:
-  // offset by offset, each lane's to the row of its neighbour at that offset.
-  const int union_width = ux1 - ux0 + 1;
-  for (int dy = qy0 - py; dy <= qy1 - py; ++dy) {
+}
+
+// The lanes' distances where their patches are whole (PatchDistances::lanes_inside): at one
+// offset they are four neighbouring terms of each row of patch terms, so offset by offset,
+// each lane's goes to the row of its neighbour at that offset.
+RTIOW_DISPATCHED void lay_out_lane_distances(const PatchDistances& patches, const UnionWindow& u,
+                                             int px0, int py, LaneRows& out) {
+  const int union_width = u.x1 - u.x0 + 1;
+  for (int dy = u.y0 - py; dy <= u.y1 - py; ++dy) {
     for (int dx = -kRegressionRadius; dx <= kRegressionRadius; ++dx) {
       Lanes distance;
-      patches->distances(px0, py, dx, dy, distance);
+      patches.distances(px0, py, dx, dy, distance);
       for (int l = 0; l < kLanes; ++l) {
         const int qx = px0 + l + dx;
-        if (qx >= ux0 && qx <= ux1)
-          out.distance[(py + dy - qy0) * union_width + (qx - ux0)][l] = distance[l];
+        if (qx >= u.x0 && qx <= u.x1)
+          out.distance[(py + dy - u.y0) * union_width + (qx - u.x0)][l] = distance[l];
       }
     }
   }
@@ -331,7 +342,11 @@ std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<
       if (patches) patches->at_row(py);
       for (int px0 = 0; px0 < in.width; px0 += kLanes) {
         int self[kLanes] = {};
-        lay_out_rows(in, half, patches ? &*patches : nullptr, px0, py, *rows, self);
+        const UnionWindow u = union_window(in, px0, py);
+        const bool whole_patches = patches && patches->lanes_inside(px0, py);
+        lay_out_rows(in, half, u, patches && !whole_patches ? &*patches : nullptr, px0, py, *rows,
+                     self);
+        if (whole_patches) lay_out_lane_distances(*patches, u, px0, py, *rows);
         for (std::size_t k = 0; k < results; ++k) {
           const double scale =
               guide.image ? 1.0 / (double(bandwidths[k]) * double(bandwidths[k])) : 0.0;
