@@ -1,6 +1,7 @@
 # compare_pins.py OLD NEW: every output render_pins.sh left in OLD against NEW's: pixels exact
 # in every channel (idiff), metadata equal but for the render's time; checkpoints: every header
-# field but the time, and every pixel record byte for byte. Exit 1 if any differs.
+# field but the times (render_seconds, judging_seconds), and every pixel record byte for byte.
+# Exit 1 if any differs.
 import os, subprocess, sys
 old, new = sys.argv[1:3]
 bad = 0
@@ -14,8 +15,9 @@ for name in sorted(os.listdir(old)):
     if name.endswith(".checkpoint"):
         A, B = open(a, "rb").read(), open(b, "rb").read()
         ha, ra = A.split(b"end\n", 1); hb, rb = B.split(b"end\n", 1)
-        fa = [l for l in ha.split(b"\n") if not l.startswith(b"render_seconds")]
-        fb = [l for l in hb.split(b"\n") if not l.startswith(b"render_seconds")]
+        times = (b"render_seconds", b"judging_seconds")
+        fa = [l for l in ha.split(b"\n") if not l.startswith(times)]
+        fb = [l for l in hb.split(b"\n") if not l.startswith(times)]
         same = fa == fb and ra[:-8] == rb[:-8]
         print(("same    " if same else "DIFFERS ") + name, len(ra)); bad += not same; continue
     r = subprocess.run(["idiff", "-a", "-fail", "0", "-failpercent", "0", "-warn", "0", a, b], capture_output=True, text=True)

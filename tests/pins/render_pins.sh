@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # render_pins.sh BIN DIR: the outputs a refactoring must not change, rendered by BIN into DIR:
 # the cover, passes, a crop, parts and their merges (plain, --stats-channels, --passes), a kept
-# and resumed render and its checkpoint, adaptive renders, --like, an MPI render, and a render
+# and resumed render and its checkpoint, adaptive renders, --like, an MPI render, denoised renders
+# (one process, parts denoised by `rtiow denoise`, an adaptive one), and a render
 # killed and resumed (checked against the uninterrupted one here). Render them with the binary
 # before a change and after it, then compare with compare_pins.py OLD NEW.
 set -u
@@ -28,6 +29,11 @@ R render --scene cover --width 120 --target-error 0.2 --spp 64 --stats-channels 
 R render --scene cover --width 120 --image-error 0.05 --spp 64 --passes albedo --keep-state -o imgerr.exr
 cp imgerr.exr.rtiow-checkpoint imgerr.checkpoint 2>/dev/null
 R render --like cover.png -o like.png
+R render --scene materials --width 160 --spp 16 --denoise -o denoised.exr
+R render --scene defocus --width 150 --spp 16 --denoise --part 0/2 -o pd0.exr
+R render --scene defocus --width 150 --spp 16 --denoise --part 1/2 -o pd1.exr
+R denoise pd0.exr pd1.exr -o denoised-parts.exr
+R render --scene cover --width 130 --spp 32 --adaptive --denoise -o denoised-adaptive.exr
 mpirun --allow-run-as-root --oversubscribe -np 2 "$BIN" render -q --scene cover --width 160 --spp 6 --passes albedo,normal,depth --stats-channels -o mpi.exr 2>>log || echo "FAILED mpi" >> log
 # Killed and resumed: must equal the uninterrupted render.
 R render --scene cover --width 600 --spp 256 -o whole.png
