@@ -30,8 +30,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/session/progress_status.h"
 #include "core/rtiow.h"
+#include "core/session/progress_status.h"
 #include "tests/cli_helpers.h"
 
 namespace {
@@ -314,6 +314,23 @@ TEST(Cli, TheTimeToGoCountsOnlyThisRunsWork) {
   EXPECT_DOUBLE_EQ(rtiow::seconds_to_go(300, 0, 1000, 1.0), 7.0 / 3.0);  // a fresh render
   EXPECT_LT(rtiow::seconds_to_go(250, 250, 1000, 1.0), 0.0);             // no rate yet
   EXPECT_DOUBLE_EQ(rtiow::seconds_to_go(1000, 250, 1000, 3.0), 0.0);
+}
+
+// The live rate leaves out a denoised error target's judgements, finished and under way, as
+// the summary's does (it sagged to 1.3 Mrays/s while the denoiser judged).
+TEST(Cli, TheLiveRateLeavesOutTheJudgements) {
+  rtiow::RenderProgress progress;
+  progress.rays_traced = 4000000, progress.judging_seconds = 1.0;
+  rtiow::ProgressSnapshot now = rtiow::snapshot(progress, 3.0);
+  EXPECT_DOUBLE_EQ(now.judging_seconds, 1.0);
+  EXPECT_DOUBLE_EQ(rtiow::live_mrays_per_second(now), 2.0);
+  // A judgement under way for at least half a second counts too.
+  progress.judging_since_ns =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(
+          (std::chrono::steady_clock::now() - std::chrono::milliseconds(500)).time_since_epoch())
+          .count();
+  now = rtiow::snapshot(progress, 3.0);
+  EXPECT_GE(now.judging_seconds, 1.5);
 }
 
 // Every mode shows how far it is toward its end (issue 60): the share of its samples, budget or

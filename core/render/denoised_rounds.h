@@ -55,15 +55,24 @@ void render_by_denoised_error(const RenderContext<Accel>& ctx, const ImageErrorT
     // render ends as one stopped in a round does, judged by its last finished judgement.
     std::shared_ptr<const DenoisedImage> denoised;
     const auto judging = Clock::now();
+    progress->judging_since_ns =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(judging.time_since_epoch()).count();
+    // This run's judging, for the live rate; the result's counts the runs before too.
+    const auto judged = [&] {
+      const double seconds = seconds_since(judging);
+      result.judging_seconds += seconds;
+      progress->judging_seconds = progress->judging_seconds + seconds;
+      progress->judging_since_ns = 0;
+    };
     try {
       denoised = std::make_shared<const DenoisedImage>(with_threads(ctx.settings.threads, [&] {
         return denoise_state(ctx.settings, state.pixels, [&] { return deadline(); });
       }));
     } catch (const DenoiseCancelled&) {
-      result.judging_seconds += seconds_since(judging);
+      judged();
       break;
     }
-    result.judging_seconds += seconds_since(judging);
+    judged();
     result.estimated_image_error = denoised->estimated_error;
     progress->image_error = result.estimated_image_error;
     ++progress->judgements;

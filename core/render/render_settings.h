@@ -150,6 +150,11 @@ struct RenderProgress {
   std::atomic<double> budget_rays{0.0};
   std::atomic<double> spent_rays{0.0};
   std::atomic<std::uint64_t> rays_at_judgement{0};
+  // --image-error with --denoise: this run's seconds in the denoiser's finished judgements, and
+  // when the one under way began (steady clock, ns since its epoch; 0: none), so that the live
+  // rate leaves them out as the summary's does.
+  std::atomic<double> judging_seconds{0.0};
+  std::atomic<std::int64_t> judging_since_ns{0};
 };
 
 // What a render's estimated image error is worth. Calibrated: from two independent replicates

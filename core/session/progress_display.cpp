@@ -42,8 +42,7 @@ std::string progress_line(const ProgressStatus& status, const ProgressSnapshot& 
     line += "  ETA " + (status.seconds_to_go >= 0.0 ? duration(status.seconds_to_go) : "?");
   }
   if (!status.detail.empty()) line += "  " + status.detail;
-  const double mrays = now.elapsed > 0 ? double(now.rays_traced) / now.elapsed * 1e-6 : 0.0;
-  std::snprintf(text, sizeof text, "  %.1f Mrays/s", mrays);
+  std::snprintf(text, sizeof text, "  %.1f Mrays/s", live_mrays_per_second(now));
   return line + text;
 }
 

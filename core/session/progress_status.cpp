@@ -38,17 +38,24 @@ ProgressSnapshot snapshot(const RenderProgress& progress, double elapsed) {
   ProgressSnapshot s;
   s.samples_done = progress.samples_done, s.samples_resumed = progress.samples_resumed;
   s.rays_traced = progress.rays_traced, s.elapsed = elapsed;
-  if (const std::int64_t start = progress.loop_start_ns; start != 0) {
-    const std::int64_t now = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                 std::chrono::steady_clock::now().time_since_epoch())
-                                 .count();
+  const std::int64_t now = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                               std::chrono::steady_clock::now().time_since_epoch())
+                               .count();
+  if (const std::int64_t start = progress.loop_start_ns; start != 0)
     s.loop_seconds = double(now - start) * 1e-9;
-  }
+  s.judging_seconds = progress.judging_seconds;
+  if (const std::int64_t since = progress.judging_since_ns; since != 0)
+    s.judging_seconds += double(now - since) * 1e-9;
   s.seconds_before = progress.seconds_before;
   s.image_error = progress.image_error, s.pixels_above_target = progress.pixels_above_target;
   s.budget_rays = progress.budget_rays, s.spent_rays = progress.spent_rays;
   s.rays_at_judgement = progress.rays_at_judgement;
   return s;
+}
+
+double live_mrays_per_second(const ProgressSnapshot& now) {
+  const double seconds = now.elapsed - now.judging_seconds;
+  return seconds > 0 ? double(now.rays_traced) / seconds * 1e-6 : 0.0;
 }
 
 ProgressStatus progress_status(const RenderSettings& settings, std::uint64_t pixels,

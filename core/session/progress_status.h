@@ -30,9 +30,13 @@ struct ProgressSnapshot {
   std::int64_t pixels_above_target = -1;
   double budget_rays = 0.0, spent_rays = 0.0;
   std::uint64_t rays_at_judgement = 0;
+  double judging_seconds = 0.0;  // of elapsed, this run's in the denoiser's judgements
 };
 
 ProgressSnapshot snapshot(const RenderProgress& progress, double elapsed);
+
+// The rate the rays are traced at, in millions a second: over the time less the judgements'.
+double live_mrays_per_second(const ProgressSnapshot& now);
 
 struct ProgressStatus {
   double fraction = -1.0;       // of the way to the render's end, 0 to 1; negative: unknown
