@@ -7,7 +7,9 @@ old, new = sys.argv[1:3]
 bad = 0
 def meta(path):
     out = subprocess.run(["oiiotool", "--info", "-v", "-a", path], capture_output=True, text=True).stdout
-    return [l.replace(path, "X") for l in out.splitlines()[1:] if "render_seconds" not in l]
+    # the path's column is padded to its length: compare the words, not the spaces
+    return [" ".join(l.replace(path, "X").split()) for l in out.splitlines()[1:]
+            if "render_seconds" not in l]
 for name in sorted(os.listdir(old)):
     a, b = os.path.join(old, name), os.path.join(new, name)
     if name in ("log", "sums.txt"): continue
