@@ -123,12 +123,12 @@ template <typename Accel>
     const auto o = std::size_t(packet.owner[std::size_t(k)]);
     std::uint64_t path_rays = j < 0 ? 0 : 1;
     FirstHit first{};  // a sample not traced, or one that saw the sky, met nothing: zeros
-    const Color value = j < 0 ? Color{}
-                              : continue_path(ctx.scene, ctx.accel, packet.rays_out[std::size_t(j)],
-                                              packet.hits[std::size_t(j)], settings.max_depth,
-                                              settings.russian_roulette,
-                                              *packet.streams[std::size_t(k)], path_rays,
-                                              out.first_hits ? &first : nullptr);
+    const Color value =
+        j < 0 ? Color{}
+              : continue_path(ctx.scene, ctx.accel, packet.rays_out[std::size_t(j)],
+                              packet.hits[std::size_t(j)], settings.max_depth,
+                              settings.russian_roulette, *packet.streams[std::size_t(k)], path_rays,
+                              out.first_hits ? &first : nullptr);
     add_sample(out.sums[o], out.spreads[o], value, packet.index[std::size_t(k)]);
     if (out.first_hits) out.first_hits[o].add(first);
     out.rays[o] += path_rays;
