@@ -203,6 +203,26 @@ TEST(VarianceCalibration, NoPixelClaimsZeroVarianceWhereItsChannelIsConstantArou
   }
 }
 
+// A render keeps the replicate ratios its error estimate was made with, so that the variance
+// channels do not work them out again (a third of a second a megapixel); the variances from
+// them are the bits worked out afresh, and a result without them (a merge's) still has them.
+TEST(VarianceCalibration, TheVarianceChannelsTakeTheRatiosTheEstimateKept) {
+  const Scene scene = sky_lit_ground();
+  RenderResult r = render(scene, settings(scene, 72, 16, SamplerKind::Sobol));
+  ASSERT_TRUE(r.replicate_ratios);
+  EXPECT_EQ(r.replicate_ratios->size(), r.pixel_samples.size());
+  const std::vector<Vec3d> kept = pixel_mean_variances(r);
+  r.replicate_ratios.reset();
+  const std::vector<Vec3d> afresh = pixel_mean_variances(r);
+  ASSERT_EQ(kept.size(), afresh.size());
+  for (std::size_t p = 0; p < kept.size(); ++p) {
+    for (std::size_t c = 0; c < 3; ++c)
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(kept[p][c]),
+                std::bit_cast<std::uint64_t>(afresh[p][c]))
+          << "pixel " << p << " channel " << c;
+  }
+}
+
 // What rtiow diff reads from an --stats-channels EXR: the film and its variance channels.
 DiffInput with_variances(const RenderResult& r) {
   DiffInput d = diff_input(r.film);

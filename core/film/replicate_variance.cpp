@@ -286,8 +286,15 @@ std::vector<Vec3d> honest_variances(int width, int height, const std::vector<Pix
                                     const std::vector<PixelSpread>& spreads,
                                     const std::vector<std::uint32_t>& samples, std::uint64_t first,
                                     SamplerKind sampler) {
-  const std::vector<Vec3d> ratios =
-      replicate_ratios(width, height, sums, spreads, samples, first, sampler);
+  return honest_variances(replicate_ratios(width, height, sums, spreads, samples, first, sampler),
+                          sums, spreads, samples, first, sampler);
+}
+
+std::vector<Vec3d> honest_variances(const std::vector<Vec3d>& ratios,
+                                    const std::vector<PixelSum>& sums,
+                                    const std::vector<PixelSpread>& spreads,
+                                    const std::vector<std::uint32_t>& samples, std::uint64_t first,
+                                    SamplerKind sampler) {
   std::vector<Vec3d> variances(sums.size());
   for (std::size_t p = 0; p < sums.size(); ++p) {
     const Vec3d own = variance_of_mean(sums[p], spreads[p], samples[p]);

@@ -93,5 +93,11 @@ std::vector<Vec3d> honest_variances(int width, int height, const std::vector<Pix
                                     const std::vector<PixelSpread>& spreads,
                                     const std::vector<std::uint32_t>& samples, std::uint64_t first,
                                     SamplerKind sampler);
+// The same with the ratios replicate_ratios() gave for these very sums.
+std::vector<Vec3d> honest_variances(const std::vector<Vec3d>& ratios,
+                                    const std::vector<PixelSum>& sums,
+                                    const std::vector<PixelSpread>& spreads,
+                                    const std::vector<std::uint32_t>& samples, std::uint64_t first,
+                                    SamplerKind sampler);
 
 }  // namespace rtiow

@@ -30,27 +30,31 @@ std::pair<std::string, std::int64_t> recorded_sampling(const MergedRender& merge
 
 // The merged image's estimated error, recorded as one render's is: from the sums of every
 // part (a part records its share's alone, which the merged metadata leaves out). None where
-// the parts keep no spreads or record no sampler this rtiow knows.
-void record_error_estimate(const MergedRender& merged, Metadata& metadata) {
-  if (!merged.sums.keeps(SumGroup::Odd)) return;
+// the parts keep no spreads or record no sampler this rtiow knows. Returns the replicate ratios
+// it was made with (none from one sequence), which the variance channels take too.
+std::shared_ptr<const std::vector<Vec3d>> record_error_estimate(const MergedRender& merged,
+                                                                Metadata& metadata) {
+  if (!merged.sums.keeps(SumGroup::Odd)) return {};
   const auto [sampler, replicates] = recorded_sampling(merged);
   RenderResult whole;
   try {
     whole = merged_result(merged, parse_sampler(sampler), replicates > 1 ? kReplicates : 1);
   } catch (const InvalidInput&) {
-    return;
+    return {};
   } catch (const std::bad_alloc&) {
-    return;  // a copy of the sums does not fit beside them: no estimate, the merge goes on
+    return {};  // a copy of the sums does not fit beside them: no estimate, the merge goes on
   }
   const ImageErrorEstimate estimate = estimate_image_error(whole, 0);
-  if (estimate.kind == ErrorEstimate::None) return;
+  if (estimate.kind == ErrorEstimate::None) return {};
   metadata.emplace_back(metadata_key::kEstimatedImageError, estimate.error);
   metadata.emplace_back(metadata_key::kErrorEstimate, to_string(estimate.kind));
+  return estimate.replicate_ratios;
 }
 
 // The spp and variance channels of the merged render, as one render's --stats-channels.
-std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
-                                            const std::vector<RenderPart>& parts) {
+std::vector<ExtraChannel> merged_statistics(
+    const MergedRender& merged, const std::vector<RenderPart>& parts,
+    const std::shared_ptr<const std::vector<Vec3d>>& replicate_ratios) {
   if (!merged.sums.keeps(SumGroup::Odd)) {
     for (const RenderPart& p : parts) {
       if (!p.sums.keeps(SumGroup::Odd)) {
@@ -74,7 +78,9 @@ std::vector<ExtraChannel> merged_statistics(const MergedRender& merged,
                        setting("stats_channels"));
   }
   try {
-    return statistics_channels(merged_result(merged, parse_sampler(sampler), int(replicates)));
+    RenderResult whole = merged_result(merged, parse_sampler(sampler), int(replicates));
+    whole.replicate_ratios = replicate_ratios;  // of these sums, where the estimate made them
+    return statistics_channels(whole);
   } catch (const InvalidInput& e) {
     throw InvalidInput(setting("stats_channels") + ": the parts' sampler: " + e.what());
   }
@@ -104,7 +110,9 @@ MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeR
   for (const std::string& path : paths) parts.push_back(read_part(path));
   MergedRender merged = merge_parts(parts);
   MergedImage image;
-  if (request.statistics) image.channels = merged_statistics(merged, parts);
+  image.metadata = merged.metadata;
+  const auto replicate_ratios = record_error_estimate(merged, image.metadata);
+  if (request.statistics) image.channels = merged_statistics(merged, parts, replicate_ratios);
   image.passes = merged.passes;
   image.passes_kept = merged.passes.any() && request.extra_channels;
   if (image.passes_kept) {
@@ -112,8 +120,6 @@ MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeR
     for (ExtraChannel& c : pass_channels(whole, merged.passes))
       image.channels.push_back(std::move(c));
   }
-  image.metadata = merged.metadata;
-  record_error_estimate(merged, image.metadata);
   image.placement = recorded_placement(image.metadata, "part " + quote_value(paths.front()),
                                        merged.film.width(), merged.film.height());
   if (!image.passes_kept) {

@@ -194,6 +194,10 @@ struct RenderResult {
   // --image-error with --denoise: the denoiser's image of these very sums, made by the last
   // judgement (not made again to be written); empty where the render ended otherwise.
   std::shared_ptr<const DenoisedImage> denoised;
+  // Each pixel's ratio of honest to sample variance (core/film/replicate_variance.h) as the
+  // image's error estimate took it from these very sums, for --stats-channels' variances to
+  // take too (it costs a third of a second a megapixel); empty where no estimate made it.
+  std::shared_ptr<const std::vector<Vec3d>> replicate_ratios;
 };
 
 // The rate the render traced its rays at, in millions a second: over its time less its

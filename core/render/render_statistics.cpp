@@ -25,6 +25,10 @@ std::vector<Vec3d> pixel_mean_variances(const RenderResult& result) {
         "no estimate of the error of a render drawn from one sequence: render it with " +
         setting("stats_channels") + " (RenderSettings::estimate_error) to keep two replicates");
   }
+  if (result.replicate_ratios && result.replicate_ratios->size() == result.pixel_samples.size()) {
+    return honest_variances(*result.replicate_ratios, result.sums.color, result.sums.spreads,
+                            result.pixel_samples, result.first_sample, result.sampler);
+  }
   return honest_variances(result.film.width(), result.film.height(), result.sums.color,
                           result.sums.spreads, result.pixel_samples, result.first_sample,
                           result.sampler);
@@ -110,17 +114,23 @@ ImageErrorEstimate estimate_image_error(const RenderResult& result, int threads)
   drawn.sampler = result.sampler;
   drawn.estimate_error = result.replicates >= kReplicates;
   double rel_mse = 0;
+  std::shared_ptr<const std::vector<Vec3d>> ratios;
   try {
     rel_mse = with_threads(threads, [&] {
-      return estimated_rel_mse(neighbourhood_relative_variance(drawn, result.sums, samples),
-                               samples);
+      auto r =
+          std::make_shared<const std::vector<Vec3d>>(sampler_ratios(drawn, result.sums, samples));
+      const double mean = estimated_rel_mse(
+          neighbourhood_relative_variance(drawn, result.sums, samples, *r), samples);
+      if (replicates(drawn) >= kReplicates) ratios = std::move(r);
+      return mean;
     });
   } catch (const std::bad_alloc&) {
     return {};  // the pooled variances do not fit beside the render: no estimate, nothing lost
   }
   if (!std::isfinite(rel_mse)) return {};
   return {std::sqrt(rel_mse),
-          replicates(drawn) >= kReplicates ? ErrorEstimate::Calibrated : ErrorEstimate::UpperBound};
+          replicates(drawn) >= kReplicates ? ErrorEstimate::Calibrated : ErrorEstimate::UpperBound,
+          std::move(ratios)};
 }
 
 std::string to_string(ErrorEstimate kind) {

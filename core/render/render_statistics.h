@@ -32,6 +32,9 @@ double mean_samples(const RenderResult& result);
 struct ImageErrorEstimate {
   double error = 0.0;  // relative RMS, offset 0.01
   ErrorEstimate kind = ErrorEstimate::None;
+  // The replicate ratios it was made with (RenderResult::replicate_ratios); none from one
+  // sequence.
+  std::shared_ptr<const std::vector<Vec3d>> replicate_ratios;
 };
 
 // The image's estimated error from the result's sums, as --image-error judges a round (each

@@ -72,19 +72,31 @@ std::vector<double> neighbourhood_median(int width, int height, const std::vecto
   return pooled;
 }
 
+std::vector<Vec3d> sampler_ratios(const RenderSettings& settings, const PixelSums& sums,
+                                  const std::vector<std::uint32_t>& samples) {
+  // The sampler's gain over independent samples, from each pixel's neighbours' replicates. One
+  // sequence has no replicates: its sample variance serves as it is (it overstates a Sobol
+  // mean's error, but a budget only weighs pixels against one another).
+  return replicates(settings) > 1
+             ? replicate_ratios(settings.width, settings.height, sums.color, sums.spreads, samples,
+                                settings.first_sample, settings.sampler)
+             : std::vector<Vec3d>(samples.size(), Vec3d(1, 1, 1));
+}
+
 std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
                                                     const PixelSums& sums,
                                                     const std::vector<std::uint32_t>& samples,
                                                     Pooling pooling) {
-  // Each pixel's relative variance per sample scaled to what its mean really has: the
-  // sampler's gain over independent samples, from its neighbours' replicates. One sequence has
-  // no replicates: its sample variance serves as it is (it overstates a Sobol mean's error, but
-  // a budget only weighs pixels against one another).
-  const std::vector<Vec3d> ratio =
-      replicates(settings) > 1
-          ? replicate_ratios(settings.width, settings.height, sums.color, sums.spreads, samples,
-                             settings.first_sample, settings.sampler)
-          : std::vector<Vec3d>(samples.size(), Vec3d(1, 1, 1));
+  return neighbourhood_relative_variance(settings, sums, samples,
+                                         sampler_ratios(settings, sums, samples), pooling);
+}
+
+std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
+                                                    const PixelSums& sums,
+                                                    const std::vector<std::uint32_t>& samples,
+                                                    const std::vector<Vec3d>& ratio,
+                                                    Pooling pooling) {
+  // Each pixel's relative variance per sample scaled to what its mean really has.
   std::vector<double> own(samples.size());
   for_each_pixel(own.size(), [&](std::size_t p) {
     own[p] = relative_sample_variance(sums.color[p], sums.spreads[p], samples[p], ratio[p]);

@@ -40,6 +40,16 @@ std::vector<double> neighbourhood_relative_variance(const RenderSettings& settin
                                                     const PixelSums& sums,
                                                     const std::vector<std::uint32_t>& samples,
                                                     Pooling pooling = Pooling::Mean);
+// The same with each pixel's ratio of honest to sample variance given (replicate_ratios()'s for
+// these sums, or 1s for one sequence).
+std::vector<double> neighbourhood_relative_variance(const RenderSettings& settings,
+                                                    const PixelSums& sums,
+                                                    const std::vector<std::uint32_t>& samples,
+                                                    const std::vector<Vec3d>& ratio,
+                                                    Pooling pooling = Pooling::Mean);
+// The ratios neighbourhood_relative_variance() takes for these sums.
+std::vector<Vec3d> sampler_ratios(const RenderSettings& settings, const PixelSums& sums,
+                                  const std::vector<std::uint32_t>& samples);
 
 struct PixelEstimates {
   std::vector<double> variance;  // relative variance per sample, pooled

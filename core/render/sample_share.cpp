@@ -83,6 +83,7 @@ void restore_whole_job(std::uint64_t job_samples, RenderSettings& settings) {
 void complete_from_shares(std::uint64_t samples, RenderResult& result) {
   result.first_sample = 0;
   result.samples_completed = int(samples);
+  result.replicate_ratios.reset();  // the share's, not the whole's
   result.pixel_samples.assign(result.sums.size(), std::uint32_t(samples));
   resolve(result.sums.color, samples, result.film);
 }
