@@ -69,7 +69,7 @@ bool gather_ranks(const MpiSession& mpi, RenderJob& job, RenderResult& result) {
   // The estimate of the whole image, from every rank's sums (each rank's was of its share).
   const ImageErrorEstimate estimate = estimate_image_error(result, job.settings.threads);
   result.estimated_image_error = estimate.error, result.error_estimate = estimate.kind;
-  result.replicate_ratios = estimate.replicate_ratios;
+  result.replicate_ratios = job.settings.estimate_error ? estimate.replicate_ratios : nullptr;
   restore_whole_job(job.samples_asked, job.settings);
   return true;
 }

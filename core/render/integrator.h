@@ -28,7 +28,7 @@ inline FirstHit first_hit(const Material& material, const SurfaceHit& surface, c
 // Follows a path on from its first ray, already traced (and counted): `hit` is what it hit.
 // Without `russian_roulette` it runs to `max_depth` (or its end) as the book's paths do. With
 // `first`, what the first ray met is kept there (the passes'), from the surface the path
-// scatters at rather than worked out again (which cost 7% of a render with the passes).
+// scatters at rather than worked out again from the hit.
 // Inlined into the sample loop, so that it is compiled for each of the loop's instruction sets
 // (core/parallel/instruction_sets.h) rather than once for the baseline.
 template <Accelerator Accel>

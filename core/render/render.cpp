@@ -212,7 +212,8 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
     const ImageErrorEstimate estimate = estimate_image_error(result, settings.threads);
     result.estimated_image_error = estimate.error;
     result.error_estimate = estimate.kind;
-    result.replicate_ratios = estimate.replicate_ratios;
+    // Kept where each pixel's variance is asked for (24 bytes a pixel, else dropped here).
+    if (settings.estimate_error) result.replicate_ratios = estimate.replicate_ratios;
   }
   return result;
 }

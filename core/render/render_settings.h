@@ -196,7 +196,8 @@ struct RenderResult {
   std::shared_ptr<const DenoisedImage> denoised;
   // Each pixel's ratio of honest to sample variance (core/film/replicate_variance.h) as the
   // image's error estimate took it from these very sums, for --stats-channels' variances to
-  // take too (it costs a third of a second a megapixel); empty where no estimate made it.
+  // take too (it costs a third of a second a megapixel); empty where no estimate made it or
+  // RenderSettings::estimate_error did not ask for the pixels' variances.
   std::shared_ptr<const std::vector<Vec3d>> replicate_ratios;
 };
 
