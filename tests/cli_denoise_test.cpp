@@ -46,6 +46,14 @@ TEST(CliDenoise, PartsDenoisedAfterTheirMergeGiveTheRendersPixels) {
   const CommandResult r =
       run_rtiow("denoise " + a.string() + " " + b.string() + " -o " + merged.string());
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("merged 2 parts: "), std::string::npos) << r.stderr_text;
+  // A whole render kept for later is one part.
+  const fs::path kept = output_path("kept.exr"), single = output_path("single.png");
+  ASSERT_EQ(run_rtiow(args + " --part 0/1 -o " + kept.string()).exit_code, 0);
+  const CommandResult one_part = run_rtiow("denoise " + kept.string() + " -o " + single.string());
+  ASSERT_EQ(one_part.exit_code, 0) << one_part.stderr_text;
+  EXPECT_NE(one_part.stderr_text.find("merged 1 part: "), std::string::npos)
+      << one_part.stderr_text;
   int w1 = 0, h1 = 0, w2 = 0, h2 = 0;
   const std::vector<float> one = exr_pixels(whole, w1, h1), two = exr_pixels(merged, w2, h2);
   ASSERT_FALSE(one.empty());
