@@ -406,7 +406,7 @@ CLI::App* add_merge(CLI::App& app, MergeOptions& o) {
 CLI::App* add_denoise(CLI::App& app, MergeOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "denoise",
-      "Denoise a render kept as part files (rtiow render --denoise --part i/n, or --part 1/1 "
+      "Denoise a render kept as part files (rtiow render --denoise --part i/n, or --part 0/1 "
       "for a whole render): merges them and writes the denoised image with its estimated error");
   cmd->add_option("parts", o.parts, "Part files (.exr) rendered with --denoise")->required();
   cmd->add_option("-o,--output", o.output,
