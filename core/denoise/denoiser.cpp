@@ -113,9 +113,12 @@ std::vector<Combined> second_pass_images(const DenoiseInput& in, const std::vect
     sample_variance[p] = variance[p] * double(in.even_samples[p] + in.odd_samples[p]);
   sample_variance = window_mean(sample_variance, in.width, in.height, kNoiseLevelRadius, false);
   // First pass: each half regressed on the features with its neighbours weighted equally; a
-  // function of that half's samples alone.
-  const FilteredHalf first_even = filter(in.even, {}, {}).front();
-  const FilteredHalf first_odd = filter(in.odd, {}, {}).front();
+  // function of that half's samples alone. The same weights and design: fitted together.
+  std::vector<std::vector<FilteredHalf>> first =
+      filter_images(in, {&in.even, &in.odd}, {}, {}, cancelled);
+  if (cancelled && cancelled()) throw DenoiseCancelled();
+  const FilteredHalf first_even = std::move(first[0].front());
+  const FilteredHalf first_odd = std::move(first[1].front());
   // Second pass: each half weighted by the patches of the other's first pass, whose noise is
   // about its own weight times the half's (a regression's hat rows have squares summing to it).
   const auto guide_variance = [&](const FilteredHalf& f, const std::vector<std::uint32_t>& count) {

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include "core/parallel/instruction_sets.h"
@@ -166,56 +167,65 @@ class PatchDistances {
 constexpr int kUnionSide = 2 * kRegressionRadius + kLanes;
 constexpr int kUnionRows = (2 * kRegressionRadius + 1) * kUnionSide;
 
-// The union window's rows, lane by lane: the design (columns as above), the values and the
-// distances (each lane's own, to its pixel), as the filter lays them out.
+// At most this many images are fitted on one design and one set of weights (the halves, whose
+// first pass weighs every neighbour equally).
+constexpr int kMostImages = 2;
+
+// The union window's rows, lane by lane: the design (columns as above), each image's values
+// and the distances (each lane's own, to its pixel), as the filter lays them out.
 struct LaneRows {
   Lanes x[kUnionRows][kColumns];
-  Lanes y[kUnionRows][3];
+  Lanes y[kUnionRows][3 * kMostImages];
   Lanes distance[kUnionRows];
   bool inside[kUnionRows][kLanes];
   int rows = 0;
 };
 
-// One lane's normal equations: the lower half of the normal matrix, the right-hand sides and
-// the weights' sum.
+// One lane's normal equations: the lower half of the normal matrix, the right-hand sides (each
+// image's three) and the weights' sum.
 struct LaneSystems {
   Lanes normal[kColumns][kColumns];
-  Lanes rhs[kColumns][3];
+  Lanes rhs[kColumns][3 * kMostImages];
   Lanes total;
 };
 
-// Row A of the lower half of the normal matrix and of the right-hand sides: for each entry,
-// (w x_A) x_b added in the rows' order. The entry is the outer loop, so that its lanes' sums
-// stay in registers.
-template <int A>
+// Row A of the lower half of the normal matrix and of the right-hand sides of `Images` images:
+// for each entry, (w x_A) x_b added in the rows' order (each image's the sums it has alone).
+// The entry is the outer loop, so that its lanes' sums stay in registers.
+template <int Images, int A>
 [[gnu::always_inline]] inline void gather_row_of_normal(const LaneRows& rows, const Lanes* w,
                                                         const bool* skip, LaneSystems& out) {
-  Lanes normal[A + 1] = {}, rhs[3] = {};
+  Lanes normal[A + 1] = {}, rhs[3 * Images] = {};
   for (int r = 0; r < rows.rows; ++r) {
     if (skip[r]) continue;  // a row of weight 0 in every lane adds +0.0 to every sum
     const Lanes wx = w[r] * rows.x[r][A];
     for (int b = 0; b <= A; ++b) normal[b] += wx * rows.x[r][b];
-    for (int c = 0; c < 3; ++c) rhs[c] += wx * rows.y[r][c];
+    for (int c = 0; c < 3 * Images; ++c) rhs[c] += wx * rows.y[r][c];
   }
   for (int b = 0; b <= A; ++b) out.normal[A][b] = normal[b];
-  for (int c = 0; c < 3; ++c) out.rhs[A][c] = rhs[c];
+  for (int c = 0; c < 3 * Images; ++c) out.rhs[A][c] = rhs[c];
 }
 
-template <int... A>
+template <int Images, int... A>
 [[gnu::always_inline]] inline void gather_rows_of_normal(const LaneRows& rows, const Lanes* w,
                                                          const bool* skip, LaneSystems& out,
                                                          std::integer_sequence<int, A...>) {
-  (gather_row_of_normal<A>(rows, w, skip, out), ...);
+  (gather_row_of_normal<Images, A>(rows, w, skip, out), ...);
 }
 
-// The lanes' normal equations (lower halves: LDLT reads nothing else).
-RTIOW_DISPATCHED void gather_systems(const LaneRows& rows, const Lanes* w, LaneSystems& out) {
+// The lanes' normal equations (lower halves: LDLT reads nothing else) for `images` images.
+RTIOW_DISPATCHED void gather_systems(const LaneRows& rows, const Lanes* w, int images,
+                                     LaneSystems& out) {
   bool skip[kUnionRows];
   for (int r = 0; r < rows.rows; ++r) {
     skip[r] = true;
     for (int l = 0; l < kLanes; ++l) skip[r] = skip[r] && w[r][l] == 0.0;
   }
-  gather_rows_of_normal(rows, w, skip, out, std::make_integer_sequence<int, kColumns>());
+  const auto entries = std::make_integer_sequence<int, kColumns>();
+  if (images == 2)
+    gather_rows_of_normal<2>(rows, w, skip, out, entries);
+  else
+    gather_rows_of_normal<1>(rows, w, skip, out, entries);
   Lanes total = {};
   for (int r = 0; r < rows.rows; ++r) total += w[r];
   out.total = total;
@@ -226,17 +236,24 @@ struct Regressed {
   double own_weight;
 };
 
-// Lane l's weighted least squares fit at its pixel, whose own weight is `self_weight`.
-Regressed solve_lane(const LaneSystems& s, int l, double self_weight) {
+// Lane l's normal matrix, factored once for every image fitted on it (LDLT reads the lower half).
+Eigen::LDLT<Normal> factor_lane(const LaneSystems& s, int l) {
   Normal normal = Normal::Zero();
-  Solution rhs = Solution::Zero();
-  for (int a = 0; a < kColumns; ++a) {
+  for (int a = 0; a < kColumns; ++a)
     for (int b = 0; b <= a; ++b) normal(a, b) = s.normal[a][b][l];
-    for (int c = 0; c < 3; ++c) rhs(a, c) = s.rhs[a][c][l];
-  }
   for (int c = 1; c < kColumns; ++c) normal(c, c) += kRidge * s.total[l];
+  return normal.ldlt();
+}
+
+// Lane l's weighted least squares fit of image `image` at its pixel, whose own weight is
+// `self_weight`.
+Regressed solve_lane(const Eigen::LDLT<Normal>& factored, const LaneSystems& s, int l, int image,
+                     double self_weight) {
+  Solution rhs = Solution::Zero();
+  for (int a = 0; a < kColumns; ++a)
+    for (int c = 0; c < 3; ++c) rhs(a, c) = s.rhs[a][3 * image + c][l];
   rhs(0, 3) = 1.0;
-  const Solution beta = normal.ldlt().solve(rhs);  // LDLT reads the lower half
+  const Solution beta = factored.solve(rhs);
   return {beta.block<1, 3>(0, 0).transpose(), self_weight * beta(0, 3)};
 }
 
@@ -255,7 +272,8 @@ UnionWindow union_window(const DenoiseInput& in, int px0, int py) {
 // pixel's, on a scale of about one: albedo and normal as they are, depth relative to the larger
 // of the two (0 where both are the sky). With `patches`, each lane's distances one at a time
 // (where lay_out_lane_distances cannot take them), else 0.
-RTIOW_DISPATCHED void lay_out_rows(const DenoiseInput& in, const std::vector<Color>& half,
+RTIOW_DISPATCHED void lay_out_rows(const DenoiseInput& in,
+                                   const std::vector<const std::vector<Color>*>& images,
                                    const UnionWindow& u, const PatchDistances* patches, int px0,
                                    int py, LaneRows& out, int* self) {
   Lanes own[FirstHitSum::kChannels], lane_x;
@@ -289,8 +307,9 @@ RTIOW_DISPATCHED void lay_out_rows(const DenoiseInput& in, const std::vector<Col
       out.x[row][1 + depth] = Lanes(LaneMask(larger > 0 ? (qd - pd) / larger : Lanes{}) & keep);
       out.x[row][kColumns - 2] = Lanes(LaneMask((double(qx) - lane_x) / kRegressionRadius) & keep);
       out.x[row][kColumns - 1] = Lanes(LaneMask(dy) & keep);
-      for (std::size_t c = 0; c < 3; ++c)
-        out.y[row][c] = Lanes(LaneMask(Lanes{} + double(half[q][c])) & keep);
+      for (std::size_t i = 0; i < images.size(); ++i)
+        for (std::size_t c = 0; c < 3; ++c)
+          out.y[row][3 * i + c] = Lanes(LaneMask(Lanes{} + double((*images[i])[q][c])) & keep);
       Lanes distance{};
       if (patches)
         for (int l = 0; l < kLanes; ++l)
@@ -325,10 +344,20 @@ RTIOW_DISPATCHED void lay_out_lane_distances(const PatchDistances& patches, cons
 std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<Color>& half,
                                       const Guide& guide, const std::vector<float>& bandwidths,
                                       const std::function<bool()>& cancelled) {
+  return filter_images(in, {&half}, guide, bandwidths, cancelled).front();
+}
+
+std::vector<std::vector<FilteredHalf>> filter_images(
+    const DenoiseInput& in, const std::vector<const std::vector<Color>*>& images,
+    const Guide& guide, const std::vector<float>& bandwidths,
+    const std::function<bool()>& cancelled) {
+  if (images.empty() || images.size() > std::size_t(kMostImages))
+    throw std::invalid_argument("filter_images: 1 to 2 images");
   const std::size_t n = in.size();
   const std::size_t results = guide.image ? bandwidths.size() : 1;
-  std::vector<FilteredHalf> out(results);
-  for (FilteredHalf& f : out) f.color.resize(n), f.own_weight.resize(n);
+  std::vector<std::vector<FilteredHalf>> out(images.size(), std::vector<FilteredHalf>(results));
+  for (auto& image : out)
+    for (FilteredHalf& f : image) f.color.resize(n), f.own_weight.resize(n);
 
   // Chunks of rows, so that each row's patch terms serve the rows around it.
   parallel_for_range(std::size_t(in.height), kRowsPerChunk, [&](std::size_t y0, std::size_t y1) {
@@ -344,7 +373,7 @@ std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<
         int self[kLanes] = {};
         const UnionWindow u = union_window(in, px0, py);
         const bool whole_patches = patches && patches->lanes_inside(px0, py);
-        lay_out_rows(in, half, u, patches && !whole_patches ? &*patches : nullptr, px0, py, *rows,
+        lay_out_rows(in, images, u, patches && !whole_patches ? &*patches : nullptr, px0, py, *rows,
                      self);
         if (whole_patches) lay_out_lane_distances(*patches, u, px0, py, *rows);
         for (std::size_t k = 0; k < results; ++k) {
@@ -358,13 +387,16 @@ std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<
               w[r][l] = !rows->inside[r][l] || d >= 30.0 ? 0.0 : d == 0.0 ? 1.0 : std::exp(-d);
             }
           }
-          gather_systems(*rows, w.get(), *systems);
+          gather_systems(*rows, w.get(), int(images.size()), *systems);
           for (int l = 0; l < kLanes && px0 + l < in.width; ++l) {
-            const Regressed fitted = solve_lane(*systems, l, w[self[l]][l]);
+            const Eigen::LDLT<Normal> factored = factor_lane(*systems, l);
             const std::size_t p = std::size_t(py) * std::size_t(in.width) + std::size_t(px0 + l);
-            out[k].color[p] = {float(fitted.value[0]), float(fitted.value[1]),
-                               float(fitted.value[2])};
-            out[k].own_weight[p] = float(fitted.own_weight);
+            for (std::size_t i = 0; i < images.size(); ++i) {
+              const Regressed fitted = solve_lane(factored, *systems, l, int(i), w[self[l]][l]);
+              out[i][k].color[p] = {float(fitted.value[0]), float(fitted.value[1]),
+                                    float(fitted.value[2])};
+              out[i][k].own_weight[p] = float(fitted.own_weight);
+            }
           }
         }
       }
