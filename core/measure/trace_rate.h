@@ -20,7 +20,7 @@ struct TraceRate {
   double seconds = 0.0;
   std::uint64_t rays = 0;
   std::uint64_t hits = 0;  // keeps the work observable, so it cannot be optimised away
-  double mrays_per_second() const { return seconds > 0 ? double(rays) / seconds * 1e-6 : 0.0; }
+  double mrays_per_second() const { return rtiow::mrays_per_second(double(rays), seconds); }
 };
 
 // Traces `rays` through Embree on `threads` threads (0: all cores), nothing else. With

@@ -54,8 +54,7 @@ ProgressSnapshot snapshot(const RenderProgress& progress, double elapsed) {
 }
 
 double live_mrays_per_second(const ProgressSnapshot& now) {
-  const double seconds = now.elapsed - now.judging_seconds;
-  return seconds > 0 ? double(now.rays_traced) / seconds * 1e-6 : 0.0;
+  return mrays_per_second(double(now.rays_traced), now.elapsed - now.judging_seconds);
 }
 
 ProgressStatus progress_status(const RenderSettings& settings, std::uint64_t pixels,
