@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/denoise/candidate_blend.h"
 #include "core/denoise/feature_regression.h"
+#include "core/denoise/window_mean.h"
 #include "core/film/pixel_variance.h"
 
 namespace rtiow {
@@ -15,41 +17,12 @@ namespace {
 // The per-sample variance that weights the patches is the replicate estimate, one degree of
 // freedom a pixel, averaged over (2 r + 1)^2 pixels.
 constexpr int kNoiseLevelRadius = 2;
-// A candidate is chosen by its estimated error averaged over (2 r + 1)^2 pixels (the pixel
-// left out); the per-pixel error channel is averaged over the same window.
-constexpr int kSelectionRadius = 3;
-
-// The mean of `values` over the (2 r + 1)^2 window around each pixel (clipped at the edges),
-// with the pixel itself left out when `leave_out`. Summed-area table: the same bits for any
-// thread count.
-template <typename T>
-std::vector<T> window_mean(const std::vector<T>& values, int width, int height, int r,
-                           bool leave_out) {
-  const auto w = std::size_t(width) + 1;
-  std::vector<T> table(w * (std::size_t(height) + 1), T{});
-  for (int y = 0; y < height; ++y) {
-    T row{};
-    for (int x = 0; x < width; ++x) {
-      row = row + values[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-      table[(std::size_t(y) + 1) * w + std::size_t(x) + 1] =
-          table[std::size_t(y) * w + std::size_t(x) + 1] + row;
-    }
-  }
-  std::vector<T> mean(values.size());
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      const auto x0 = std::size_t(std::max(0, x - r)), x1 = std::size_t(std::min(width, x + r + 1));
-      const auto y0 = std::size_t(std::max(0, y - r)),
-                 y1 = std::size_t(std::min(height, y + r + 1));
-      const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
-      T sum = table[y1 * w + x1] - table[y0 * w + x1] - table[y1 * w + x0] + table[y0 * w + x0];
-      double count = double((x1 - x0) * (y1 - y0));
-      if (leave_out && count > 1) sum = sum - values[p], count -= 1;
-      mean[p] = sum * (1.0 / count);
-    }
-  }
-  return mean;
-}
+// A pixel's blend of the candidates is chosen by their estimated error summed over (2 r + 1)^2
+// pixels (the pixel left out): at 200 and 400 pixels wide, 15x15 gave 5-30% less squared error
+// than choosing by 7x7 and more than 5x5 or 11x11; 21x21 no more (docs/denoising.md).
+constexpr int kBlendRadius = 7;
+// The per-pixel error channel is the estimate averaged over (2 r + 1)^2 pixels.
+constexpr int kErrorChannelRadius = 3;
 
 // The non-local means bandwidths tried in the second pass (NFOR's pair).
 constexpr std::array<float, 2> kBandwidths{0.5f, 1.0f};
@@ -76,12 +49,6 @@ Combined combine(const DenoiseInput& in, const FilteredHalf& even, const Filtere
   }
   return out;
 }
-
-// A candidate image and its own weight in each pixel (1 for the noisy image).
-struct Candidate {
-  const std::vector<Color>* color;
-  const std::vector<float>* own_weight;
-};
 
 // The noisy mean's variance at each pixel, from the halves: unbiased, one degree of freedom
 // per channel, whatever the sampler.
@@ -153,28 +120,21 @@ struct RelativeLevel {
     for (std::size_t p = 0; p < level.size(); ++p)
       for (std::size_t c = 0; c < 3; ++c) level[p][c] = std::min(level[p][c], around[p][c]);
   }
-  // A squared error at pixel p, relative, summed over the channels.
-  double relative(const Vec3d& squared_error, std::size_t p) const {
-    double sum = 0;
+  // What a squared error at pixel p is multiplied by to be relative, per channel.
+  Vec3d weight(std::size_t p) const {
+    Vec3d w;
     for (std::size_t c = 0; c < 3; ++c) {
       const double d = level[p][c] + kRelativeErrorOffset;
-      sum += squared_error[c] / (d * d);
+      w[c] = 1.0 / (d * d);
     }
-    return sum;
+    return w;
+  }
+  // A squared error at pixel p, relative, summed over the channels.
+  double relative(const Vec3d& squared_error, std::size_t p) const {
+    const Vec3d w = weight(p);
+    return squared_error.x * w.x + squared_error.y * w.y + squared_error.z * w.z;
   }
 };
-
-// Each candidate's squared error at each pixel, by Stein's estimate.
-std::vector<Vec3d> stein_estimate(const DenoiseInput& in, const Candidate& candidate,
-                                  const std::vector<Vec3d>& variance) {
-  std::vector<Vec3d> error(in.size());
-  for (std::size_t p = 0; p < in.size(); ++p) {
-    const Vec3d d = Vec3d((*candidate.color)[p]) - Vec3d(in.mean[p]);
-    const double g = (*candidate.own_weight)[p];
-    error[p] = d * d - variance[p] * (1.0 - 2.0 * g);
-  }
-  return error;
-}
 
 }  // namespace
 
@@ -183,42 +143,28 @@ DenoisedImage denoise(const DenoiseInput& in, const std::function<bool()>& cance
   const std::size_t n = in.size();
   const std::vector<Vec3d> variance = noisy_variance(in);
   const std::vector<Combined> filtered = second_pass_images(in, variance, cancelled);
-  const std::vector<float> ones(n, 1.0f);
-  std::vector<Candidate> candidates;
-  for (const Combined& f : filtered) candidates.push_back({&f.color, &f.own_weight});
-  candidates.push_back({&in.mean, &ones});
   const RelativeLevel level(in, filtered.front().color);
-
-  // Each candidate's estimated error, and its relative sum averaged over the pixel's
-  // neighbours (the pixel left out), by which a pixel chooses.
-  std::vector<std::vector<Vec3d>> error(candidates.size());
-  std::vector<std::vector<double>> score(candidates.size());
-  for (std::size_t c = 0; c < candidates.size(); ++c) {
-    error[c] = stein_estimate(in, candidates[c], variance);
-    score[c].resize(n);
-    for (std::size_t p = 0; p < n; ++p) score[c][p] = level.relative(error[c][p], p);
-    score[c] = window_mean(score[c], in.width, in.height, kSelectionRadius, true);
-  }
+  std::vector<Vec3d> relative_weight(n);
+  for (std::size_t p = 0; p < n; ++p) relative_weight[p] = level.weight(p);
+  BlendedImage blended =
+      blend_candidates(in,
+                       {FilteredCandidate{&filtered[0].color, &filtered[0].own_weight},
+                        FilteredCandidate{&filtered[1].color, &filtered[1].own_weight}},
+                       variance, relative_weight, kBlendRadius);
 
   DenoisedImage out;
   out.image = Film(in.width, in.height);
   out.noisy = Film(in.width, in.height);
-  out.noisy_kept.assign(n, 0.0f);
-  std::vector<Vec3d> chosen_error(n);
+  out.noisy_kept = std::move(blended.noisy_share);
   double relative = 0.0, noisy_relative = 0.0;
   for (std::size_t p = 0; p < n; ++p) {
-    std::size_t best = candidates.size() - 1;
-    for (std::size_t c = 0; c + 1 < candidates.size(); ++c)
-      if (score[c][p] < score[best][p]) best = c;
     const int x = int(p % std::size_t(in.width)), y = int(p / std::size_t(in.width));
-    out.image.at(x, y) = (*candidates[best].color)[p];
+    out.image.at(x, y) = blended.color[p];
     out.noisy.at(x, y) = in.mean[p];
-    out.noisy_kept[p] = best + 1 == candidates.size() ? 1.0f : 0.0f;
-    chosen_error[p] = error[best][p];
-    relative += level.relative(chosen_error[p], p);
+    relative += level.relative(blended.error[p], p);
     noisy_relative += level.relative(variance[p], p);
   }
-  out.mse = window_mean(chosen_error, in.width, in.height, kSelectionRadius, false);
+  out.mse = window_mean(blended.error, in.width, in.height, kErrorChannelRadius, false);
   for (Vec3d& e : out.mse) e = {std::max(0.0, e.x), std::max(0.0, e.y), std::max(0.0, e.z)};
   const double values = 3.0 * double(std::max<std::size_t>(n, 1));
   out.estimated_error = std::sqrt(std::max(0.0, relative / values));

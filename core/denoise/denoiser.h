@@ -7,18 +7,19 @@
 // bandwidths. A half's filtered value so depends on the other half only through its weights,
 // never through the pixel's own value: measured on the cover, weights from the other half's
 // noisy mean gave 1.2x lower squared error but reported 0.65-0.77 of the error delivered at 8
-// spp, these 0.83-0.87 (docs/denoising.md). The two second-pass images and the noisy image are
-// the candidates. For a candidate Z that is a linear function of the noisy mean X with own weight g
-// (dZ(p)/dX(p)), Stein's unbiased risk estimate gives its squared error at each pixel:
+// spp, these 0.83-0.87 (docs/denoising.md). For an image Z that is a linear function of the
+// noisy mean X with own weight g (dZ(p)/dX(p)), Stein's unbiased risk estimate gives its squared
+// error at each pixel:
 //
 //   E[(Z - truth)^2] = E[(Z - X)^2] - Var(X) + 2 g Var(X),
 //
 // and the halves give Var(X) without bias whatever the sampler: (even - odd)^2 weighted by their
-// counts (core/film/replicate_variance.h). Each pixel takes the candidate whose estimate,
-// averaged over its neighbours (itself left out, so its own noise does not choose), is least:
-// the noisy value wherever filtering would not help, so the result is never worse than the noisy
-// image by its own estimate. The image's error is the mean of the chosen candidates' estimates,
-// as rtiow's image error (relative RMS, offset 0.01); bias and noise are both in it.
+// counts (core/film/replicate_variance.h). Each pixel and channel blends the two second-pass
+// images and the noisy value with the weights whose estimate, summed over its neighbours (itself
+// left out, so its own noise does not choose), is least (core/denoise/candidate_blend.h): the
+// noisy value wherever filtering would not help, so the result is never worse than the noisy
+// image by its own estimate. The image's error is the mean of the blends' estimates, as rtiow's
+// image error (relative RMS, offset 0.01); bias and noise are both in it.
 
 #include <cstdint>
 #include <exception>
@@ -35,7 +36,7 @@ struct DenoisedImage {
   Film image;                     // the denoised image
   Film noisy;                     // the noisy mean it was made from
   std::vector<Vec3d> mse;         // each pixel's estimated squared error per channel (>= 0)
-  std::vector<float> noisy_kept;  // 1 where the pixel kept its noisy value, else 0
+  std::vector<float> noisy_kept;  // the noisy value's share in each pixel: 1 where it kept it
   double estimated_error = 0.0;   // the image's relative RMS error (offset 0.01), estimated
   double noisy_error = 0.0;       // the noisy image's, by the same estimate
   double seconds = 0.0;           // the denoiser's own time

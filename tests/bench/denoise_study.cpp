@@ -103,26 +103,24 @@ void calibrate(const Scene& scene, int width, int height, int reference_spp, int
       const double truth = ref.image_error(d.image.pixels());
       const double noisy = ref.image_error(r.film.pixels());
       const auto [over, blocks] = blocks_over_estimate(ref, d);
-      // The pixels that kept their noisy value, and their share of the true squared error:
-      // what no candidate filtered better, where more gain would have to come from.
-      std::size_t kept = 0;
-      double kept_error = 0, all_error = 0;
+      // The noisy value's share in the image, and the true squared error's share in the
+      // pixels that kept more than half of it: where more gain would have to come from.
+      double share = 0, kept_error = 0, all_error = 0;
       for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
           const double e = ref.squared_error(d.image.pixels(), x, y, x + 1, y + 1);
-          const bool noisy_kept =
-              d.noisy_kept[std::size_t(y) * std::size_t(width) + std::size_t(x)] > 0;
-          kept += noisy_kept ? 1 : 0, all_error += e, kept_error += noisy_kept ? e : 0.0;
+          const double kept = d.noisy_kept[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+          share += kept, all_error += e, kept_error += kept > 0.5 ? e : 0.0;
         }
       }
       std::printf(
           "%s %dx%d spp %d seed %d: denoised est %.5f true %.5f ratio %.3f | noisy est %.5f "
-          "true %.5f | mse gain %.2f | kept %.1f%% (%.0f%% of the true error) | blocks bad "
+          "true %.5f | mse gain %.2f | noisy share %.1f%% (%.0f%% of the true error) | blocks bad "
           "%d/%d | %.2fs\n",
           scene.name.c_str(), width, height, spp, seed, d.estimated_error, truth,
           d.estimated_error / truth, d.noisy_error, noisy, noisy * noisy / (truth * truth),
-          100.0 * double(kept) / double(d.noisy_kept.size()), 100.0 * kept_error / all_error, over,
-          blocks, d.seconds);
+          100.0 * share / double(d.noisy_kept.size()), 100.0 * kept_error / all_error, over, blocks,
+          d.seconds);
     }
   }
 }
