@@ -324,8 +324,8 @@ void group_options(CLI::App* cmd) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> groups = {
       {"Scene", {"--scene", "--list-scenes", "--like", "--scene-seed"}},
       {"Output",
-       {"-o", "--width", "--height", "--crop", "--passes", "--denoise", "--stats-channels", "--reproducible",
-        "-q", "--summary-json", "--preview", "--display"}},
+       {"-o", "--width", "--height", "--crop", "--passes", "--denoise", "--stats-channels",
+        "--reproducible", "-q", "--summary-json", "--preview", "--display"}},
       {"Sampling",
        {"--spp", "--depth", "--seed", "--sampler", "--roulette", "--fresnel", "--adaptive",
         "--image-error", "--target-error", "--min-spp"}},
@@ -733,10 +733,9 @@ Commands add_commands(CLI::App& app, CommandLine& out) {
 void finish_parsed(const Commands& c, CommandLine& out) {
   apply_quick_runs(c.bench, out.bench, c.accuracy, out.accuracy);
   const std::pair<CLI::App*, Command> commands[] = {
-      {c.render, Command::Render}, {c.scene, Command::Scene},      {c.merge, Command::Merge},
-      {c.denoise, Command::Denoise},
-      {c.bench, Command::Bench},   {c.point, Command::BenchPoint}, {c.accuracy, Command::Accuracy},
-      {c.diff, Command::Diff}};
+      {c.render, Command::Render},     {c.scene, Command::Scene}, {c.merge, Command::Merge},
+      {c.denoise, Command::Denoise},   {c.bench, Command::Bench}, {c.point, Command::BenchPoint},
+      {c.accuracy, Command::Accuracy}, {c.diff, Command::Diff}};
   for (const auto& [cmd, command] : commands) {
     if (cmd->parsed()) out.command = command;
   }

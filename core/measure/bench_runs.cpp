@@ -103,7 +103,7 @@ json measure_render(const Scene& scene, RenderSettings settings, int repeat, dou
     build.push_back(r.build_seconds);
     seconds.push_back(r.render_seconds);
     rays = r.rays_traced;
-    rates.push_back(double(rays) / r.render_seconds * 1e-6);
+    rates.push_back(tracing_mrays_per_second(r));
     each.push_back({{"build_seconds", r.build_seconds},
                     {"render_seconds", r.render_seconds},
                     {"rays", r.rays_traced},
