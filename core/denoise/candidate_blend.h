@@ -13,7 +13,7 @@
 // and over a neighbourhood that estimate is a quadratic in (a1, a2): a^T M a - 2 b^T a + const,
 // M the sums of (Z_i - X)(Z_j - X), b those of Var(X) (1 - g_i). Choosing one candidate per
 // pixel is the corners of this triangle; the blend reaches the points between them (measured:
-// 4-25% less squared error than the choice at 400 pixels wide, docs/denoising.md). a = 0 is the
+// 1-25% less squared error than the choice at 400 pixels wide, docs/denoising.md). a = 0 is the
 // noisy value: where neither filter helps its neighbours, a pixel keeps it.
 
 #include <array>
