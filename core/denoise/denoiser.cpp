@@ -111,30 +111,24 @@ std::vector<Combined> second_pass_images(const DenoiseInput& in, const std::vect
 // reported 0.71 of the noisy image's true error on the materials scene at 8 spp; the filtered
 // value alone, which keeps some of it, 0.65-0.90 of the denoised error there at 16 spp and 96
 // pixels wide, this 0.70-0.96; a 3x3 mean alone, blurred across edges, 0.87 on the cover.
-struct RelativeLevel {
-  std::vector<Vec3d> level;
-
-  RelativeLevel(const DenoiseInput& in, const std::vector<Color>& sharper)
-      : level(sharper.begin(), sharper.end()) {
-    const std::vector<Vec3d> around = window_mean(level, in.width, in.height, 1, true);
-    for (std::size_t p = 0; p < level.size(); ++p)
-      for (std::size_t c = 0; c < 3; ++c) level[p][c] = std::min(level[p][c], around[p][c]);
-  }
-  // What a squared error at pixel p is multiplied by to be relative, per channel.
-  Vec3d weight(std::size_t p) const {
-    Vec3d w;
+// Returned as 1 / (level + 0.01)^2 a pixel and channel: what its squared error is multiplied by.
+std::vector<Vec3d> relative_weights(const DenoiseInput& in, const std::vector<Color>& sharper) {
+  const std::vector<Vec3d> level(sharper.begin(), sharper.end());
+  const std::vector<Vec3d> around = window_mean(level, in.width, in.height, 1, true);
+  std::vector<Vec3d> weight(level.size());
+  for (std::size_t p = 0; p < level.size(); ++p) {
     for (std::size_t c = 0; c < 3; ++c) {
-      const double d = level[p][c] + kRelativeErrorOffset;
-      w[c] = 1.0 / (d * d);
+      const double d = std::min(level[p][c], around[p][c]) + kRelativeErrorOffset;
+      weight[p][c] = 1.0 / (d * d);
     }
-    return w;
   }
-  // A squared error at pixel p, relative, summed over the channels.
-  double relative(const Vec3d& squared_error, std::size_t p) const {
-    const Vec3d w = weight(p);
-    return squared_error.x * w.x + squared_error.y * w.y + squared_error.z * w.z;
-  }
-};
+  return weight;
+}
+
+// A squared error, relative, summed over the channels.
+double relative_sum(const Vec3d& squared_error, const Vec3d& weight) {
+  return squared_error.x * weight.x + squared_error.y * weight.y + squared_error.z * weight.z;
+}
 
 }  // namespace
 
@@ -143,9 +137,7 @@ DenoisedImage denoise(const DenoiseInput& in, const std::function<bool()>& cance
   const std::size_t n = in.size();
   const std::vector<Vec3d> variance = noisy_variance(in);
   const std::vector<Combined> filtered = second_pass_images(in, variance, cancelled);
-  const RelativeLevel level(in, filtered.front().color);
-  std::vector<Vec3d> relative_weight(n);
-  for (std::size_t p = 0; p < n; ++p) relative_weight[p] = level.weight(p);
+  const std::vector<Vec3d> relative_weight = relative_weights(in, filtered.front().color);
   BlendedImage blended =
       blend_candidates(in,
                        {FilteredCandidate{&filtered[0].color, &filtered[0].own_weight},
@@ -161,8 +153,8 @@ DenoisedImage denoise(const DenoiseInput& in, const std::function<bool()>& cance
     const int x = int(p % std::size_t(in.width)), y = int(p / std::size_t(in.width));
     out.image.at(x, y) = blended.color[p];
     out.noisy.at(x, y) = in.mean[p];
-    relative += level.relative(blended.error[p], p);
-    noisy_relative += level.relative(variance[p], p);
+    relative += relative_sum(blended.error[p], relative_weight[p]);
+    noisy_relative += relative_sum(variance[p], relative_weight[p]);
   }
   out.mse = window_mean(blended.error, in.width, in.height, kErrorChannelRadius, false);
   for (Vec3d& e : out.mse) e = {std::max(0.0, e.x), std::max(0.0, e.y), std::max(0.0, e.z)};
