@@ -1,6 +1,6 @@
 // Micro-benchmarks (Google Benchmark): the sphere test, one rtcIntersect1 on the cover
-// scene, one scatter of each material, and loading a scene file of N spheres. Not part of
-// the test run:
+// scene, one scatter of each material, loading a scene file of N spheres and denoising a
+// render. Not part of the test run:
 //   build/bin/rtiow_microbench --benchmark_repetitions=5 --benchmark_report_aggregates_only
 
 #include <benchmark/benchmark.h>
@@ -14,7 +14,10 @@
 
 #include "core/accel/embree_accel.h"
 #include "core/accel/naive_accel.h"
+#include "core/denoise/denoiser.h"
 #include "core/geometry/sphere_intersect.h"
+#include "core/render/denoised_output.h"
+#include "core/render/render.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/builtin_scenes.h"
@@ -103,6 +106,22 @@ BENCHMARK(BM_LoadSceneFile)
     ->Arg(1000000)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
+
+// The denoiser on the cover at 400x267 and 8 spp, rendered once: the time the denoiser adds
+// to a render, reported per megapixel (the render's own time is not in it).
+void BM_DenoiseCover(benchmark::State& state) {
+  const Scene scene = make_builtin_scene("cover", kDefaultSceneSeed);
+  RenderSettings settings;
+  settings.width = 400, settings.height = 267, settings.samples = FixedSamples{8};
+  settings.estimate_error = true, settings.passes = {true, true, true};
+  const DenoiseInput input = denoise_input(render(scene, settings));
+  for (auto _ : state) benchmark::DoNotOptimize(denoise(input));
+  const double megapixels = double(input.size()) * 1e-6;
+  state.counters["s_per_megapixel"] =
+      benchmark::Counter(double(state.iterations()) * megapixels,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_DenoiseCover)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace rtiow
