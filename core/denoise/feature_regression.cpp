@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include <oneapi/tbb/enumerable_thread_specific.h>
+
 #include "core/parallel/instruction_sets.h"
 #include "core/parallel/lanes.h"
 #include "core/parallel/parallel_for_range.h"
@@ -30,7 +32,42 @@ constexpr std::size_t kRowsPerChunk = 8;
 static_assert(kPatchRadius == 1, "PatchDistances keeps the terms of three rows");
 
 using Normal = Eigen::Matrix<double, kColumns, kColumns>;
-using Solution = Eigen::Matrix<double, kColumns, 4>;
+
+// The guide and its variance a channel at a time, in doubles: the patch terms' loop reads
+// them a vector of pixels at a time.
+struct GuidePlanes {
+  std::array<std::vector<double>, 3> value, variance;
+
+  GuidePlanes(const Guide& guide) {
+    const std::size_t n = guide.image->size();
+    for (std::size_t c = 0; c < 3; ++c) {
+      value[c].resize(n), variance[c].resize(n);
+      for (std::size_t p = 0; p < n; ++p)
+        value[c][p] = double((*guide.image)[p][c]), variance[c][p] = (*guide.variance)[p][c];
+    }
+  }
+};
+
+// The patch terms of `count` pixels a = a0.. against b = b0.. (both in the image): over the
+// channels, the squared difference less what the noise explains, over the noise's level.
+RTIOW_DISPATCHED void patch_terms(const GuidePlanes& g, std::size_t a0, std::size_t b0,
+                                  std::size_t count, double* __restrict terms,
+                                  double* __restrict valid) {
+  const double* __restrict ga[3] = {&g.value[0][a0], &g.value[1][a0], &g.value[2][a0]};
+  const double* __restrict gb[3] = {&g.value[0][b0], &g.value[1][b0], &g.value[2][b0]};
+  const double* __restrict va[3] = {&g.variance[0][a0], &g.variance[1][a0], &g.variance[2][a0]};
+  const double* __restrict vb[3] = {&g.variance[0][b0], &g.variance[1][b0], &g.variance[2][b0]};
+  for (std::size_t i = 0; i < count; ++i) {
+    double term = 0.0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double diff = ga[c][i] - gb[c][i];
+      term +=
+          (diff * diff - (va[c][i] + std::min(va[c][i], vb[c][i]))) / (1e-12 + va[c][i] + vb[c][i]);
+    }
+    terms[i] = term;
+    valid[i] = 1.0;
+  }
+}
 
 // Rousselle et al.'s patch distance between pixels p and q = p + d of a guide (each pixel with
 // its variance), for a bandwidth of 1: over the patch and the channels, the squared difference
@@ -43,11 +80,14 @@ using Solution = Eigen::Matrix<double, kColumns, 4>;
 // each row and kept for three rows, and a distance sums its patch's nine.
 class PatchDistances {
  public:
-  PatchDistances(const DenoiseInput& in, const Guide& guide)
-      : in_(in), guide_(guide), width_(std::size_t(in.width)) {
+  PatchDistances(const DenoiseInput& in, const GuidePlanes& planes)
+      : in_(in), planes_(planes), width_(std::size_t(in.width)) {
     terms_.resize(kOffsets * 3 * width_);
     valid_.resize(kOffsets * 3 * width_);
   }
+
+  // Forgets the rows computed: a new chunk of rows starts.
+  void restart() { next_row_ = 0; }
 
   // Makes the terms of rows py - 1 to py + 1 ready (rows asked in increasing order).
   void at_row(int py) {
@@ -124,34 +164,27 @@ class PatchDistances {
   }
 
   void compute_row(int ay) {
-    const std::vector<Color>& g = *guide_.image;
-    const std::vector<Vec3d>& v = *guide_.variance;
     for (int dy = -kRegressionRadius; dy <= kRegressionRadius; ++dy) {
       for (int dx = -kRegressionRadius; dx <= kRegressionRadius; ++dx) {
         const std::size_t base = slot(offset_index(dx, dy), ay);
         const int by = ay + dy;
-        for (int ax = 0; ax < in_.width; ++ax) {
-          const int bx = ax + dx;
-          double term = 0.0;
-          const bool inside = bx >= 0 && by >= 0 && bx < in_.width && by < in_.height;
-          if (inside) {
-            const std::size_t a = std::size_t(ay) * width_ + std::size_t(ax);
-            const std::size_t b = std::size_t(by) * width_ + std::size_t(bx);
-            for (std::size_t c = 0; c < 3; ++c) {
-              const double diff = double(g[a][c]) - double(g[b][c]);
-              const double va = v[a][c], vb = v[b][c];
-              term += (diff * diff - (va + std::min(va, vb))) / (1e-12 + va + vb);
-            }
-          }
-          terms_[base + std::size_t(ax)] = term;
-          valid_[base + std::size_t(ax)] = inside ? 1.0 : 0.0;
-        }
+        // The pixels ax whose partner ax + dx (in row by) is in the image.
+        const int first = by >= 0 && by < in_.height ? std::max(0, -dx) : in_.width;
+        const int end = std::max(first, std::min(in_.width, in_.width - dx));
+        std::fill(&terms_[base], &terms_[base] + first, 0.0);
+        std::fill(&valid_[base], &valid_[base] + first, 0.0);
+        if (end > first)
+          patch_terms(planes_, std::size_t(ay) * width_ + std::size_t(first),
+                      std::size_t(by) * width_ + std::size_t(first + dx), std::size_t(end - first),
+                      &terms_[base + std::size_t(first)], &valid_[base + std::size_t(first)]);
+        std::fill(&terms_[base] + end, &terms_[base] + width_, 0.0);
+        std::fill(&valid_[base] + end, &valid_[base] + width_, 0.0);
       }
     }
   }
 
   const DenoiseInput& in_;
-  const Guide& guide_;
+  const GuidePlanes& planes_;
   std::size_t width_;
   int next_row_ = 0;
   std::vector<double> terms_;  // [offset][row mod 3][x]
@@ -213,7 +246,8 @@ template <int Images, int... A>
   (gather_row_of_normal<Images, A>(rows, w, skip, out), ...);
 }
 
-// The lanes' normal equations (lower halves: LDLT reads nothing else) for `images` images.
+// The lanes' normal equations for `images` images (lower halves: the Cholesky factorisation
+// reads nothing else).
 RTIOW_DISPATCHED void gather_systems(const LaneRows& rows, const Lanes* w, int images,
                                      LaneSystems& out) {
   bool skip[kUnionRows];
@@ -236,25 +270,26 @@ struct Regressed {
   double own_weight;
 };
 
-// Lane l's normal matrix, factored once for every image fitted on it (LDLT reads the lower half).
-Eigen::LDLT<Normal> factor_lane(const LaneSystems& s, int l) {
+// Lane l's weighted least squares fits reach its pixel through the first row of the inverse
+// normal matrix: the intercept (the fit at the pixel) is e0' N^-1 X'W y, so one solve of
+// N z = e0 serves every image fitted on the same design and weights, and z(0) is the hat
+// matrix's diagonal over the pixel's own weight. With the ridge, N is positive definite.
+Eigen::Matrix<double, kColumns, 1> intercept_row(const LaneSystems& s, int l) {
   Normal normal = Normal::Zero();
   for (int a = 0; a < kColumns; ++a)
     for (int b = 0; b <= a; ++b) normal(a, b) = s.normal[a][b][l];
   for (int c = 1; c < kColumns; ++c) normal(c, c) += kRidge * s.total[l];
-  return normal.ldlt();
+  return normal.selfadjointView<Eigen::Lower>().llt().solve(
+      Eigen::Matrix<double, kColumns, 1>::Unit(0));
 }
 
-// Lane l's weighted least squares fit of image `image` at its pixel, whose own weight is
-// `self_weight`.
-Regressed solve_lane(const Eigen::LDLT<Normal>& factored, const LaneSystems& s, int l, int image,
-                     double self_weight) {
-  Solution rhs = Solution::Zero();
+// Lane l's fit of image `image` at its pixel, whose own weight is `self_weight`.
+Regressed fit_lane(const Eigen::Matrix<double, kColumns, 1>& row, const LaneSystems& s, int l,
+                   int image, double self_weight) {
+  Regressed out{Eigen::Vector3d::Zero(), self_weight * row(0)};
   for (int a = 0; a < kColumns; ++a)
-    for (int c = 0; c < 3; ++c) rhs(a, c) = s.rhs[a][3 * image + c][l];
-  rhs(0, 3) = 1.0;
-  const Solution beta = factored.solve(rhs);
-  return {beta.block<1, 3>(0, 0).transpose(), self_weight * beta(0, 3)};
+    for (int c = 0; c < 3; ++c) out.value[c] += row(a) * s.rhs[a][3 * image + c][l];
+  return out;
 }
 
 // The union of the windows of the pixels (px0 .. px0 + kLanes - 1, py), clipped to the image.
@@ -359,13 +394,26 @@ std::vector<std::vector<FilteredHalf>> filter_images(
   for (auto& image : out)
     for (FilteredHalf& f : image) f.color.resize(n), f.own_weight.resize(n);
 
+  std::optional<GuidePlanes> planes;
+  if (guide.image) planes.emplace(guide);
+  // Each thread's working memory, kept from chunk to chunk (fresh pages for every chunk cost
+  // more time in the kernel than the patch terms in the loop).
+  struct Scratch {
+    std::unique_ptr<LaneRows> rows = std::make_unique<LaneRows>();
+    std::unique_ptr<LaneSystems> systems = std::make_unique<LaneSystems>();
+    std::unique_ptr<Lanes[]> w = std::make_unique<Lanes[]>(kUnionRows);
+    std::optional<PatchDistances> patches;
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch;
   // Chunks of rows, so that each row's patch terms serve the rows around it.
   parallel_for_range(std::size_t(in.height), kRowsPerChunk, [&](std::size_t y0, std::size_t y1) {
-    const auto rows = std::make_unique<LaneRows>();
-    const auto systems = std::make_unique<LaneSystems>();
-    const auto w = std::make_unique<Lanes[]>(kUnionRows);
-    std::optional<PatchDistances> patches;
-    if (guide.image) patches.emplace(in, guide);
+    Scratch& local = scratch.local();
+    LaneRows* const rows = local.rows.get();
+    LaneSystems* const systems = local.systems.get();
+    Lanes* const w = local.w.get();
+    std::optional<PatchDistances>& patches = local.patches;
+    if (planes && !patches) patches.emplace(in, *planes);
+    if (patches) patches->restart();
     for (int py = int(y0); py < int(y1); ++py) {
       if (cancelled && cancelled()) return;
       if (patches) patches->at_row(py);
@@ -387,12 +435,12 @@ std::vector<std::vector<FilteredHalf>> filter_images(
               w[r][l] = !rows->inside[r][l] || d >= 30.0 ? 0.0 : d == 0.0 ? 1.0 : std::exp(-d);
             }
           }
-          gather_systems(*rows, w.get(), int(images.size()), *systems);
+          gather_systems(*rows, w, int(images.size()), *systems);
           for (int l = 0; l < kLanes && px0 + l < in.width; ++l) {
-            const Eigen::LDLT<Normal> factored = factor_lane(*systems, l);
+            const Eigen::Matrix<double, kColumns, 1> row = intercept_row(*systems, l);
             const std::size_t p = std::size_t(py) * std::size_t(in.width) + std::size_t(px0 + l);
             for (std::size_t i = 0; i < images.size(); ++i) {
-              const Regressed fitted = solve_lane(factored, *systems, l, int(i), w[self[l]][l]);
+              const Regressed fitted = fit_lane(row, *systems, l, int(i), w[self[l]][l]);
               out[i][k].color[p] = {float(fitted.value[0]), float(fitted.value[1]),
                                     float(fitted.value[2])};
               out[i][k].own_weight[p] = float(fitted.own_weight);
