@@ -234,6 +234,31 @@ TEST(Denoiser, TheSameBitsOnAnyNumberOfThreads) {
   EXPECT_EQ(one.estimated_error, two.estimated_error);
 }
 
+// Images smaller than its windows (a 3-pixel-wide crop, a 1x1 render): each window is clipped
+// to the image, and a noiseless flat image comes back as it went in, whatever its features.
+TEST(Denoiser, ImagesSmallerThanItsWindowsComeBackWhole) {
+  for (int width = 1; width <= 7; ++width) {
+    for (int height = 1; height <= 7; ++height) {
+      DenoiseInput in;
+      in.width = width, in.height = height;
+      for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+          const Color flat{0.3f, 0.3f, 0.3f};
+          in.even.push_back(flat), in.odd.push_back(flat), in.mean.push_back(flat);
+          in.even_samples.push_back(kHalfSamples), in.odd_samples.push_back(kHalfSamples);
+          const float albedo = 0.2f + 0.1f * float((x + 2 * y) % 5);
+          in.features.push_back({albedo, 0.5f, 0.5f, 0.f, 0.f, 1.f, 4.f + float(x)});
+        }
+      }
+      const DenoisedImage d = denoise(in);
+      for (const Color& c : d.image.pixels())
+        for (std::size_t i = 0; i < 3; ++i)
+          ASSERT_NEAR(c[i], 0.3f, 1e-5f) << width << "x" << height;
+      EXPECT_TRUE(std::isfinite(d.estimated_error)) << width << "x" << height;
+    }
+  }
+}
+
 // Its caller may stop it (a render's stop or time limit while it judges a round): asked
 // between rows, it throws soon after; never asked to stop, the same bits as without the question.
 TEST(Denoiser, StopsWhenItsCallerSaysSo) {

@@ -169,7 +169,8 @@ class PatchDistances {
         const std::size_t base = slot(offset_index(dx, dy), ay);
         const int by = ay + dy;
         // The pixels ax whose partner ax + dx (in row by) is in the image.
-        const int first = by >= 0 && by < in_.height ? std::max(0, -dx) : in_.width;
+        const int first =
+            by >= 0 && by < in_.height ? std::min(in_.width, std::max(0, -dx)) : in_.width;
         const int end = std::max(first, std::min(in_.width, in_.width - dx));
         std::fill(&terms_[base], &terms_[base] + first, 0.0);
         std::fill(&valid_[base], &valid_[base] + first, 0.0);
