@@ -280,14 +280,17 @@ struct Regressed {
 // Lane l's weighted least squares fits reach its pixel through the first row of the inverse
 // normal matrix: the intercept (the fit at the pixel) is e0' N^-1 X'W y, so one solve of
 // N z = e0 serves every image fitted on the same design and weights, and z(0) is the hat
-// matrix's diagonal over the pixel's own weight. With the ridge, N is positive definite.
+// matrix's diagonal over the pixel's own weight. With the ridge, N is positive definite; where
+// rounding says otherwise (features of wildly different scales), the pivoting LDLT solves it.
 Eigen::Matrix<double, kColumns, 1> intercept_row(const LaneSystems& s, int l) {
   Normal normal = Normal::Zero();
   for (int a = 0; a < kColumns; ++a)
     for (int b = 0; b <= a; ++b) normal(a, b) = s.normal[a][b][l];
   for (int c = 1; c < kColumns; ++c) normal(c, c) += kRidge * s.total[l];
-  return normal.selfadjointView<Eigen::Lower>().llt().solve(
-      Eigen::Matrix<double, kColumns, 1>::Unit(0));
+  const auto unit = Eigen::Matrix<double, kColumns, 1>::Unit(0);
+  const Eigen::LLT<Normal, Eigen::Lower> cholesky(normal);
+  if (cholesky.info() == Eigen::Success) return cholesky.solve(unit);
+  return normal.selfadjointView<Eigen::Lower>().ldlt().solve(unit);
 }
 
 // Lane l's fit of image `image` at its pixel, whose own weight is `self_weight`.

@@ -19,7 +19,7 @@ namespace rtiow {
 
 // The window is (2 kRegressionRadius + 1)^2 pixels; the patches (2 kPatchRadius + 1)^2. 9x9
 // gave 1-37% more squared error gain than 11x11 in 22 of 24 cases (the 400-pixel `materials` at
-// 8 and 32 spp 1-3% less) in 0.7x the time; 7x7 more still, but its estimate read 0.78 of the
+// 8 and 32 spp 1-3% less) in 0.74x the time; 7x7 more still, but its estimate read 0.78 of the
 // truth on `defocus` at 8 spp (docs/denoising.md).
 inline constexpr int kRegressionRadius = 4;
 inline constexpr int kPatchRadius = 1;
