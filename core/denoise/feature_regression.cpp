@@ -38,7 +38,7 @@ using Normal = Eigen::Matrix<double, kColumns, kColumns>;
 struct GuidePlanes {
   std::array<std::vector<double>, 3> value, variance;
 
-  GuidePlanes(const Guide& guide) {
+  explicit GuidePlanes(const Guide& guide) {
     const std::size_t n = guide.image->size();
     for (std::size_t c = 0; c < 3; ++c) {
       value[c].resize(n), variance[c].resize(n);
