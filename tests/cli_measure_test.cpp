@@ -48,9 +48,19 @@ TEST(Cli, BenchWritesFiguresAndPlot) {
       dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text << r.stdout_text;
   EXPECT_NE(r.stdout_text.find("embree / naive"), std::string::npos) << r.stdout_text;
-  EXPECT_NE(r.stdout_text.find("render / raw trace rate"), std::string::npos);
   EXPECT_NE(r.stdout_text.find("embree traversal alone"), std::string::npos);
   const std::string figures = slurp(json_path);
+  // The ratios, or, where this tiny run's timings made one impossible (a loaded machine can),
+  // each failed measurement in its place: which of the two depends on the clock, not the code.
+  const auto failed_measurements = nlohmann::json::parse(figures)["cover"]["failed_measurements"];
+  if (failed_measurements.empty()) {
+    EXPECT_NE(r.stdout_text.find("render / raw trace rate"), std::string::npos) << r.stdout_text;
+  } else {
+    for (const auto& f : failed_measurements)
+      EXPECT_NE(r.stdout_text.find("failed measurement: " + f.get<std::string>()),
+                std::string::npos)
+          << r.stdout_text;
+  }
   for (const char* key : {"\"cover\"", "\"scaling\"", "\"trace\"", "\"traversal\"",
                           "\"embree_1_thread\"", "\"peak_rss_mb\"", "\"build_seconds\""}) {
     EXPECT_NE(figures.find(key), std::string::npos) << key;
