@@ -3,13 +3,13 @@
 //
 // Two passes of a feature regression (core/denoise/feature_regression.h), as NFOR filters
 // twice: first each half of the samples with its neighbours weighted equally, then each half
-// again with its neighbours weighted by the patches of the other half's first pass, at two
-// bandwidths. A half's filtered value so depends on the other half only through its weights,
-// never through the pixel's own value: measured on the cover, weights from the other half's
-// noisy mean gave 1.2x lower squared error but reported 0.65-0.77 of the error delivered at 8
-// spp, these 0.83-0.87 (docs/denoising.md). For an image Z that is a linear function of the
-// noisy mean X with own weight g (dZ(p)/dX(p)), Stein's unbiased risk estimate gives its squared
-// error at each pixel:
+// again with its neighbours weighted by the patches of the other half's first pass: regressed at
+// bandwidth 0.5, and averaged (a weighted mean) at bandwidth 2. A half's filtered value so depends
+// on the other half only through its weights, never through the pixel's own value: measured on the
+// cover, weights from the other half's noisy mean gave 1.2x lower squared error but reported
+// 0.65-0.77 of the error delivered at 8 spp, these 0.83-0.87 (docs/denoising.md). For an image Z
+// that is a linear function of the noisy mean X with own weight g (dZ(p)/dX(p)), Stein's unbiased
+// risk estimate gives its squared error at each pixel:
 //
 //   E[(Z - truth)^2] = E[(Z - X)^2] - Var(X) + 2 g Var(X),
 //

@@ -272,6 +272,19 @@ RTIOW_DISPATCHED void gather_systems(const LaneRows& rows, const Lanes* w, int i
   out.total = total;
 }
 
+// The weighted means' sums alone (a Fit::kMean): each image's sum of w y, in the intercept's
+// right-hand side, and the weights' sum; no normal matrix.
+RTIOW_DISPATCHED void gather_means(const LaneRows& rows, const Lanes* w, int images,
+                                   LaneSystems& out) {
+  Lanes rhs[3 * kMostImages] = {}, total = {};
+  for (int r = 0; r < rows.rows; ++r) {
+    for (int c = 0; c < 3 * images; ++c) rhs[c] += w[r] * rows.y[r][c];
+    total += w[r];
+  }
+  for (int c = 0; c < 3 * images; ++c) out.rhs[0][c] = rhs[c];
+  out.total = total;
+}
+
 struct Regressed {
   Eigen::Vector3d value;
   double own_weight;
@@ -291,6 +304,15 @@ Eigen::Matrix<double, kColumns, 1> intercept_row(const LaneSystems& s, int l) {
   const Eigen::LLT<Normal, Eigen::Lower> cholesky(normal);
   if (cholesky.info() == Eigen::Success) return cholesky.solve(unit);
   return normal.selfadjointView<Eigen::Lower>().ldlt().solve(unit);
+}
+
+// Lane l's weighted mean of image `image` at its pixel (whose own weight, at least that of its
+// own row, keeps the sum above 0).
+Regressed mean_lane(const LaneSystems& s, int l, int image, double self_weight) {
+  const double total = s.total[l];
+  Regressed out{Eigen::Vector3d::Zero(), self_weight / total};
+  for (int c = 0; c < 3; ++c) out.value[c] = s.rhs[0][3 * image + c][l] / total;
+  return out;
 }
 
 // Lane l's fit of image `image` at its pixel, whose own weight is `self_weight`.
@@ -387,19 +409,19 @@ RTIOW_DISPATCHED void lay_out_lane_distances(const PatchDistances& patches, cons
 }  // namespace
 
 std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<Color>& half,
-                                      const Guide& guide, const std::vector<float>& bandwidths,
+                                      const Guide& guide, const std::vector<Weighting>& weightings,
                                       const std::function<bool()>& cancelled) {
-  return filter_images(in, {&half}, guide, bandwidths, cancelled).front();
+  return filter_images(in, {&half}, guide, weightings, cancelled).front();
 }
 
 std::vector<std::vector<FilteredHalf>> filter_images(
     const DenoiseInput& in, const std::vector<const std::vector<Color>*>& images,
-    const Guide& guide, const std::vector<float>& bandwidths,
+    const Guide& guide, const std::vector<Weighting>& weightings,
     const std::function<bool()>& cancelled) {
   if (images.empty() || images.size() > std::size_t(kMostImages))
     throw std::invalid_argument("filter_images: 1 to 2 images");
   const std::size_t n = in.size();
-  const std::size_t results = guide.image ? bandwidths.size() : 1;
+  const std::size_t results = guide.image ? weightings.size() : 1;
   std::vector<std::vector<FilteredHalf>> out(images.size(), std::vector<FilteredHalf>(results));
   for (auto& image : out)
     for (FilteredHalf& f : image) f.color.resize(n), f.own_weight.resize(n);
@@ -435,8 +457,9 @@ std::vector<std::vector<FilteredHalf>> filter_images(
                      self);
         if (whole_patches) lay_out_lane_distances(*patches, u, px0, py, *rows);
         for (std::size_t k = 0; k < results; ++k) {
-          const double scale =
-              guide.image ? 1.0 / (double(bandwidths[k]) * double(bandwidths[k])) : 0.0;
+          const double bandwidth = guide.image ? double(weightings[k].bandwidth) : 0.0;
+          const bool mean = guide.image && weightings[k].fit == Fit::kMean;
+          const double scale = guide.image ? 1.0 / (bandwidth * bandwidth) : 0.0;
           // Weights below e^-30 are 0: they change nothing, and as subnormal numbers they made
           // the products several times slower.
           for (int r = 0; r < rows->rows; ++r) {
@@ -445,12 +468,18 @@ std::vector<std::vector<FilteredHalf>> filter_images(
               w[r][l] = !rows->inside[r][l] || d >= 30.0 ? 0.0 : d == 0.0 ? 1.0 : std::exp(-d);
             }
           }
-          gather_systems(*rows, w, int(images.size()), *systems);
+          if (mean)
+            gather_means(*rows, w, int(images.size()), *systems);
+          else
+            gather_systems(*rows, w, int(images.size()), *systems);
           for (int l = 0; l < kLanes && px0 + l < in.width; ++l) {
-            const Eigen::Matrix<double, kColumns, 1> row = intercept_row(*systems, l);
+            const Eigen::Matrix<double, kColumns, 1> row =
+                mean ? Eigen::Matrix<double, kColumns, 1>::Zero() : intercept_row(*systems, l);
             const std::size_t p = std::size_t(py) * std::size_t(in.width) + std::size_t(px0 + l);
             for (std::size_t i = 0; i < images.size(); ++i) {
-              const Regressed fitted = fit_lane(row, *systems, l, int(i), w[self[l]][l]);
+              const double self_weight = w[self[l]][l];
+              const Regressed fitted = mean ? mean_lane(*systems, l, int(i), self_weight)
+                                            : fit_lane(row, *systems, l, int(i), self_weight);
               out[i][k].color[p] = {float(fitted.value[0]), float(fitted.value[1]),
                                     float(fitted.value[2])};
               out[i][k].own_weight[p] = float(fitted.own_weight);

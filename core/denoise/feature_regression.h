@@ -31,6 +31,19 @@ struct Guide {
   const std::vector<Vec3d>* variance = nullptr;
 };
 
+// How a pixel's neighbours, weighted by the guide, make its value: a first-order regression on
+// the features (follows shading that they explain, at the variance of fitting ten columns), or
+// their weighted mean (far less variance where the guide finds similar neighbours, biased where
+// the features vary across them).
+enum class Fit { kRegression, kMean };
+
+// One of the second pass's filters: its bandwidth (how far, in standard deviations of the
+// guide's noise, a neighbour's patch may differ and still count) and its fit.
+struct Weighting {
+  float bandwidth = 1.0f;
+  Fit fit = Fit::kRegression;
+};
+
 // One half filtered: each pixel's value, and its own weight in it (d filtered(p) / d half(p),
 // the hat matrix's diagonal).
 struct FilteredHalf {
@@ -38,22 +51,21 @@ struct FilteredHalf {
   std::vector<float> own_weight;
 };
 
-// `half` (one of `in`'s halves) filtered at each bandwidth k of `bandwidths` (how far, in
-// standard deviations of the guide's noise, a neighbour's patch may differ and still count; one
-// result for an equal-weights guide). Deterministic: the same bits for any thread count.
+// `half` (one of `in`'s halves) filtered with each weighting of `weightings` (one result, a
+// regression, for an equal-weights guide). Deterministic: the same bits for any thread count.
 // Rows are left unfiltered once `cancelled` (if given) returns true, which must then stay true:
 // the caller asks it again and throws the work away.
 std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<Color>& half,
-                                      const Guide& guide, const std::vector<float>& bandwidths,
+                                      const Guide& guide, const std::vector<Weighting>& weightings,
                                       const std::function<bool()>& cancelled = {});
 
-// filter_half() of one or two images at once on the same guide: [image][bandwidth], each the
+// filter_half() of one or two images at once on the same guide: [image][weighting], each the
 // bits filter_half() gives it alone. The design, the weights, the normal matrices and their
 // factorisations are the images' in common: the halves' first pass, whose weights are equal,
 // costs about what one half's did.
 std::vector<std::vector<FilteredHalf>> filter_images(
     const DenoiseInput& in, const std::vector<const std::vector<Color>*>& images,
-    const Guide& guide, const std::vector<float>& bandwidths,
+    const Guide& guide, const std::vector<Weighting>& weightings,
     const std::function<bool()>& cancelled = {});
 
 }  // namespace rtiow
