@@ -4,9 +4,9 @@
 // (Bitterli et al. 2016, "Nonlinearly Weighted First-order Regression for Denoising Monte Carlo
 // Renderings", section 4), its neighbours weighted by non-local means on a guide (the patch
 // distance of Rousselle et al. 2012, "Adaptive Rendering with Non-Local Means Filtering", eq. 6)
-// or equally. The guide is made from the other half alone, so the filtered half stays a linear
-// function of its own samples, whose share in its own pixel (the hat matrix's diagonal) the
-// error estimate needs (core/denoise/denoiser.h).
+// or equally; or, with the guide's weights, their weighted mean. The guide is made from the other
+// half alone, so the filtered half stays a linear function of its own samples, whose share in its
+// own pixel (the hat matrix's diagonal) the error estimate needs (core/denoise/denoiser.h).
 
 #include <array>
 #include <functional>
