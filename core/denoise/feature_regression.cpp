@@ -13,6 +13,7 @@
 
 #include <oneapi/tbb/enumerable_thread_specific.h>
 
+#include "core/film/pixel_variance.h"
 #include "core/parallel/instruction_sets.h"
 #include "core/parallel/lanes.h"
 #include "core/parallel/parallel_for_range.h"
@@ -34,7 +35,12 @@ static_assert(kPatchRadius == 1, "PatchDistances keeps the terms of three rows")
 using Normal = Eigen::Matrix<double, kColumns, kColumns>;
 
 // The guide and its variance a channel at a time, in doubles: the patch terms' loop reads
-// them a vector of pixels at a time.
+// them a vector of pixels at a time. Patches are compared on a square-root scale, sqrt(y +
+// 0.01) (rtiow's relative error offset), its variance carried over to first order: a
+// difference between dark values then counts for more against one between bright values, as
+// in the relative error the denoiser is judged by. Measured 2026-11-30 against the values as
+// they are (32 renders, docs/denoising.md): 2% more squared error gain in the geometric mean,
+// 3-12% at 8 spp on `materials` and `defocus`; a logarithm gave the same.
 struct GuidePlanes {
   std::array<std::vector<double>, 3> value, variance;
 
@@ -42,8 +48,11 @@ struct GuidePlanes {
     const std::size_t n = guide.image->size();
     for (std::size_t c = 0; c < 3; ++c) {
       value[c].resize(n), variance[c].resize(n);
-      for (std::size_t p = 0; p < n; ++p)
-        value[c][p] = double((*guide.image)[p][c]), variance[c][p] = (*guide.variance)[p][c];
+      for (std::size_t p = 0; p < n; ++p) {
+        const double level = std::max(0.0, double((*guide.image)[p][c])) + kRelativeErrorOffset;
+        value[c][p] = std::sqrt(level);
+        variance[c][p] = (*guide.variance)[p][c] / (4.0 * level);
+      }
     }
   }
 };
