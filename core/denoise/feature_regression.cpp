@@ -466,8 +466,8 @@ std::vector<std::vector<FilteredHalf>> filter_images(
                      self);
         if (whole_patches) lay_out_lane_distances(*patches, u, px0, py, *rows);
         for (std::size_t k = 0; k < results; ++k) {
-          const double bandwidth = guide.image ? double(weightings[k].bandwidth) : 0.0;
           const bool mean = guide.image && weightings[k].fit == Fit::kMean;
+          const double bandwidth = guide.image ? double(weightings[k].bandwidth) : 0.0;
           const double scale = guide.image ? 1.0 / (bandwidth * bandwidth) : 0.0;
           // Weights below e^-30 are 0: they change nothing, and as subnormal numbers they made
           // the products several times slower.
@@ -482,16 +482,20 @@ std::vector<std::vector<FilteredHalf>> filter_images(
           else
             gather_systems(*rows, w, int(images.size()), *systems);
           for (int l = 0; l < kLanes && px0 + l < in.width; ++l) {
-            const Eigen::Matrix<double, kColumns, 1> row =
-                mean ? Eigen::Matrix<double, kColumns, 1>::Zero() : intercept_row(*systems, l);
             const std::size_t p = std::size_t(py) * std::size_t(in.width) + std::size_t(px0 + l);
-            for (std::size_t i = 0; i < images.size(); ++i) {
-              const double self_weight = w[self[l]][l];
-              const Regressed fitted = mean ? mean_lane(*systems, l, int(i), self_weight)
-                                            : fit_lane(row, *systems, l, int(i), self_weight);
+            const double self_weight = w[self[l]][l];
+            const auto store = [&](std::size_t i, const Regressed& fitted) {
               out[i][k].color[p] = {float(fitted.value[0]), float(fitted.value[1]),
                                     float(fitted.value[2])};
               out[i][k].own_weight[p] = float(fitted.own_weight);
+            };
+            if (mean) {
+              for (std::size_t i = 0; i < images.size(); ++i)
+                store(i, mean_lane(*systems, l, int(i), self_weight));
+            } else {
+              const Eigen::Matrix<double, kColumns, 1> row = intercept_row(*systems, l);
+              for (std::size_t i = 0; i < images.size(); ++i)
+                store(i, fit_lane(row, *systems, l, int(i), self_weight));
             }
           }
         }
