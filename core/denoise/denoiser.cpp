@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/denoise/candidate_blend.h"
+#include "core/denoise/equal_weight_regression.h"
 #include "core/denoise/feature_regression.h"
 #include "core/denoise/window_mean.h"
 #include "core/film/pixel_variance.h"
@@ -86,11 +87,10 @@ std::vector<Combined> second_pass_images(const DenoiseInput& in, const std::vect
   sample_variance = window_mean(sample_variance, in.width, in.height, kNoiseLevelRadius, false);
   // First pass: each half regressed on the features with its neighbours weighted equally; a
   // function of that half's samples alone. The same weights and design: fitted together.
-  std::vector<std::vector<FilteredHalf>> first =
-      filter_images(in, {&in.even, &in.odd}, {}, {}, cancelled);
+  std::vector<FilteredHalf> first = regress_equally(in, {&in.even, &in.odd}, cancelled);
   if (cancelled && cancelled()) throw DenoiseCancelled();
-  const FilteredHalf first_even = std::move(first[0].front());
-  const FilteredHalf first_odd = std::move(first[1].front());
+  const FilteredHalf first_even = std::move(first[0]);
+  const FilteredHalf first_odd = std::move(first[1]);
   // Second pass: each half weighted by the patches of the other's first pass, whose noise is
   // about its own weight times the half's (a regression's hat rows have squares summing to it).
   const auto guide_variance = [&](const FilteredHalf& f, const std::vector<std::uint32_t>& count) {

@@ -26,9 +26,6 @@ namespace {
 // offsets, each as the neighbour's difference from the pixel, so the intercept is the value at
 // the pixel and its hat entry is the (0, 0) entry of the inverse normal matrix.
 constexpr int kColumns = 1 + int(FirstHitSum::kChannels) + 2;
-// A small ridge on every column but the intercept, relative to the weights' sum: windows where a
-// feature is constant (one material, the sky) leave its column zero.
-constexpr double kRidge = 1e-3;
 constexpr std::size_t kRowsPerChunk = 8;
 static_assert(kPatchRadius == 1, "PatchDistances keeps the terms of three rows");
 
@@ -210,59 +207,54 @@ class PatchDistances {
 constexpr int kUnionSide = 2 * kRegressionRadius + kLanes;
 constexpr int kUnionRows = (2 * kRegressionRadius + 1) * kUnionSide;
 
-// At most this many images are fitted on one design and one set of weights (the halves, whose
-// first pass weighs every neighbour equally).
-constexpr int kMostImages = 2;
-
-// The union window's rows, lane by lane: the design (columns as above), each image's values
-// and the distances (each lane's own, to its pixel), as the filter lays them out.
+// The union window's rows, lane by lane: the design (columns as above), the image's values and
+// the distances (each lane's own, to its pixel), as the filter lays them out.
 struct LaneRows {
   Lanes x[kUnionRows][kColumns];
-  Lanes y[kUnionRows][3 * kMostImages];
+  Lanes y[kUnionRows][3];
   Lanes distance[kUnionRows];
   bool inside[kUnionRows][kLanes];
   int rows = 0;
 };
 
-// One lane's normal equations: the lower half of the normal matrix, the right-hand sides (each
-// image's three) and the weights' sum.
+// One lane's normal equations: the lower half of the normal matrix, the right-hand sides (one a
+// channel) and the weights' sum.
 struct LaneSystems {
   Lanes normal[kColumns][kColumns];
-  Lanes rhs[kColumns][3 * kMostImages];
+  Lanes rhs[kColumns][3];
   Lanes total;
 };
 
-// Row A of the lower half of the normal matrix and of the right-hand sides of `Images` images:
-// for each entry, (w x_A) x_b added in the rows' order (each image's the sums it has alone).
-// The entry is the outer loop, so that its lanes' sums stay in registers.
-template <int Images, int A>
+// Row A of the lower half of the normal matrix and of the right-hand sides: for each entry,
+// (w x_A) x_b added in the rows' order. The entry is the outer loop, so that its lanes' sums
+// stay in registers.
+template <int A>
 [[gnu::always_inline]] inline void gather_row_of_normal(const LaneRows& rows, const Lanes* w,
                                                         const int* active, int count,
                                                         LaneSystems& out) {
-  Lanes normal[A + 1] = {}, rhs[3 * Images] = {};
+  Lanes normal[A + 1] = {}, rhs[3] = {};
   for (int i = 0; i < count; ++i) {
     const int r = active[i];
     const Lanes wx = w[r] * rows.x[r][A];
     for (int b = 0; b <= A; ++b) normal[b] += wx * rows.x[r][b];
-    for (int c = 0; c < 3 * Images; ++c) rhs[c] += wx * rows.y[r][c];
+    for (int c = 0; c < 3; ++c) rhs[c] += wx * rows.y[r][c];
   }
   for (int b = 0; b <= A; ++b) out.normal[A][b] = normal[b];
-  for (int c = 0; c < 3 * Images; ++c) out.rhs[A][c] = rhs[c];
+  for (int c = 0; c < 3; ++c) out.rhs[A][c] = rhs[c];
 }
 
-template <int Images, int... A>
+template <int... A>
 [[gnu::always_inline]] inline void gather_rows_of_normal(const LaneRows& rows, const Lanes* w,
                                                          const int* active, int count,
                                                          LaneSystems& out,
                                                          std::integer_sequence<int, A...>) {
-  (gather_row_of_normal<Images, A>(rows, w, active, count, out), ...);
+  (gather_row_of_normal<A>(rows, w, active, count, out), ...);
 }
 
-// The lanes' normal equations for `images` images (lower halves: the Cholesky factorisation
-// reads nothing else). A row of weight 0 in every lane adds +0.0 to every sum and is left out:
-// listed once, not tested for each entry (a third of the second pass's rows, mispredicted).
-RTIOW_DISPATCHED void gather_systems(const LaneRows& rows, const Lanes* w, int images,
-                                     LaneSystems& out) {
+// The lanes' normal equations (lower halves: the Cholesky factorisation reads nothing else). A row
+// of weight 0 in every lane adds +0.0 to every sum and is left out: listed once, not tested for
+// each entry (a third of the second pass's rows, mispredicted).
+RTIOW_DISPATCHED void gather_systems(const LaneRows& rows, const Lanes* w, LaneSystems& out) {
   int active[kUnionRows];
   int count = 0;
   for (int r = 0; r < rows.rows; ++r) {
@@ -271,26 +263,21 @@ RTIOW_DISPATCHED void gather_systems(const LaneRows& rows, const Lanes* w, int i
     active[count] = r;
     count += zero ? 0 : 1;
   }
-  const auto entries = std::make_integer_sequence<int, kColumns>();
-  if (images == 2)
-    gather_rows_of_normal<2>(rows, w, active, count, out, entries);
-  else
-    gather_rows_of_normal<1>(rows, w, active, count, out, entries);
+  gather_rows_of_normal(rows, w, active, count, out, std::make_integer_sequence<int, kColumns>());
   Lanes total = {};
   for (int r = 0; r < rows.rows; ++r) total += w[r];
   out.total = total;
 }
 
-// The weighted means' sums alone (a Fit::kMean): each image's sum of w y, in the intercept's
-// right-hand side, and the weights' sum; no normal matrix.
-RTIOW_DISPATCHED void gather_means(const LaneRows& rows, const Lanes* w, int images,
-                                   LaneSystems& out) {
-  Lanes rhs[3 * kMostImages] = {}, total = {};
+// The weighted mean's sums alone (a Fit::kMean): the sum of w y, in the intercept's right-hand
+// side, and the weights' sum; no normal matrix.
+RTIOW_DISPATCHED void gather_means(const LaneRows& rows, const Lanes* w, LaneSystems& out) {
+  Lanes rhs[3] = {}, total = {};
   for (int r = 0; r < rows.rows; ++r) {
-    for (int c = 0; c < 3 * images; ++c) rhs[c] += w[r] * rows.y[r][c];
+    for (int c = 0; c < 3; ++c) rhs[c] += w[r] * rows.y[r][c];
     total += w[r];
   }
-  for (int c = 0; c < 3 * images; ++c) out.rhs[0][c] = rhs[c];
+  for (int c = 0; c < 3; ++c) out.rhs[0][c] = rhs[c];
   out.total = total;
 }
 
@@ -299,37 +286,37 @@ struct Regressed {
   double own_weight;
 };
 
-// Lane l's weighted least squares fits reach its pixel through the first row of the inverse
+// Lane l's weighted least squares fit reaches its pixel through the first row of the inverse
 // normal matrix: the intercept (the fit at the pixel) is e0' N^-1 X'W y, so one solve of
-// N z = e0 serves every image fitted on the same design and weights, and z(0) is the hat
-// matrix's diagonal over the pixel's own weight. With the ridge, N is positive definite; where
+// N z = e0 serves the three channels, and z(0) is the hat matrix's diagonal over the pixel's own
+// weight. With the ridge, N is positive definite; where
 // rounding says otherwise (features of wildly different scales), the pivoting LDLT solves it.
 Eigen::Matrix<double, kColumns, 1> intercept_row(const LaneSystems& s, int l) {
   Normal normal = Normal::Zero();
   for (int a = 0; a < kColumns; ++a)
     for (int b = 0; b <= a; ++b) normal(a, b) = s.normal[a][b][l];
-  for (int c = 1; c < kColumns; ++c) normal(c, c) += kRidge * s.total[l];
+  for (int c = 1; c < kColumns; ++c) normal(c, c) += kRegressionRidge * s.total[l];
   const auto unit = Eigen::Matrix<double, kColumns, 1>::Unit(0);
   const Eigen::LLT<Normal, Eigen::Lower> cholesky(normal);
   if (cholesky.info() == Eigen::Success) return cholesky.solve(unit);
   return normal.selfadjointView<Eigen::Lower>().ldlt().solve(unit);
 }
 
-// Lane l's weighted mean of image `image` at its pixel (whose own weight, at least that of its
-// own row, keeps the sum above 0).
-Regressed mean_lane(const LaneSystems& s, int l, int image, double self_weight) {
+// Lane l's weighted mean at its pixel (whose own weight, at least that of its own row, keeps the
+// sum above 0).
+Regressed mean_lane(const LaneSystems& s, int l, double self_weight) {
   const double total = s.total[l];
   Regressed out{Eigen::Vector3d::Zero(), self_weight / total};
-  for (int c = 0; c < 3; ++c) out.value[c] = s.rhs[0][3 * image + c][l] / total;
+  for (int c = 0; c < 3; ++c) out.value[c] = s.rhs[0][c][l] / total;
   return out;
 }
 
-// Lane l's fit of image `image` at its pixel, whose own weight is `self_weight`.
+// Lane l's fit at its pixel, whose own weight is `self_weight`.
 Regressed fit_lane(const Eigen::Matrix<double, kColumns, 1>& row, const LaneSystems& s, int l,
-                   int image, double self_weight) {
+                   double self_weight) {
   Regressed out{Eigen::Vector3d::Zero(), self_weight * row(0)};
   for (int a = 0; a < kColumns; ++a)
-    for (int c = 0; c < 3; ++c) out.value[c] += row(a) * s.rhs[a][3 * image + c][l];
+    for (int c = 0; c < 3; ++c) out.value[c] += row(a) * s.rhs[a][c][l];
   return out;
 }
 
@@ -348,8 +335,7 @@ UnionWindow union_window(const DenoiseInput& in, int px0, int py) {
 // pixel's, on a scale of about one: albedo and normal as they are, depth relative to the larger
 // of the two (0 where both are the sky). With `patches`, each lane's distances one at a time
 // (where lay_out_lane_distances cannot take them), else 0.
-RTIOW_DISPATCHED void lay_out_rows(const DenoiseInput& in,
-                                   const std::vector<const std::vector<Color>*>& images,
+RTIOW_DISPATCHED void lay_out_rows(const DenoiseInput& in, const std::vector<Color>& image,
                                    const UnionWindow& u, const PatchDistances* patches, int px0,
                                    int py, LaneRows& out, int* self) {
   Lanes own[FirstHitSum::kChannels], lane_x;
@@ -383,9 +369,8 @@ RTIOW_DISPATCHED void lay_out_rows(const DenoiseInput& in,
       out.x[row][1 + depth] = Lanes(LaneMask(larger > 0 ? (qd - pd) / larger : Lanes{}) & keep);
       out.x[row][kColumns - 2] = Lanes(LaneMask((double(qx) - lane_x) / kRegressionRadius) & keep);
       out.x[row][kColumns - 1] = Lanes(LaneMask(dy) & keep);
-      for (std::size_t i = 0; i < images.size(); ++i)
-        for (std::size_t c = 0; c < 3; ++c)
-          out.y[row][3 * i + c] = Lanes(LaneMask(Lanes{} + double((*images[i])[q][c])) & keep);
+      for (std::size_t c = 0; c < 3; ++c)
+        out.y[row][c] = Lanes(LaneMask(Lanes{} + double(image[q][c])) & keep);
       Lanes distance{};
       if (patches)
         for (int l = 0; l < kLanes; ++l)
@@ -420,23 +405,13 @@ RTIOW_DISPATCHED void lay_out_lane_distances(const PatchDistances& patches, cons
 std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<Color>& half,
                                       const Guide& guide, const std::vector<Weighting>& weightings,
                                       const std::function<bool()>& cancelled) {
-  return filter_images(in, {&half}, guide, weightings, cancelled).front();
-}
-
-std::vector<std::vector<FilteredHalf>> filter_images(
-    const DenoiseInput& in, const std::vector<const std::vector<Color>*>& images,
-    const Guide& guide, const std::vector<Weighting>& weightings,
-    const std::function<bool()>& cancelled) {
-  if (images.empty() || images.size() > std::size_t(kMostImages))
-    throw std::invalid_argument("filter_images: 1 to 2 images");
+  if (!guide.image || !guide.variance)
+    throw std::invalid_argument("filter_half: a guide and its variance");
   const std::size_t n = in.size();
-  const std::size_t results = guide.image ? weightings.size() : 1;
-  std::vector<std::vector<FilteredHalf>> out(images.size(), std::vector<FilteredHalf>(results));
-  for (auto& image : out)
-    for (FilteredHalf& f : image) f.color.resize(n), f.own_weight.resize(n);
+  std::vector<FilteredHalf> out(weightings.size());
+  for (FilteredHalf& f : out) f.color.resize(n), f.own_weight.resize(n);
 
-  std::optional<GuidePlanes> planes;
-  if (guide.image) planes.emplace(guide);
+  const GuidePlanes planes(guide);
   // Each thread's working memory, kept from chunk to chunk (fresh pages for every chunk cost
   // more time in the kernel than the patch terms in the loop).
   struct Scratch {
@@ -452,51 +427,43 @@ std::vector<std::vector<FilteredHalf>> filter_images(
     LaneRows* const rows = local.rows.get();
     LaneSystems* const systems = local.systems.get();
     Lanes* const w = local.w.get();
-    std::optional<PatchDistances>& patches = local.patches;
-    if (planes && !patches) patches.emplace(in, *planes);
-    if (patches) patches->restart();
+    if (!local.patches) local.patches.emplace(in, planes);
+    PatchDistances& patches = *local.patches;
+    patches.restart();
     for (int py = int(y0); py < int(y1); ++py) {
       if (cancelled && cancelled()) return;
-      if (patches) patches->at_row(py);
+      patches.at_row(py);
       for (int px0 = 0; px0 < in.width; px0 += kLanes) {
         int self[kLanes] = {};
         const UnionWindow u = union_window(in, px0, py);
-        const bool whole_patches = patches && patches->lanes_inside(px0, py);
-        lay_out_rows(in, images, u, patches && !whole_patches ? &*patches : nullptr, px0, py, *rows,
-                     self);
-        if (whole_patches) lay_out_lane_distances(*patches, u, px0, py, *rows);
-        for (std::size_t k = 0; k < results; ++k) {
-          const bool mean = guide.image && weightings[k].fit == Fit::kMean;
-          const double bandwidth = guide.image ? double(weightings[k].bandwidth) : 0.0;
-          const double scale = guide.image ? 1.0 / (bandwidth * bandwidth) : 0.0;
+        const bool whole_patches = patches.lanes_inside(px0, py);
+        lay_out_rows(in, half, u, whole_patches ? nullptr : &patches, px0, py, *rows, self);
+        if (whole_patches) lay_out_lane_distances(patches, u, px0, py, *rows);
+        for (std::size_t k = 0; k < weightings.size(); ++k) {
+          const bool mean = weightings[k].fit == Fit::kMean;
+          const double bandwidth = double(weightings[k].bandwidth);
+          const double scale = 1.0 / (bandwidth * bandwidth);
           // Weights below e^-30 are 0: they change nothing, and as subnormal numbers they made
           // the products several times slower.
           for (int r = 0; r < rows->rows; ++r) {
             for (int l = 0; l < kLanes; ++l) {
-              const double d = rows->distance[r][l] * scale;  // 0 without a guide: e^-0 = 1
+              const double d = rows->distance[r][l] * scale;
               w[r][l] = !rows->inside[r][l] || d >= 30.0 ? 0.0 : d == 0.0 ? 1.0 : std::exp(-d);
             }
           }
           if (mean)
-            gather_means(*rows, w, int(images.size()), *systems);
+            gather_means(*rows, w, *systems);
           else
-            gather_systems(*rows, w, int(images.size()), *systems);
+            gather_systems(*rows, w, *systems);
           for (int l = 0; l < kLanes && px0 + l < in.width; ++l) {
             const std::size_t p = std::size_t(py) * std::size_t(in.width) + std::size_t(px0 + l);
             const double self_weight = w[self[l]][l];
-            const auto store = [&](std::size_t i, const Regressed& fitted) {
-              out[i][k].color[p] = {float(fitted.value[0]), float(fitted.value[1]),
-                                    float(fitted.value[2])};
-              out[i][k].own_weight[p] = float(fitted.own_weight);
-            };
-            if (mean) {
-              for (std::size_t i = 0; i < images.size(); ++i)
-                store(i, mean_lane(*systems, l, int(i), self_weight));
-            } else {
-              const Eigen::Matrix<double, kColumns, 1> row = intercept_row(*systems, l);
-              for (std::size_t i = 0; i < images.size(); ++i)
-                store(i, fit_lane(row, *systems, l, int(i), self_weight));
-            }
+            const Regressed fitted =
+                mean ? mean_lane(*systems, l, self_weight)
+                     : fit_lane(intercept_row(*systems, l), *systems, l, self_weight);
+            out[k].color[p] = {float(fitted.value[0]), float(fitted.value[1]),
+                               float(fitted.value[2])};
+            out[k].own_weight[p] = float(fitted.own_weight);
           }
         }
       }

@@ -1,10 +1,11 @@
 #pragma once
-// The denoiser's filter: for each pixel, a first-order regression of one half's colour on the
-// first hit's features (albedo, normal, depth) and the pixel's place, over a window around it
+// The denoiser's second pass: for each pixel, a first-order regression of one half's colour on
+// the first hit's features (albedo, normal, depth) and the pixel's place, over a window around it
 // (Bitterli et al. 2016, "Nonlinearly Weighted First-order Regression for Denoising Monte Carlo
 // Renderings", section 4), its neighbours weighted by non-local means on a guide (the patch
-// distance of Rousselle et al. 2012, "Adaptive Rendering with Non-Local Means Filtering", eq. 6)
-// or equally; or, with the guide's weights, their weighted mean. The guide is made from the other
+// distance of Rousselle et al. 2012, "Adaptive Rendering with Non-Local Means Filtering", eq. 6);
+// or, with the guide's weights, their weighted mean. (The first pass, the same regression with
+// equal weights: core/denoise/equal_weight_regression.h.) The guide is made from the other
 // half alone, so the filtered half stays a linear function of its own samples, whose share in its
 // own pixel (the hat matrix's diagonal) the error estimate needs (core/denoise/denoiser.h).
 
@@ -23,9 +24,11 @@ namespace rtiow {
 // truth on `defocus` at 8 spp (docs/denoising.md).
 inline constexpr int kRegressionRadius = 4;
 inline constexpr int kPatchRadius = 1;
+// A small ridge on every column but the intercept, relative to the weights' sum: windows where a
+// feature is constant (one material, the sky) leave its column zero.
+inline constexpr double kRegressionRidge = 1e-3;
 
-// What weighs a pixel's neighbours: the patches of `image`, whose pixels have `variance`; with
-// no image, every neighbour counts the same.
+// What weighs a pixel's neighbours: the patches of `image`, whose pixels have `variance`.
 struct Guide {
   const std::vector<Color>* image = nullptr;
   const std::vector<Vec3d>* variance = nullptr;
@@ -51,21 +54,12 @@ struct FilteredHalf {
   std::vector<float> own_weight;
 };
 
-// `half` (one of `in`'s halves) filtered with each weighting of `weightings` (one result, a
-// regression, for an equal-weights guide). Deterministic: the same bits for any thread count.
-// Rows are left unfiltered once `cancelled` (if given) returns true, which must then stay true:
-// the caller asks it again and throws the work away.
+// `half` (one of `in`'s halves) filtered with each weighting of `weightings`, its neighbours
+// weighted by `guide` (which must hold an image and its variance). Deterministic: the same bits
+// for any thread count. Rows are left unfiltered once `cancelled` (if given) returns true, which
+// must then stay true: the caller asks it again and throws the work away.
 std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<Color>& half,
                                       const Guide& guide, const std::vector<Weighting>& weightings,
                                       const std::function<bool()>& cancelled = {});
-
-// filter_half() of one or two images at once on the same guide: [image][weighting], each the
-// bits filter_half() gives it alone. The design, the weights, the normal matrices and their
-// factorisations are the images' in common: the halves' first pass, whose weights are equal,
-// costs about what one half's did.
-std::vector<std::vector<FilteredHalf>> filter_images(
-    const DenoiseInput& in, const std::vector<const std::vector<Color>*>& images,
-    const Guide& guide, const std::vector<Weighting>& weightings,
-    const std::function<bool()>& cancelled = {});
 
 }  // namespace rtiow
