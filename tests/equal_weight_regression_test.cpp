@@ -85,8 +85,11 @@ Direct direct_fit(const DenoiseInput& in, int px, int py) {
   return out;
 }
 
+// Images narrower and shorter than the window, and 4100 pixels wide or high, where the place
+// columns' window sums (of x / 4 up to 1025, squared) are re-centred on the pixel.
 TEST(EqualWeightRegression, IsTheLeastSquaresOverEachWindow) {
-  for (const auto& [width, height] : {std::pair{23, 17}, std::pair{5, 3}, std::pair{1, 12}}) {
+  for (const auto& [width, height] : {std::pair{23, 17}, std::pair{5, 3}, std::pair{1, 12},
+                                      std::pair{4100, 10}, std::pair{6, 4100}}) {
     const DenoiseInput in = random_input(width, height, std::uint64_t(width * 100 + height));
     const std::vector<FilteredHalf> fitted = regress_equally(in, {&in.even, &in.odd});
     ASSERT_EQ(fitted.size(), 2u);
