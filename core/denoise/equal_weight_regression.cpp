@@ -9,6 +9,7 @@
 
 #include <oneapi/tbb/enumerable_thread_specific.h>
 
+#include "core/denoise/intercept_solve.h"
 #include "core/parallel/instruction_sets.h"
 #include "core/parallel/parallel_for_range.h"
 
@@ -128,8 +129,8 @@ RTIOW_DISPATCHED void window_sums(const RowPlanes& planes, const Products& produ
 // Pixel (x, py)'s fits from its window sums. With c the pixel's own values (0 for the
 // intercept), s the sums of the columns and m their count, the centred normal matrix is
 // S - c s' - s c' + m c c' and the centred right-hand side T - c t', t the images' sums: the
-// regression's normal equations with every column a neighbour's value less the pixel's. One
-// solve of N z = e0 gives the fit at the pixel (z' X'y) and its own weight z(0).
+// regression's normal equations with every column a neighbour's value less the pixel's, whose
+// first inverse row z gives the fit at the pixel (z' X'y) and its own weight z(0).
 void fit_pixel(const RowPlanes& planes, const Products& products, const double* sums,
                std::size_t width, int x, int py, int images, std::vector<FilteredHalf>& out) {
   const auto sum = [&](int a, int b) { return sums[products.of(a, b) * width + std::size_t(x)]; };
@@ -157,13 +158,7 @@ void fit_pixel(const RowPlanes& planes, const Products& products, const double* 
     }
   }
   for (int a = 1; a < kColumns; ++a) normal(a, a) += kRegressionRidge * count;
-  const Column unit = Column::Unit(0);
-  Column z;
-  const Eigen::LLT<Normal, Eigen::Lower> cholesky(normal);
-  if (cholesky.info() == Eigen::Success)
-    z = cholesky.solve(unit);
-  else
-    z = normal.selfadjointView<Eigen::Lower>().ldlt().solve(unit);
+  const Column z = inverse_first_row(normal);
   const std::size_t p = std::size_t(py) * width + std::size_t(x);
   for (int i = 0; i < images; ++i) {
     Vec3d value;

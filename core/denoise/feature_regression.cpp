@@ -13,6 +13,7 @@
 
 #include <oneapi/tbb/enumerable_thread_specific.h>
 
+#include "core/denoise/intercept_solve.h"
 #include "core/film/pixel_variance.h"
 #include "core/parallel/instruction_sets.h"
 #include "core/parallel/lanes.h"
@@ -287,19 +288,13 @@ struct Regressed {
 };
 
 // Lane l's weighted least squares fit reaches its pixel through the first row of the inverse
-// normal matrix: the intercept (the fit at the pixel) is e0' N^-1 X'W y, so one solve of
-// N z = e0 serves the three channels, and z(0) is the hat matrix's diagonal over the pixel's own
-// weight. With the ridge, N is positive definite; where
-// rounding says otherwise (features of wildly different scales), the pivoting LDLT solves it.
+// normal matrix (core/denoise/intercept_solve.h).
 Eigen::Matrix<double, kColumns, 1> intercept_row(const LaneSystems& s, int l) {
   Normal normal = Normal::Zero();
   for (int a = 0; a < kColumns; ++a)
     for (int b = 0; b <= a; ++b) normal(a, b) = s.normal[a][b][l];
   for (int c = 1; c < kColumns; ++c) normal(c, c) += kRegressionRidge * s.total[l];
-  const auto unit = Eigen::Matrix<double, kColumns, 1>::Unit(0);
-  const Eigen::LLT<Normal, Eigen::Lower> cholesky(normal);
-  if (cholesky.info() == Eigen::Success) return cholesky.solve(unit);
-  return normal.selfadjointView<Eigen::Lower>().ldlt().solve(unit);
+  return inverse_first_row(normal);
 }
 
 // Lane l's weighted mean at its pixel (whose own weight, at least that of its own row, keeps the
