@@ -12,7 +12,7 @@
 #include "core/render/recorded_request.h"   // read_recorded_request, overlay_recorded: --like
 #include "core/render/render.h"             // RenderSettings, render, validate
 #include "core/render/render_metadata.h"    // render_metadata: what --like reads back
-#include "core/render/render_part.h"        // make_part, write_part, read_part, merge_parts
+#include "core/render/render_part.h"        // make_part, write_part, PartMerge
 #include "core/render/render_request.h"     // RenderRequest, resolve: what the command line does
 #include "core/scene/builtin_scenes.h"      // make_builtin_scene
 #include "core/scene/scene.h"               // Scene, CameraSettings, Background

@@ -519,6 +519,9 @@ std::vector<Case> part_cases() {
       // the channel (core/film/sum_validation.h).
       {"MergeCraftedSum", 2, "pixel (0, 0) has sums no samples can add up to: squares.R is less",
        merge({"sum-word.exr", "part1.exr"})},
+      {"MergeCraftedSumInALaterStrip", 2,
+       "pixel (5, 130) has sums no samples can add up to: sum.G is beyond",
+       merge({"tall-late-word.exr", "tall1.exr"})},
       {"MergeCraftedSquares", 2, "squares.G is beyond what 2 samples can add up to",
        merge({"square-words.exr", "part1.exr"})},
       {"MergeCraftedReplicateSum", 2, "odd.B is beyond what 1 sample of odd index",

@@ -126,7 +126,7 @@ std::string png_claiming(std::uint32_t width, std::uint32_t height, std::size_t 
 
 fs::path fixtures() {
   // Named by version: a build tree keeps the fixtures of an older suite under another name.
-  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-8";
+  const fs::path dir = fs::path(RTIOW_TEST_OUTPUT_DIR) / "hostile-fixtures-9";
   if (fs::exists(dir / "complete")) return dir;
   const fs::path work =
       fs::path(RTIOW_TEST_OUTPUT_DIR) / ("hostile-fixtures." + std::to_string(getpid()));
@@ -149,12 +149,17 @@ fs::path fixtures() {
   render("--part 0/2 --denoise -o denoise0.exr");
   render("--part 1/2 --denoise -o denoise1.exr");
   render("--part 1/2 --denoise --width 24 -o denoise-smaller1.exr");
+  // Taller than the 64 rows a part is read by at a time (core/render/render_part.cpp).
+  render("--part 0/2 --width 6 --height 150 -o tall0.exr");
+  render("--part 1/2 --width 6 --height 150 -o tall1.exr");
   // Part files whose header or sums lie, written field by field and word by word: `edit`
-  // changes the header, `words` pixel 0's words (by channel name) of the part `from`.
+  // changes the header, `words` the words (by channel name) of pixel `pixel` (row by row) of
+  // the part `from`.
   using Words = std::function<void(std::function<std::uint32_t&(const std::string&)>)>;
   const auto crafted = [&](const std::string& name,
                            const std::function<void(OIIO::ImageSpec&)>& edit,
-                           const std::string& from = "part0.exr", const Words& words = {}) {
+                           const std::string& from = "part0.exr", const Words& words = {},
+                           std::size_t pixel = 0) {
     auto in = OIIO::ImageInput::open((work / from).string());
     ASSERT_TRUE(in);
     OIIO::ImageSpec spec = in->spec();
@@ -165,7 +170,7 @@ fs::path fixtures() {
       words([&](const std::string& channel) -> std::uint32_t& {
         const int at = spec.channelindex(channel);
         EXPECT_GE(at, 0) << "test bug: no channel " << channel;
-        return data[std::size_t(std::max(at, 0))];
+        return data[pixel * std::size_t(spec.nchannels) + std::size_t(std::max(at, 0))];
       });
     }
     spec.channelformats.assign(std::size_t(spec.nchannels), OIIO::TypeDesc::UINT);
@@ -192,6 +197,9 @@ fs::path fixtures() {
     }
   });
   crafted("odd-word.exr", same, "part0.exr", [](auto word) { word("odd.B.2") = 1; });
+  crafted(
+      "tall-late-word.exr", same, "tall0.exr", [](auto word) { word("sum.G.3") = 0x10u; },
+      130 * 6 + 5);
   crafted("odd-above-sum.exr", same, "part0.exr", [](auto word) {
     for (const char* w : {".0", ".1", ".2", ".3"})
       word(std::string("odd.G") + w) = word(std::string("sum.G") + w);

@@ -183,6 +183,12 @@ class CheckedImageReader final : public ImageReader {
     reason = in_words_of(reason, file_.name_for_library(), path_);
     return false;
   }
+  bool read_rows(PixelType type, int y_begin, int y_end, void* pixels,
+                 std::string& reason) override {
+    if (in_->read_rows(type, y_begin, y_end, pixels, reason)) return true;
+    reason = in_words_of(reason, file_.name_for_library(), path_);
+    return false;
+  }
 
  private:
   InputFile file_;

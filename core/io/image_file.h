@@ -54,6 +54,11 @@ class ImageReader {
   // Every channel of every pixel, converted to `type`, interleaved, row major; `pixels`
   // must hold width * height * channels values. False (and `reason`) on failure.
   virtual bool read_pixels(PixelType type, void* pixels, std::string& reason) = 0;
+  // The same for the rows [y_begin, y_end) alone (0 <= y_begin < y_end <= height): `pixels`
+  // holds width * (y_end - y_begin) * channels values. What reads a large image a strip at a
+  // time, so that it never holds every pixel's channels at once.
+  virtual bool read_rows(PixelType type, int y_begin, int y_end, void* pixels,
+                         std::string& reason) = 0;
 };
 
 class ImageBackend {

@@ -174,6 +174,17 @@ class OiioImageReader final : public ImageReader {
     return false;
   }
 
+  bool read_rows(PixelType type, int y_begin, int y_end, void* pixels,
+                 std::string& reason) override {
+    const OIIO::ImageSpec& spec = in_->spec();
+    const QuietStderr quiet;
+    if (in_->read_scanlines(0, 0, spec.y + y_begin, spec.y + y_end, spec.z, 0, spec.nchannels,
+                            to_oiio(type), pixels))
+      return true;
+    reason = take_error(in_->geterror());
+    return false;
+  }
+
  private:
   std::unique_ptr<OIIO::ImageInput> in_;
   ImageHeader header_;

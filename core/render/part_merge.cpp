@@ -28,23 +28,34 @@ std::pair<std::string, std::int64_t> recorded_sampling(const MergedRender& merge
   return {sampler, replicates};
 }
 
+// The sampler the parts record, or the reason it is none this rtiow knows.
+struct RecordedSampler {
+  std::optional<SamplerKind> kind;
+  std::string unknown;  // why not, where kind is empty
+};
+
+RecordedSampler parse_recorded_sampler(const std::string& name) {
+  try {
+    return {parse_sampler(name), {}};
+  } catch (const InvalidInput& e) {
+    return {std::nullopt, e.what()};
+  }
+}
+
 // The merged image's estimated error, recorded as one render's is: from the sums of every
 // part (a part records its share's alone, which the merged metadata leaves out). None where
 // the parts keep no spreads or record no sampler this rtiow knows. Returns the replicate ratios
 // it was made with (none from one sequence), which the variance channels take too.
-std::shared_ptr<const std::vector<Vec3d>> record_error_estimate(const MergedRender& merged,
+std::shared_ptr<const std::vector<Vec3d>> record_error_estimate(const RenderResult& whole,
+                                                                const RecordedSampler& sampler,
                                                                 Metadata& metadata) {
-  if (!merged.sums.keeps(SumGroup::Odd)) return {};
-  const auto [sampler, replicates] = recorded_sampling(merged);
-  RenderResult whole;
+  if (!whole.sums.keeps(SumGroup::Odd) || !sampler.kind) return {};
+  ImageErrorEstimate estimate;
   try {
-    whole = merged_result(merged, parse_sampler(sampler), replicates > 1 ? kReplicates : 1);
-  } catch (const InvalidInput&) {
-    return {};
+    estimate = estimate_image_error(whole, 0);
   } catch (const std::bad_alloc&) {
-    return {};  // a copy of the sums does not fit beside them: no estimate, the merge goes on
+    return {};  // its buffers do not fit beside the sums: no estimate, the merge goes on
   }
-  const ImageErrorEstimate estimate = estimate_image_error(whole, 0);
   if (estimate.kind == ErrorEstimate::None) return {};
   metadata.emplace_back(metadata_key::kEstimatedImageError, estimate.error);
   metadata.emplace_back(metadata_key::kErrorEstimate, to_string(estimate.kind));
@@ -52,92 +63,92 @@ std::shared_ptr<const std::vector<Vec3d>> record_error_estimate(const MergedRend
 }
 
 // The spp and variance channels of the merged render, as one render's --stats-channels.
-std::vector<ExtraChannel> merged_statistics(
-    const MergedRender& merged, const std::vector<RenderPart>& parts,
-    const std::shared_ptr<const std::vector<Vec3d>>& replicate_ratios) {
-  if (!merged.sums.keeps(SumGroup::Odd)) {
-    for (const RenderPart& p : parts) {
-      if (!p.sums.keeps(SumGroup::Odd)) {
-        throw InvalidInput(setting("stats_channels") + ": part file " +
-                           quote_value(p.path, kWholePath) +
-                           " holds no spreads (an older rtiow wrote it): render it again");
-      }
-    }
+std::vector<ExtraChannel> merged_statistics(const RenderResult& whole,
+                                            const std::string& without_spreads,
+                                            const RecordedSampler& sampler,
+                                            std::int64_t replicates) {
+  if (!without_spreads.empty()) {
+    throw InvalidInput(setting("stats_channels") + ": part file " +
+                       quote_value(without_spreads, kWholePath) +
+                       " holds no spreads (an older rtiow wrote it): render it again");
   }
-  const auto [sampler, replicates] = recorded_sampling(merged);
   if (replicates != 1 && replicates != kReplicates) {
     throw InvalidInput(setting("stats_channels") + ": the parts record " +
                        std::string(kMetadataPrefix) + metadata_key::kReplicates + " " +
                        std::to_string(replicates) + ": a render draws one sequence or " +
                        std::to_string(kReplicates) + " replicates");
   }
-  if (replicates != kReplicates && sampler != to_string(SamplerKind::Independent)) {
+  if (replicates != kReplicates && sampler.kind != SamplerKind::Independent) {
     throw InvalidInput(setting("stats_channels") +
                        ": the parts were rendered from one sequence, which keeps no estimate of "
                        "the error: render them with " +
                        setting("stats_channels"));
   }
-  try {
-    RenderResult whole = merged_result(merged, parse_sampler(sampler), int(replicates));
-    whole.replicate_ratios = replicate_ratios;  // of these sums, where the estimate made them
-    return statistics_channels(whole);
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(setting("stats_channels") + ": the parts' sampler: " + e.what());
+  if (!sampler.kind) {
+    throw InvalidInput(setting("stats_channels") + ": the parts' sampler: " + sampler.unknown);
   }
+  return statistics_channels(whole);
 }
 
 // The merged render as the denoiser reads it: its halves need the parts' two replicates.
-RenderResult merged_for_denoising(const MergedRender& merged) {
-  const auto [sampler, replicates] = recorded_sampling(merged);
-  if (replicates != kReplicates || !merged.sums.keeps(SumGroup::Odd) ||
-      !merged.sums.keeps(SumGroup::FirstHit)) {
+void check_for_denoising(const RenderResult& whole, const RecordedSampler& sampler,
+                         std::int64_t replicates) {
+  if (replicates != kReplicates || !whole.sums.keeps(SumGroup::Odd) ||
+      !whole.sums.keeps(SumGroup::FirstHit)) {
     throw InvalidInput(setting("denoise") +
                        ": the parts keep no independent halves or first hits to denoise with: "
                        "render them with " +
                        setting("denoise"));
   }
-  try {
-    return merged_result(merged, parse_sampler(sampler), kReplicates);
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(setting("denoise") + ": the parts' sampler: " + e.what());
+  if (!sampler.kind) {
+    throw InvalidInput(setting("denoise") + ": the parts' sampler: " + sampler.unknown);
   }
 }
 
 }  // namespace
 
 MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeRequest& request) {
-  std::vector<RenderPart> parts;
-  for (const std::string& path : paths) parts.push_back(read_part(path));
-  MergedRender merged = merge_parts(parts);
+  PartMerge merge;
+  for (const std::string& path : paths) merge.add(path);
+  MergedRender merged = std::move(merge).finish();
   MergedImage image;
   image.metadata = merged.metadata;
-  const auto replicate_ratios = record_error_estimate(merged, image.metadata);
-  if (request.statistics) image.channels = merged_statistics(merged, parts, replicate_ratios);
   image.passes = merged.passes;
-  image.passes_kept = merged.passes.any() && request.extra_channels;
+  image.samples = merged.samples;
+  image.parts = paths.size();
+  const std::string without_spreads = merged.without_spreads;
+  const auto [sampler_name, replicates] = recorded_sampling(merged);
+  const RecordedSampler sampler = parse_recorded_sampler(sampler_name);
+  // One render's result of the merged sums, moved, not copied: every channel is made from it.
+  RenderResult whole =
+      merged_result(std::move(merged), sampler.kind.value_or(SamplerKind::Independent),
+                    replicates > 1 ? kReplicates : 1);
+  // The replicate ratios of these sums, where the estimate made them.
+  whole.replicate_ratios = record_error_estimate(whole, sampler, image.metadata);
+  if (request.statistics)
+    image.channels = merged_statistics(whole, without_spreads, sampler, replicates);
+  image.passes_kept = image.passes.any() && request.extra_channels;
   if (image.passes_kept) {
-    const RenderResult whole = merged_result(merged, SamplerKind::Independent, kReplicates);
-    for (ExtraChannel& c : pass_channels(whole, merged.passes))
+    for (ExtraChannel& c : pass_channels(whole, image.passes))
       image.channels.push_back(std::move(c));
   }
   image.placement = recorded_placement(image.metadata, "part " + quote_value(paths.front()),
-                                       merged.film.width(), merged.film.height());
+                                       whole.film.width(), whole.film.height());
   if (!image.passes_kept) {
     std::erase_if(image.metadata,
                   [](const auto& entry) { return entry.first == metadata_key::kPasses; });
   }
   if (request.denoise) {
-    DenoisedOutput denoised = denoised_output(merged_for_denoising(merged), request.extra_channels,
-                                              image.metadata, request.cancelled);
+    check_for_denoising(whole, sampler, replicates);
+    DenoisedOutput denoised =
+        denoised_output(whole, request.extra_channels, image.metadata, request.cancelled);
     image.channels.insert(image.channels.begin(),
                           std::make_move_iterator(denoised.channels.begin()),
                           std::make_move_iterator(denoised.channels.end()));
     image.denoised = denoised.figures;
-    merged.film = std::move(denoised.image);
+    whole.film = std::move(denoised.image);
   }
-  image.film = std::move(merged.film);
-  image.samples = merged.samples;
-  image.parts = parts.size();
+  image.film = std::move(whole.film);
   return image;
 }
 

@@ -246,64 +246,58 @@ Metadata read_part_metadata(const ImageHeader& header) {
   return metadata;
 }
 
+// Rows a part is read by: its 32-bit words are 268 bytes a pixel with the passes, so a whole
+// image's would outweigh the sums they add to. A multiple of the 16 rows EXR's zip compresses
+// together.
+constexpr int kRowsPerRead = 64;
+
 // The exact sums of every group the file keeps, every channel read as 32-bit words whatever
-// the file stores, each pixel's checked as a checkpoint's are (core/film/sum_validation.h).
-void read_part_sums(ImageReader& in, const std::string& name, const SumChannels& found,
-                    RenderPart& part) {
-  const ImageHeader& header = in.header();
-  const std::size_t pixels = std::size_t(header.width) * std::size_t(header.height);
-  std::vector<std::uint32_t> data(pixels * found.stride);
-  std::string reason;
-  if (!in.read_pixels(PixelType::UInt32, data.data(), reason)) {
-    throw InvalidInput(name + ": cannot read its pixels: " + one_line(reason, 200));
-  }
+// the file stores, a strip of rows at a time, each pixel's checked as a checkpoint's are
+// (core/film/sum_validation.h), and added into `total` in the groups it keeps: a merge holds
+// the total and a strip of one part's words, however many parts it adds.
+void add_part_sums(ImageReader& in, const std::string& name, const SumChannels& found,
+                   const RenderPart& part, PixelSums& total) {
+  const std::size_t width = std::size_t(part.width);
+  std::vector<std::uint32_t> data(width * std::size_t(std::min(kRowsPerRead, part.height)) *
+                                  found.stride);
   const auto kept = [&](SumGroup g) { return found.kept[std::size_t(g)]; };
-  part.sums = PixelSums(pixels, kept(SumGroup::Odd), kept(SumGroup::FirstHit));
-  for (std::size_t p = 0; p < pixels; ++p) {
-    const std::uint32_t* pixel = &data[p * found.stride];
-    const PixelSumsOut out = part.sums.at(p);
-    for (std::size_t g = 0; g < kSumGroups.size(); ++g) {
-      for (std::size_t c = 0; c < found.words[g].size(); ++c) {
-        uint128 bits = 0;
-        for (int w = kWordsPerSum - 1; w >= 0; --w) {
-          bits = (bits << 32) | pixel[found.words[g][c][std::size_t(w)]];
+  PixelSum sum;
+  PixelSpread spread;
+  FirstHitSum first_hit;
+  const PixelSumsOut pixel{&sum, kept(SumGroup::Odd) ? &spread : nullptr,
+                           kept(SumGroup::FirstHit) ? &first_hit : nullptr};
+  const bool add_spread = total.keeps(SumGroup::Odd);
+  const bool add_first_hit = total.keeps(SumGroup::FirstHit);
+  for (int y0 = 0; y0 < part.height; y0 += kRowsPerRead) {
+    const int y1 = std::min(part.height, y0 + kRowsPerRead);
+    std::string reason;
+    if (!in.read_rows(PixelType::UInt32, y0, y1, data.data(), reason)) {
+      throw InvalidInput(name + ": cannot read its pixels: " + one_line(reason, 200));
+    }
+    for (std::size_t i = 0; i < width * std::size_t(y1 - y0); ++i) {
+      const std::uint32_t* words = &data[i * found.stride];
+      for (std::size_t g = 0; g < kSumGroups.size(); ++g) {
+        for (std::size_t c = 0; c < found.words[g].size(); ++c) {
+          uint128 bits = 0;
+          for (int w = kWordsPerSum - 1; w >= 0; --w) {
+            bits = (bits << 32) | words[found.words[g][c][std::size_t(w)]];
+          }
+          pixel.set(kSumGroups[g].group, c, static_cast<int128>(bits));
         }
-        out.set(kSumGroups[g].group, c, static_cast<int128>(bits));
       }
-    }
-    const std::string impossible = impossible_sums(out.ref(), part.first_sample, part.samples);
-    if (!impossible.empty()) {
-      throw InvalidInput(name + ": pixel (" + std::to_string(p % std::size_t(header.width)) + ", " +
-                         std::to_string(p / std::size_t(header.width)) +
-                         ") has sums no samples can add up to: " + impossible);
+      const std::size_t p = std::size_t(y0) * width + i;
+      const std::string impossible = impossible_sums(pixel.ref(), part.first_sample, part.samples);
+      if (!impossible.empty()) {
+        throw InvalidInput(name + ": pixel (" + std::to_string(p % width) + ", " +
+                           std::to_string(p / width) +
+                           ") has sums no samples can add up to: " + impossible);
+      }
+      total.color[p] += sum;
+      if (add_spread) total.spreads[p] += spread;
+      if (add_first_hit) total.first_hits[p] += first_hit;
     }
   }
 }
-
-}  // namespace
-
-RenderPart read_part(const std::string& path) {
-  const std::string name = "part file " + quote_value(path);
-  auto in = open_input_image(path, name, limits::kMaxPartFileBytes, "part file");
-  return read_part(*in, path);
-}
-
-RenderPart read_part(ImageReader& in, const std::string& path) {
-  const std::string name = "part file " + quote_value(path);
-  const std::optional<SumChannels> channels = find_sum_channels(in.header());
-  if (!channels) {
-    throw InvalidInput(name + ": not a part file (render one with " + setting("sample_range") +
-                       " or " + setting("part") + ")");
-  }
-  RenderPart part;
-  part.path = path;
-  read_part_header(in.header(), name, part);
-  part.metadata = read_part_metadata(in.header());
-  read_part_sums(in, name, *channels, part);
-  return part;
-}
-
-namespace {
 
 // The rtiow version a part records ("unknown" if none): versions may draw other samples.
 std::string part_version(const RenderPart& part) {
@@ -314,25 +308,23 @@ std::string part_version(const RenderPart& part) {
   return "unknown";
 }
 
-// Parts of one render: same rtiow, same scene and settings (digest), size and job.
-void check_same_render(const std::vector<const RenderPart*>& parts) {
-  const RenderPart& reference = *parts.front();
-  for (const RenderPart* p : parts) {
-    if (part_version(*p) != part_version(reference)) {
-      throw InvalidInput("merge: " + p->path + " was rendered by rtiow " + part_version(*p) +
-                         " and " + reference.path + " by rtiow " + part_version(reference) +
-                         ": versions may draw other samples, so their shares do not add up");
-    }
-    if (p->digest != reference.digest || p->width != reference.width ||
-        p->height != reference.height || p->job_samples != reference.job_samples) {
-      throw InvalidInput("merge: " + p->path + " is a share of a different render than " +
-                         reference.path +
-                         " (scene, size, depth, seed, sampler, replicates, roulette or spp "
-                         "differ; or one was written by an rtiow " +
-                         part_version(reference) +
-                         " from before its digest named the render's identity: render the "
-                         "parts with one rtiow)");
-    }
+// A part of the render `reference` is of: same rtiow, same scene and settings (digest), size
+// and job.
+void check_same_render(const RenderPart& reference, const RenderPart& part) {
+  if (part_version(part) != part_version(reference)) {
+    throw InvalidInput("merge: " + part.path + " was rendered by rtiow " + part_version(part) +
+                       " and " + reference.path + " by rtiow " + part_version(reference) +
+                       ": versions may draw other samples, so their shares do not add up");
+  }
+  if (part.digest != reference.digest || part.width != reference.width ||
+      part.height != reference.height || part.job_samples != reference.job_samples) {
+    throw InvalidInput("merge: " + part.path + " is a share of a different render than " +
+                       reference.path +
+                       " (scene, size, depth, seed, sampler, replicates, roulette or spp "
+                       "differ; or one was written by an rtiow " +
+                       part_version(reference) +
+                       " from before its digest named the render's identity: render the "
+                       "parts with one rtiow)");
   }
 }
 
@@ -363,21 +355,20 @@ void check_tiling(const std::vector<const RenderPart*>& sorted) {
   }
 }
 
-// The metadata of `reference` (the first part given), with the per-part counts totalled.
-Metadata merged_metadata(const RenderPart& reference, const std::vector<const RenderPart*>& parts,
-                         std::uint64_t samples) {
+// The metadata of `parts.front()` (the first part given), with the per-part counts totalled.
+Metadata merged_metadata(const std::vector<RenderPart>& parts, std::uint64_t samples) {
   namespace field = metadata_key;
   std::int64_t rays = 0;
-  for (const RenderPart* p : parts) {
-    const std::int64_t part_rays = metadata_count(*p, field::kRaysTraced);
+  for (const RenderPart& p : parts) {
+    const std::int64_t part_rays = metadata_count(p, field::kRaysTraced);
     if (part_rays > std::numeric_limits<std::int64_t>::max() - rays) {
-      throw InvalidInput("part file " + quote_value(p->path) + ": " + kMetadataPrefix +
+      throw InvalidInput("part file " + quote_value(p.path) + ": " + kMetadataPrefix +
                          field::kRaysTraced + " makes the total beyond 2^63");
     }
     rays += part_rays;
   }
   Metadata merged;
-  for (const auto& [key, value] : reference.metadata) {
+  for (const auto& [key, value] : parts.front().metadata) {
     if (key == field::kSpp) {
       merged.emplace_back(key, std::int64_t(samples));
     } else if (key == field::kRaysTraced) {
@@ -391,75 +382,92 @@ Metadata merged_metadata(const RenderPart& reference, const std::vector<const Re
   return merged;
 }
 
-// The passes the parts were rendered with (rtiow:passes, recorded by each): every part must
-// hold their sums, or the merged passes would lack samples.
-void check_passes(const RenderPart& reference, const std::vector<const RenderPart*>& parts,
-                  MergedRender& merged) {
-  const auto recorded = [](const RenderPart& part) {
-    for (const auto& [key, value] : part.metadata) {
-      if (key != metadata_key::kPasses) continue;
-      const auto* text = std::get_if<std::string>(&value);
-      try {
-        if (text) return parse_passes(*text);
-      } catch (const InvalidInput&) {
-      }
-      throw InvalidInput("part file " + quote_value(part.path) + ": " + kMetadataPrefix +
-                         metadata_key::kPasses + " is not a list of passes");
+// The passes a part was rendered with (rtiow:passes, recorded by each).
+FirstHitPasses recorded_passes(const RenderPart& part) {
+  for (const auto& [key, value] : part.metadata) {
+    if (key != metadata_key::kPasses) continue;
+    const auto* text = std::get_if<std::string>(&value);
+    try {
+      if (text) return parse_passes(*text);
+    } catch (const InvalidInput&) {
     }
-    return FirstHitPasses{};
-  };
-  merged.passes = recorded(reference);
-  for (const RenderPart* p : parts) {
-    if (recorded(*p) != merged.passes) {
-      throw InvalidInput("merge: " + p->path + " was rendered with " +
-                         setting("passes", to_string(recorded(*p))) + " and " + reference.path +
-                         " with " + setting("passes", to_string(merged.passes)) +
-                         ": render every part with the same passes");
-    }
-    if (merged.passes.any() && !p->sums.keeps(SumGroup::FirstHit)) {
-      throw InvalidInput("part file " + quote_value(p->path) + ": records passes " +
-                         to_string(merged.passes) + " but holds no sums of them");
-    }
+    throw InvalidInput("part file " + quote_value(part.path) + ": " + kMetadataPrefix +
+                       metadata_key::kPasses + " is not a list of passes");
   }
+  return FirstHitPasses{};
 }
 
 }  // namespace
 
-MergedRender merge_parts(const std::vector<RenderPart>& input) {
-  if (input.empty()) throw InvalidInput("merge: no parts given");
-  std::vector<const RenderPart*> parts;
-  for (const RenderPart& p : input) parts.push_back(&p);
-  check_same_render(parts);
-  std::sort(parts.begin(), parts.end(), [](const RenderPart* a, const RenderPart* b) {
-    return a->first_sample < b->first_sample;
-  });
-  check_tiling(parts);
-
-  const RenderPart& reference = input.front();
-  MergedRender merged;
-  merged.samples = reference.job_samples;
-  check_passes(reference, parts, merged);
-  // The groups every part keeps, added: the variances need every part's spread (a part written
-  // before parts kept them has none), the passes their sums as recorded.
-  merged.sums = reference.sums;
-  if (!std::all_of(parts.begin(), parts.end(),
-                   [](const RenderPart* p) { return p->sums.keeps(SumGroup::Odd); })) {
-    merged.sums.spreads.clear();
-  }
-  if (!merged.passes.any()) merged.sums.first_hits.clear();
-  for (const RenderPart* p : parts) {
-    if (p != &reference) merged.sums += p->sums;
-  }
-  merged.film = Film(reference.width, reference.height);
-  resolve(merged.sums.color, merged.samples, merged.film);
-  merged.metadata = merged_metadata(reference, parts, merged.samples);
-  return merged;
+void PartMerge::add(const std::string& path) {
+  const std::string name = "part file " + quote_value(path);
+  auto in = open_input_image(path, name, limits::kMaxPartFileBytes, "part file");
+  add(*in, path);
 }
 
-RenderResult merged_result(const MergedRender& merged, SamplerKind sampler, int replicates) {
+void PartMerge::add(ImageReader& in, const std::string& path) {
+  const std::string name = "part file " + quote_value(path);
+  const std::optional<SumChannels> channels = find_sum_channels(in.header());
+  if (!channels) {
+    throw InvalidInput(name + ": not a part file (render one with " + setting("sample_range") +
+                       " or " + setting("part") + ")");
+  }
+  RenderPart part;
+  part.path = path;
+  read_part_header(in.header(), name, part);
+  part.metadata = read_part_metadata(in.header());
+  // Checked against the first part before any pixel is read. Every part must hold the sums of
+  // the passes its render recorded, or the merged passes would lack samples.
+  const FirstHitPasses passes = recorded_passes(part);
+  if (parts_.empty()) {
+    merged_.passes = passes;
+  } else {
+    check_same_render(parts_.front(), part);
+    if (passes != merged_.passes) {
+      throw InvalidInput("merge: " + part.path + " was rendered with " +
+                         setting("passes", to_string(passes)) + " and " + parts_.front().path +
+                         " with " + setting("passes", to_string(merged_.passes)) +
+                         ": render every part with the same passes");
+    }
+  }
+  const auto kept = [&](SumGroup g) { return channels->kept[std::size_t(g)]; };
+  if (passes.any() && !kept(SumGroup::FirstHit)) {
+    throw InvalidInput(name + ": records passes " + to_string(passes) +
+                       " but holds no sums of them");
+  }
+  // The groups every part keeps are added: the variances need every part's spread (a part
+  // written before parts kept them has none), the passes their sums as recorded.
+  if (!kept(SumGroup::Odd) && merged_.without_spreads.empty()) merged_.without_spreads = path;
+  if (parts_.empty()) {
+    merged_.sums = PixelSums(std::size_t(part.width) * std::size_t(part.height),
+                             kept(SumGroup::Odd), passes.any());
+  } else if (!kept(SumGroup::Odd)) {
+    merged_.sums.spreads = {};
+  }
+  add_part_sums(in, name, *channels, part, merged_.sums);
+  parts_.push_back(std::move(part));
+}
+
+MergedRender PartMerge::finish() && {
+  if (parts_.empty()) throw InvalidInput("merge: no parts given");
+  std::vector<const RenderPart*> sorted;
+  for (const RenderPart& p : parts_) sorted.push_back(&p);
+  std::sort(sorted.begin(), sorted.end(), [](const RenderPart* a, const RenderPart* b) {
+    return a->first_sample < b->first_sample;
+  });
+  check_tiling(sorted);
+  const RenderPart& reference = parts_.front();
+  merged_.samples = reference.job_samples;
+  merged_.film = Film(reference.width, reference.height);
+  resolve(merged_.sums.color, merged_.samples, merged_.film);
+  merged_.metadata = merged_metadata(parts_, merged_.samples);
+  return std::move(merged_);
+}
+
+RenderResult merged_result(MergedRender&& merged, SamplerKind sampler, int replicates) {
   RenderResult r;
-  r.film = merged.film;
-  r.sums = merged.sums;
+  r.film = std::move(merged.film);
+  r.sums = std::move(merged.sums);
   r.sampler = sampler;
   r.replicates = replicates;
   complete_from_shares(merged.samples, r);

@@ -42,33 +42,41 @@ RenderPart make_part(const Scene& scene, const RenderSettings& share, std::uint6
 // Writes a share atomically. `path` must end in .exr.
 void write_part(const std::string& path, const RenderPart& part);
 
-// Reads a share; throws InvalidInput naming the file (and the field) when it is not one:
-// every header field is checked before the pixels are allocated.
-RenderPart read_part(const std::string& path);
-
-class ImageReader;  // core/io/image_file.h
-
-// The same from an image already opened (`path` names it in messages): what the fuzz target
-// drives with headers and pixels of its own making.
-RenderPart read_part(ImageReader& in, const std::string& path);
-
 struct MergedRender {
   Film film;
   std::uint64_t samples = 0;
   Metadata metadata;  // the parts' common metadata, with spp and rays_traced totalled
   // Spreads empty unless every part had its spread; first hits unless every part had them.
   PixelSums sums;
-  FirstHitPasses passes;  // the passes the parts were rendered with
+  FirstHitPasses passes;        // the passes the parts were rendered with
+  std::string without_spreads;  // the first part given that keeps no spreads ("" if none)
 };
 
 // The merged render as one render's result (samples from index 0, drawn by `sampler`), for
-// its variances (core/render/render_statistics.h).
-RenderResult merged_result(const MergedRender& merged, SamplerKind sampler, int replicates);
+// its variances (core/render/render_statistics.h); its film and sums are moved, not copied.
+RenderResult merged_result(MergedRender&& merged, SamplerKind sampler, int replicates);
 
-// Checks that the parts belong to one render (same digest, size and job), that they neither
-// overlap nor leave a gap from sample 0 to the job's last, and adds them; with the passes they
-// recorded (rtiow:passes) when every part holds their sums. Throws InvalidInput
-// naming the files at fault.
-MergedRender merge_parts(const std::vector<RenderPart>& parts);
+class ImageReader;  // core/io/image_file.h
+
+// Parts read one at a time and added, so that a merge holds their total and one part's words
+// however many parts it is given. Each part's header is checked against the first's (the same
+// render: digest, size, job and rtiow; the same passes, whose sums it must hold) before its
+// pixels are read, and each pixel's sums as a checkpoint's are; finish() checks that the parts
+// tile the job, from sample 0 to its last, without overlap. Throws InvalidInput naming the
+// files at fault.
+class PartMerge {
+ public:
+  void add(const std::string& path);
+  // The same from an image already opened (`path` names it in messages): what the fuzz
+  // target drives with headers and pixels of its own making.
+  void add(ImageReader& in, const std::string& path);
+  // The parts added as one render, with the passes they recorded where every part holds
+  // their sums, and the spreads where every part keeps them.
+  MergedRender finish() &&;
+
+ private:
+  std::vector<RenderPart> parts_;  // as read, their sums left empty: the total holds them
+  MergedRender merged_;
+};
 
 }  // namespace rtiow

@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/io/checksum.h"
@@ -161,16 +162,23 @@ class FuzzImage final : public rtiow::ImageReader {
     if (at < size) pixel_bytes_.assign(data + at, data + size);
   }
   const rtiow::ImageHeader& header() const override { return header_; }
-  bool read_pixels(rtiow::PixelType, void* pixels, std::string& reason) override {
-    if (pixel_bytes_.empty()) {
+  bool read_pixels(rtiow::PixelType type, void* pixels, std::string& reason) override {
+    return read_rows(type, 0, header_.height, pixels, reason);
+  }
+  // The pixel bytes repeated from the image's first: row y begins where it would in the whole.
+  bool read_rows(rtiow::PixelType, int y_begin, int y_end, void* pixels,
+                 std::string& reason) override {
+    if (pixel_bytes_.empty() || y_begin < 0 || y_end > header_.height || y_begin >= y_end) {
       reason = "no pixels";
       return false;
     }
     // Only a header that passed the reader's checks gets here: its size is bounded.
-    const std::size_t words =
-        std::size_t(header_.width) * std::size_t(header_.height) * header_.channel_names.size();
+    const std::size_t row_words = std::size_t(header_.width) * header_.channel_names.size();
+    const std::size_t first = std::size_t(y_begin) * row_words * 4;
+    const std::size_t bytes = std::size_t(y_end - y_begin) * row_words * 4;
     auto* out = static_cast<unsigned char*>(pixels);
-    for (std::size_t i = 0; i < words * 4; ++i) out[i] = pixel_bytes_[i % pixel_bytes_.size()];
+    for (std::size_t i = 0; i < bytes; ++i)
+      out[i] = pixel_bytes_[(first + i) % pixel_bytes_.size()];
     return true;
   }
 
@@ -185,10 +193,12 @@ void fuzz_part(const std::uint8_t* data, std::size_t size) {
   // fuzzer's limit reports: only small images are read.
   if (std::int64_t(image.header().width) * image.header().height > 4096) return;
   try {
-    const rtiow::RenderPart part = rtiow::read_part(image, "fuzz.exr");
-    if (part.sums.size() != std::size_t(part.width) * std::size_t(part.height)) __builtin_trap();
-    if (part.first_sample + part.samples > part.job_samples) __builtin_trap();
-    rtiow::merge_parts({part});
+    rtiow::PartMerge merge;
+    merge.add(image, "fuzz.exr");
+    const rtiow::MergedRender merged = std::move(merge).finish();
+    const std::size_t pixels =
+        std::size_t(image.header().width) * std::size_t(image.header().height);
+    if (merged.sums.size() != pixels || merged.film.pixels().size() != pixels) __builtin_trap();
   } catch (const rtiow::InvalidInput&) {
   }
 }
