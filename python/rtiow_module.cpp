@@ -348,8 +348,10 @@ void write_render(const Render& render, const std::string& path, bool reproducib
   check_image_output(path, {}, channels);
   Metadata metadata = render_metadata(render.scene, render.settings, render.result, reproducible);
   if (render.share) {  // a part file, as rtiow render --part writes it
-    write_part(path, make_part(render.scene, render.settings, render.samples_asked, render.result,
-                               metadata));
+    write_part(
+        path,
+        make_part(render.scene, render.settings, render.samples_asked, render.result, metadata),
+        render.result.sums);
     return;
   }
   std::vector<ExtraChannel> extra =

@@ -21,7 +21,7 @@ class ImageBackend;
 class ImageReader;
 
 // Changes whenever image_file.h changes shape: a backend from another build is refused.
-inline constexpr int kImageBackendAbi = 4;
+inline constexpr int kImageBackendAbi = 5;
 
 // The name the backend's file has.
 inline constexpr const char* kImageBackendFile = "librtiow_image_io.so";

@@ -10,6 +10,7 @@
 // it (failures come back as false and a reason).
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <variant>
@@ -61,14 +62,20 @@ class ImageReader {
                          std::string& reason) = 0;
 };
 
+// The rows [y_begin, y_end) of an image being encoded, interleaved in its header's channel
+// types: an encoder asks for them a strip at a time, top to bottom, so whoever makes the pixels
+// (a part file's 268 bytes a pixel) need not hold them all at once. What it returns stays valid
+// until the next call.
+using ImageRows = std::function<const void*(int y_begin, int y_end)>;
+
 class ImageBackend {
  public:
   virtual ~ImageBackend() = default;
-  // Encodes `pixels`, interleaved in the header's channel types, in memory in the format the
-  // extension of `path` names, and checks that the bytes decode again (some encoders do not
-  // report a failure). The backend never writes a file: rtiow writes the bytes itself
-  // (core/io/atomic_file.h). False (and `reason`) on failure.
-  virtual bool encode(const std::string& path, const ImageHeader& header, const void* pixels,
+  // Encodes the image `rows` gives in memory in the format the extension of `path` names, and
+  // checks that the bytes decode again (some encoders do not report a failure). The backend
+  // never writes a file: rtiow writes the bytes itself (core/io/atomic_file.h). False (and
+  // `reason`) on failure.
+  virtual bool encode(const std::string& path, const ImageHeader& header, const ImageRows& rows,
                       std::vector<unsigned char>& bytes, std::string& reason) const = 0;
   // Nothing (and `reason`) when the file does not open as an image of `format` (OpenImageIO's
   // name for it, from core/io/image_signature.h: the file's first bytes chose it). `path` may

@@ -106,30 +106,38 @@ void write_image(const std::string& path, const Film& film, const Metadata& meta
   add_metadata(header, metadata, linear_float, image->provenance);
   if (!linear_float) header.attributes.push_back({"oiio:ColorSpace", std::string("Gamma2.0")});
 
+  // The pixels [first, end), interleaved as the header says: linear floats with the extra
+  // channels, or gamma-encoded bytes.
   std::vector<float> floats;
   std::vector<std::uint8_t> bytes;
-  const void* data;
-  if (linear_float) {
-    floats.reserve(film.pixels().size() * std::size_t(channels));
-    for (std::size_t p = 0; p < film.pixels().size(); ++p) {
+  const auto interleave = [&](std::size_t first, std::size_t end) -> const void* {
+    floats.clear(), bytes.clear();
+    for (std::size_t p = first; p < end; ++p) {
       const Color& c = film.pixels()[p];
-      floats.insert(floats.end(), {c.x, c.y, c.z});
-      for (const ExtraChannel& e : extra) floats.push_back(e.values[p]);
+      if (linear_float) {
+        floats.insert(floats.end(), {c.x, c.y, c.z});
+        for (const ExtraChannel& e : extra) floats.push_back(e.values[p]);
+      } else {
+        bytes.insert(bytes.end(),
+                     {encode_gamma2_8bit(c.x), encode_gamma2_8bit(c.y), encode_gamma2_8bit(c.z)});
+      }
     }
-    data = floats.data();
-  } else {
-    bytes.reserve(film.pixels().size() * 3);
-    for (const Color& c : film.pixels()) {
-      bytes.insert(bytes.end(),
-                   {encode_gamma2_8bit(c.x), encode_gamma2_8bit(c.y), encode_gamma2_8bit(c.z)});
-    }
-    data = bytes.data();
-  }
-
+    return linear_float ? static_cast<const void*>(floats.data()) : bytes.data();
+  };
+  const std::size_t width = std::size_t(film.width());
   std::vector<unsigned char> encoded;
   std::string reason;
-  const bool ok = image->own_encoder ? encode_png(header, bytes.data(), encoded, reason)
-                                     : image_backend().encode(path, header, data, encoded, reason);
+  const bool ok =
+      image->own_encoder
+          ? encode_png(header,
+                       static_cast<const std::uint8_t*>(interleave(0, film.pixels().size())),
+                       encoded, reason)
+          : image_backend().encode(
+                path, header,
+                [&](int y_begin, int y_end) {
+                  return interleave(std::size_t(y_begin) * width, std::size_t(y_end) * width);
+                },
+                encoded, reason);
   if (!ok) throw std::runtime_error("cannot write '" + path + "': " + reason);
   write_bytes_atomically(path, encoded);
 }

@@ -190,20 +190,29 @@ class OiioImageReader final : public ImageReader {
   ImageHeader header_;
 };
 
-// Whether `bytes`, encoded for `path`'s format, decode to all their pixels again: some
-// encoders (PNG in OpenImageIO 2.4) do not report every failure.
+// Rows an image is encoded and checked by: a strip's pixels, not the image's, are held beside
+// the encoded bytes. A multiple of the 16 rows EXR's zip compresses together.
+constexpr int kRowsPerStrip = 64;
+
+// Whether `bytes`, encoded for `path`'s format, decode to all their pixels again (a strip at
+// a time): some encoders (PNG in OpenImageIO 2.4) do not report every failure.
 bool decodes(const std::string& path, const std::vector<unsigned char>& bytes,
              std::string& reason) {
   OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
   auto in = OIIO::ImageInput::open(path, nullptr, &memory);
-  if (in) {
+  bool whole = in != nullptr;
+  if (whole) {
     const OIIO::ImageSpec& spec = in->spec();
-    std::vector<float> pixels(std::size_t(spec.width) * std::size_t(spec.height) *
-                              std::size_t(spec.nchannels));
-    if (in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
-      return true;
+    std::vector<float> strip(std::size_t(spec.width) *
+                             std::size_t(std::min(kRowsPerStrip, spec.height)) *
+                             std::size_t(spec.nchannels));
+    for (int y = 0; whole && y < spec.height; y += kRowsPerStrip) {
+      whole =
+          in->read_scanlines(0, 0, spec.y + y, spec.y + std::min(spec.height, y + kRowsPerStrip),
+                             spec.z, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, strip.data());
     }
   }
+  if (whole) return true;
   reason = "the encoded image does not decode again: " + take_error();
   return false;
 }
@@ -222,7 +231,7 @@ class OiioImageBackend final : public ImageBackend {
     }
   }
 
-  bool encode(const std::string& path, const ImageHeader& header, const void* pixels,
+  bool encode(const std::string& path, const ImageHeader& header, const ImageRows& rows,
               std::vector<unsigned char>& bytes, std::string& reason) const override {
     const QuietStderr quiet;
     auto out = OIIO::ImageOutput::create(path);
@@ -238,9 +247,14 @@ class OiioImageBackend final : public ImageBackend {
     OIIO::ImageSpec spec = to_spec(header);
     void* proxy = &memory;
     spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    // UNKNOWN: the buffer holds each channel in its own stored type.
-    const bool encoded =
-        out->open(path, spec) && out->write_image(OIIO::TypeDesc::UNKNOWN, pixels) && out->close();
+    // UNKNOWN: the rows hold each channel in its own stored type.
+    bool encoded = out->open(path, spec);
+    for (int y = 0; encoded && y < header.height; y += kRowsPerStrip) {
+      const int end = std::min(header.height, y + kRowsPerStrip);
+      encoded =
+          out->write_scanlines(spec.y + y, spec.y + end, 0, OIIO::TypeDesc::UNKNOWN, rows(y, end));
+    }
+    encoded = encoded && out->close();
     if (!encoded) {
       reason = take_error(out->geterror());
       return false;

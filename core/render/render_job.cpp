@@ -176,8 +176,8 @@ std::optional<DenoisedImage> write_job_result(const JobRequest& r, const RenderJ
                                               const RenderResult& result,
                                               const Metadata& metadata) {
   if (job.share) {
-    // The sums are copied: kept in the result, should the write fail.
-    write_part(job.output, make_part(job.scene, job.settings, job.samples_asked, result, metadata));
+    write_part(job.output, make_part(job.scene, job.settings, job.samples_asked, result, metadata),
+               result.sums);
     return std::nullopt;
   }
   const ImageFormat* format = image_format(job.output);

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string_view>
 #include <utility>
 
@@ -87,11 +88,15 @@ RenderPart make_part(const Scene& scene, const RenderSettings& share, std::uint6
   part.job_samples = job_samples;
   part.digest = shared_digest(render_identity(scene, s));
   part.metadata = std::move(metadata);
-  part.sums = result.sums;
   return part;
 }
 
-void write_part(const std::string& path, const RenderPart& part) {
+void write_part(const std::string& path, const RenderPart& part, const PixelSums& sums) {
+  if (sums.size() != std::size_t(part.width) * std::size_t(part.height)) {
+    throw std::invalid_argument("write_part: the sums are not of the part's " +
+                                std::to_string(part.width) + "x" + std::to_string(part.height) +
+                                " film");
+  }
   const ImageBackend& backend = image_backend();
   ImageHeader header;
   header.width = header.full_width = part.width;
@@ -101,7 +106,7 @@ void write_part(const std::string& path, const RenderPart& part) {
     header.channel_types.push_back(PixelType::Float);
   }
   for (const SumGroupDeclaration& d : kSumGroups) {
-    for (std::size_t c = 0; part.sums.keeps(d.group) && c < d.channels; ++c) {
+    for (std::size_t c = 0; sums.keeps(d.group) && c < d.channels; ++c) {
       for (int w = 0; w < kWordsPerSum; ++w) {
         header.channel_names.push_back(word_channel(d, c, w));
         header.channel_types.push_back(PixelType::UInt32);
@@ -125,26 +130,32 @@ void write_part(const std::string& path, const RenderPart& part) {
   attributes.push_back({kDigest, part.digest});
 
   // Native layout: per pixel 3 floats, then the words of every channel of every group kept,
-  // all 4 bytes wide.
+  // all 4 bytes wide; a strip of rows at a time (268 bytes a pixel with the passes).
   const std::size_t channels = header.channel_names.size();
-  std::vector<std::uint32_t> data(std::size_t(part.width) * std::size_t(part.height) * channels);
-  for (std::size_t p = 0; p < part.sums.size(); ++p) {
-    std::uint32_t* pixel = &data[p * channels];
-    const Color mean = part.sums.color[p].mean(part.samples);
-    std::memcpy(pixel, &mean, sizeof mean);
-    std::uint32_t* words = pixel + kColorChannels;
-    const PixelSumsRef sums = part.sums.at(p);
-    for (const SumGroupDeclaration& d : kSumGroups) {
-      for (std::size_t c = 0; sums.has(d.group) && c < d.channels; ++c) {
-        const auto bits = static_cast<uint128>(sums.channel(d.group, c));
-        for (int w = 0; w < kWordsPerSum; ++w) *words++ = std::uint32_t(bits >> (32 * w));
+  const std::size_t width = std::size_t(part.width);
+  std::vector<std::uint32_t> strip;
+  const auto rows = [&](int y_begin, int y_end) -> const void* {
+    strip.resize(width * std::size_t(y_end - y_begin) * channels);
+    for (std::size_t i = 0; i < width * std::size_t(y_end - y_begin); ++i) {
+      const std::size_t p = std::size_t(y_begin) * width + i;
+      std::uint32_t* pixel = &strip[i * channels];
+      const Color mean = sums.color[p].mean(part.samples);
+      std::memcpy(pixel, &mean, sizeof mean);
+      std::uint32_t* words = pixel + kColorChannels;
+      const PixelSumsRef pixel_sums = sums.at(p);
+      for (const SumGroupDeclaration& d : kSumGroups) {
+        for (std::size_t c = 0; pixel_sums.has(d.group) && c < d.channels; ++c) {
+          const auto bits = static_cast<uint128>(pixel_sums.channel(d.group, c));
+          for (int w = 0; w < kWordsPerSum; ++w) *words++ = std::uint32_t(bits >> (32 * w));
+        }
       }
     }
-  }
+    return strip.data();
+  };
 
   std::vector<unsigned char> encoded;
   std::string reason;
-  if (!backend.encode(path, header, data.data(), encoded, reason)) {
+  if (!backend.encode(path, header, rows, encoded, reason)) {
     throw std::runtime_error("cannot write '" + path + "': " + reason);
   }
   write_bytes_atomically(path, encoded);

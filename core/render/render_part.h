@@ -22,6 +22,8 @@
 
 namespace rtiow {
 
+// A part file's header: which share of which render it holds. Its sums travel beside it (the
+// result's when written, the merge's total when read), never copied into it.
 struct RenderPart {
   std::string path;
   int width = 0, height = 0;
@@ -29,18 +31,17 @@ struct RenderPart {
   std::uint64_t job_samples = 0;  // the whole job's samples per pixel, so a missing share shows
   std::string digest;             // shared_digest(): what every share of its render has
   Metadata metadata;              // everything else the part recorded (scene, seed, rays...)
-  // Spreads empty in a part written without them, first hits in one rendered without passes.
-  PixelSums sums;
 };
 
-// A share's result as a part file keeps it: `share` the settings it was rendered with (its
+// A share's header as a part file keeps it: `share` the settings it was rendered with (its
 // first sample and count), `job_samples` the whole job's samples per pixel, `metadata` what the
-// render records (render_metadata.h). The sums are copied: the result keeps them.
+// render records (render_metadata.h). Throws InvalidInput unless `result` is of the share's film.
 RenderPart make_part(const Scene& scene, const RenderSettings& share, std::uint64_t job_samples,
                      const RenderResult& result, Metadata metadata);
 
-// Writes a share atomically. `path` must end in .exr.
-void write_part(const std::string& path, const RenderPart& part);
+// Writes a share and its sums (`result.sums` of make_part's result: the spreads and first hits
+// where kept) atomically, encoded a strip of rows at a time. `path` must end in .exr.
+void write_part(const std::string& path, const RenderPart& part, const PixelSums& sums);
 
 struct MergedRender {
   Film film;
@@ -75,7 +76,7 @@ class PartMerge {
   MergedRender finish() &&;
 
  private:
-  std::vector<RenderPart> parts_;  // as read, their sums left empty: the total holds them
+  std::vector<RenderPart> parts_;  // the headers read; their sums are in the total
   MergedRender merged_;
 };
 

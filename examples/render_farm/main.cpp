@@ -60,8 +60,10 @@ bool parts_merged(const rtiow::Scene& scene, const rtiow::RenderSettings& job,
     share.samples = rtiow::FixedSamples{int(job_samples / 2)};
     const rtiow::RenderResult result = rtiow::render(scene, share);
     const std::string path = (dir / ("part" + std::to_string(parts.size()) + ".exr")).string();
-    rtiow::write_part(path, rtiow::make_part(scene, share, job_samples, result,
-                                             rtiow::render_metadata(scene, share, result, true)));
+    rtiow::write_part(path,
+                      rtiow::make_part(scene, share, job_samples, result,
+                                       rtiow::render_metadata(scene, share, result, true)),
+                      result.sums);
     parts.push_back(path);
   }
   const rtiow::MergedImage merged = rtiow::merge_part_files(parts, {});
