@@ -28,6 +28,7 @@ namespace {
 // the pixel and its hat entry is the (0, 0) entry of the inverse normal matrix.
 constexpr int kColumns = 1 + int(FirstHitSum::kChannels) + 2;
 constexpr std::size_t kRowsPerChunk = 8;
+
 static_assert(kPatchRadius == 1, "PatchDistances keeps the terms of three rows");
 
 using Normal = Eigen::Matrix<double, kColumns, kColumns>;
@@ -84,17 +85,23 @@ RTIOW_DISPATCHED void patch_terms(const GuidePlanes& g, std::size_t a0, std::siz
 //
 // Each term belongs to one pixel a of p's patch and the offset d (a against a + d), and the same
 // term falls in the patches of nine pixels: the terms of every offset are computed once for
-// each row and kept for three rows, and a distance sums its patch's nine.
+// each row and kept for three rows, and a distance sums its patch's nine. Only the columns of a
+// tile of pixels and their patches' are kept (each term is the same whatever the tile).
 class PatchDistances {
  public:
-  PatchDistances(const DenoiseInput& in, const GuidePlanes& planes)
-      : in_(in), planes_(planes), width_(std::size_t(in.width)) {
+  PatchDistances(const DenoiseInput& in, const GuidePlanes& planes, int columns_per_tile)
+      : in_(in), planes_(planes), width_(std::size_t(columns_per_tile + 2 * kPatchRadius)) {
     terms_.resize(kOffsets * 3 * width_);
     valid_.resize(kOffsets * 3 * width_);
   }
 
-  // Forgets the rows computed: a new chunk of rows starts.
-  void restart() { next_row_ = 0; }
+  // Forgets the rows computed: a new chunk of rows starts, for the pixels of columns [x0, x1)
+  // (at most the tile's columns).
+  void restart(int x0, int x1) {
+    next_row_ = 0;
+    x0_ = std::max(0, x0 - kPatchRadius);
+    x1_ = std::min(in_.width, x1 + kPatchRadius);
+  }
 
   // Makes the terms of rows py - 1 to py + 1 ready (rows asked in increasing order).
   void at_row(int py) {
@@ -111,13 +118,13 @@ class PatchDistances {
          ++ay) {
       for (int ax = std::max(0, px - kPatchRadius);
            ax <= std::min(in_.width - 1, px + kPatchRadius); ++ax) {
-        const std::size_t at = slot(offset, ay) + std::size_t(ax);
+        const std::size_t at = slot(offset, ay) + std::size_t(ax - x0_);
         total += terms_[at], terms += valid_[at];
       }
     }
     // p itself, and the pixel whose partner is p: their terms read the guide at p.
     const auto leave_out = [&](int ax, int ay) {
-      const std::size_t at = slot(offset, ay) + std::size_t(ax);
+      const std::size_t at = slot(offset, ay) + std::size_t(ax - x0_);
       total -= terms_[at], terms -= valid_[at];
     };
     leave_out(px, py);
@@ -141,7 +148,7 @@ class PatchDistances {
     const int offset = offset_index(dx, dy);
     Lanes total{}, terms{};
     const auto add = [&](int ax, int ay, double sign) {
-      const std::size_t at = slot(offset, ay) + std::size_t(ax);
+      const std::size_t at = slot(offset, ay) + std::size_t(ax - x0_);
       Lanes term, valid;
       std::memcpy(&term, &terms_[at], sizeof term);
       std::memcpy(&valid, &valid_[at], sizeof valid);
@@ -170,30 +177,33 @@ class PatchDistances {
     return (std::size_t(offset) * 3 + std::size_t(row % 3)) * width_;
   }
 
+  // The terms of row ay for the columns [x0_, x1_), kept from x0_ on.
   void compute_row(int ay) {
+    const std::size_t image_width = std::size_t(in_.width), kept = std::size_t(x1_ - x0_);
     for (int dy = -kRegressionRadius; dy <= kRegressionRadius; ++dy) {
       for (int dx = -kRegressionRadius; dx <= kRegressionRadius; ++dx) {
         const std::size_t base = slot(offset_index(dx, dy), ay);
         const int by = ay + dy;
         // The pixels ax whose partner ax + dx (in row by) is in the image.
-        const int first =
-            by >= 0 && by < in_.height ? std::min(in_.width, std::max(0, -dx)) : in_.width;
-        const int end = std::max(first, std::min(in_.width, in_.width - dx));
-        std::fill(&terms_[base], &terms_[base] + first, 0.0);
-        std::fill(&valid_[base], &valid_[base] + first, 0.0);
+        const int first = by >= 0 && by < in_.height ? std::min(x1_, std::max(x0_, -dx)) : x1_;
+        const int end = std::max(first, std::min(x1_, in_.width - dx));
+        const std::size_t from = std::size_t(first - x0_), to = std::size_t(end - x0_);
+        std::fill(&terms_[base], &terms_[base] + from, 0.0);
+        std::fill(&valid_[base], &valid_[base] + from, 0.0);
         if (end > first)
-          patch_terms(planes_, std::size_t(ay) * width_ + std::size_t(first),
-                      std::size_t(by) * width_ + std::size_t(first + dx), std::size_t(end - first),
-                      &terms_[base + std::size_t(first)], &valid_[base + std::size_t(first)]);
-        std::fill(&terms_[base] + end, &terms_[base] + width_, 0.0);
-        std::fill(&valid_[base] + end, &valid_[base] + width_, 0.0);
+          patch_terms(planes_, std::size_t(ay) * image_width + std::size_t(first),
+                      std::size_t(by) * image_width + std::size_t(first + dx),
+                      std::size_t(end - first), &terms_[base + from], &valid_[base + from]);
+        std::fill(&terms_[base] + to, &terms_[base] + kept, 0.0);
+        std::fill(&valid_[base] + to, &valid_[base] + kept, 0.0);
       }
     }
   }
 
   const DenoiseInput& in_;
   const GuidePlanes& planes_;
-  std::size_t width_;
+  std::size_t width_;    // the columns a row of terms has room for
+  int x0_ = 0, x1_ = 0;  // the columns kept: a tile's pixels and their patches'
   int next_row_ = 0;
   std::vector<double> terms_;  // [offset][row mod 3][x]
   std::vector<double> valid_;  // 1 where the term's two pixels are in the image, else 0
@@ -399,9 +409,12 @@ RTIOW_DISPATCHED void lay_out_lane_distances(const PatchDistances& patches, cons
 
 std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<Color>& half,
                                       const Guide& guide, const std::vector<Weighting>& weightings,
-                                      const std::function<bool()>& cancelled) {
+                                      const std::function<bool()>& cancelled,
+                                      int columns_per_tile) {
   if (!guide.image || !guide.variance)
     throw std::invalid_argument("filter_half: a guide and its variance");
+  if (columns_per_tile < kLanes || columns_per_tile % kLanes != 0)
+    throw std::invalid_argument("filter_half: columns per tile a positive multiple of the lanes");
   const std::size_t n = in.size();
   std::vector<FilteredHalf> out(weightings.size());
   for (FilteredHalf& f : out) f.color.resize(n), f.own_weight.resize(n);
@@ -416,49 +429,59 @@ std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<
     std::optional<PatchDistances> patches;
   };
   tbb::enumerable_thread_specific<Scratch> scratch;
-  // Chunks of rows, so that each row's patch terms serve the rows around it.
-  parallel_for_range(std::size_t(in.height), kRowsPerChunk, [&](std::size_t y0, std::size_t y1) {
-    Scratch& local = scratch.local();
-    LaneRows* const rows = local.rows.get();
-    LaneSystems* const systems = local.systems.get();
-    Lanes* const w = local.w.get();
-    if (!local.patches) local.patches.emplace(in, planes);
-    PatchDistances& patches = *local.patches;
-    patches.restart();
-    for (int py = int(y0); py < int(y1); ++py) {
-      if (cancelled && cancelled()) return;
-      patches.at_row(py);
-      for (int px0 = 0; px0 < in.width; px0 += kLanes) {
-        int self[kLanes] = {};
-        const UnionWindow u = union_window(in, px0, py);
-        const bool whole_patches = patches.lanes_inside(px0, py);
-        lay_out_rows(in, half, u, whole_patches ? nullptr : &patches, px0, py, *rows, self);
-        if (whole_patches) lay_out_lane_distances(patches, u, px0, py, *rows);
-        for (std::size_t k = 0; k < weightings.size(); ++k) {
-          const bool mean = weightings[k].fit == Fit::kMean;
-          const double bandwidth = double(weightings[k].bandwidth);
-          const double scale = 1.0 / (bandwidth * bandwidth);
-          // Weights below e^-30 are 0: they change nothing, and as subnormal numbers they made
-          // the products several times slower.
-          for (int r = 0; r < rows->rows; ++r) {
-            for (int l = 0; l < kLanes; ++l) {
-              const double d = rows->distance[r][l] * scale;
-              w[r][l] = !rows->inside[r][l] || d >= 30.0 ? 0.0 : d == 0.0 ? 1.0 : std::exp(-d);
+  // Tiles of a chunk of rows and at most columns_per_tile columns, so that each row's patch terms
+  // serve the rows around it and stay in cache.
+  const std::size_t chunks = (std::size_t(in.height) + kRowsPerChunk - 1) / kRowsPerChunk;
+  const std::size_t tile = std::size_t(columns_per_tile);
+  const std::size_t tiles = (std::size_t(in.width) + tile - 1) / tile;
+  parallel_for_range(chunks * tiles, 1, [&](std::size_t first_task, std::size_t end_task) {
+    for (std::size_t task = first_task; task < end_task; ++task) {
+      const int y0 = int(task / tiles * kRowsPerChunk);
+      const int y1 = std::min(in.height, y0 + int(kRowsPerChunk));
+      const int x0 = int(task % tiles * tile);
+      const int x1 = std::min(in.width, x0 + columns_per_tile);
+      Scratch& local = scratch.local();
+      LaneRows* const rows = local.rows.get();
+      LaneSystems* const systems = local.systems.get();
+      Lanes* const w = local.w.get();
+      if (!local.patches) local.patches.emplace(in, planes, columns_per_tile);
+      PatchDistances& patches = *local.patches;
+      patches.restart(x0, x1);
+      for (int py = y0; py < y1; ++py) {
+        if (cancelled && cancelled()) return;
+        patches.at_row(py);
+        for (int px0 = x0; px0 < x1; px0 += kLanes) {
+          int self[kLanes] = {};
+          const UnionWindow u = union_window(in, px0, py);
+          const bool whole_patches = patches.lanes_inside(px0, py);
+          lay_out_rows(in, half, u, whole_patches ? nullptr : &patches, px0, py, *rows, self);
+          if (whole_patches) lay_out_lane_distances(patches, u, px0, py, *rows);
+          for (std::size_t k = 0; k < weightings.size(); ++k) {
+            const bool mean = weightings[k].fit == Fit::kMean;
+            const double bandwidth = double(weightings[k].bandwidth);
+            const double scale = 1.0 / (bandwidth * bandwidth);
+            // Weights below e^-30 are 0: they change nothing, and as subnormal numbers they made
+            // the products several times slower.
+            for (int r = 0; r < rows->rows; ++r) {
+              for (int l = 0; l < kLanes; ++l) {
+                const double d = rows->distance[r][l] * scale;
+                w[r][l] = !rows->inside[r][l] || d >= 30.0 ? 0.0 : d == 0.0 ? 1.0 : std::exp(-d);
+              }
             }
-          }
-          if (mean)
-            gather_means(*rows, w, *systems);
-          else
-            gather_systems(*rows, w, *systems);
-          for (int l = 0; l < kLanes && px0 + l < in.width; ++l) {
-            const std::size_t p = std::size_t(py) * std::size_t(in.width) + std::size_t(px0 + l);
-            const double self_weight = w[self[l]][l];
-            const Regressed fitted =
-                mean ? mean_lane(*systems, l, self_weight)
-                     : fit_lane(intercept_row(*systems, l), *systems, l, self_weight);
-            out[k].color[p] = {float(fitted.value[0]), float(fitted.value[1]),
-                               float(fitted.value[2])};
-            out[k].own_weight[p] = float(fitted.own_weight);
+            if (mean)
+              gather_means(*rows, w, *systems);
+            else
+              gather_systems(*rows, w, *systems);
+            for (int l = 0; l < kLanes && px0 + l < in.width; ++l) {
+              const std::size_t p = std::size_t(py) * std::size_t(in.width) + std::size_t(px0 + l);
+              const double self_weight = w[self[l]][l];
+              const Regressed fitted =
+                  mean ? mean_lane(*systems, l, self_weight)
+                       : fit_lane(intercept_row(*systems, l), *systems, l, self_weight);
+              out[k].color[p] = {float(fitted.value[0]), float(fitted.value[1]),
+                                 float(fitted.value[2])};
+              out[k].own_weight[p] = float(fitted.own_weight);
+            }
           }
         }
       }
