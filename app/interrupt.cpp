@@ -22,6 +22,9 @@ volatile std::sig_atomic_t g_quiet = 0;  // a helper: its parent says it
 // Inside a FinalWrite: a second request waits in g_deferred for its end.
 volatile std::sig_atomic_t g_final_write = 0;
 volatile std::sig_atomic_t g_deferred = 0;
+// Set with g_deferred: what the final write still makes (its denoising) stops.
+std::atomic<bool> g_final_write_stop{false};
+volatile std::sig_atomic_t g_final_write_denoises = 0;  // the image written is to be denoised
 // The standard error rtiow started with, held apart: a library may point descriptor 2 at
 // /dev/null for a while (core/io/oiio_image_backend.cpp), and rtiow's last line must not go
 // there.
@@ -99,8 +102,11 @@ void on_request(int signal) {
   if (g_signal != 0 && g_final_write && !g_quiet) {
     if (g_deferred == 0) {
       g_deferred = signal;
-      write_stderr(g_terminal ? "\nrtiow: finishing the write first; then rtiow ends\n"
-                              : "rtiow: finishing the write first; then rtiow ends\n");
+      g_final_write_stop.store(true);
+      write_stderr(g_terminal ? "\nrtiow: finishing the write first"
+                              : "rtiow: finishing the write first");
+      write_stderr(g_final_write_denoises ? ", without denoising any further; then rtiow ends\n"
+                                          : "; then rtiow ends\n");
     }
     return;
   }
@@ -180,12 +186,16 @@ InterruptGuard::~InterruptGuard() {
   g_stop = nullptr;
 }
 
-FinalWrite::FinalWrite() {
+FinalWrite::FinalWrite(bool denoises) {
+  g_final_write_denoises = denoises ? 1 : 0;
+  g_final_write_stop.store(false);
+  set_final_write_stop_flag(&g_final_write_stop);
   g_final_write = 1;
 }
 
 FinalWrite::~FinalWrite() {
   g_final_write = 0;
+  set_final_write_stop_flag(nullptr);
   if (g_deferred != 0) end_at_once(int(g_deferred));
 }
 

@@ -45,10 +45,12 @@ class InterruptGuard {
 // While one lives, the end-at-once of a second request to end waits for its end: the final
 // write of a render (the image renamed into place, then the checkpoint it finishes removed)
 // leaves either the state before it or the state after it, never a finished image beside a
-// checkpoint that says less (issue 69). A fault still ends at once.
+// checkpoint that says less (issue 69). An image still being denoised then stops being denoised
+// (core/parallel/cancellation.h) and is written as rendered, so the wait is the write's, not the
+// denoiser's seconds. A fault still ends at once.
 class FinalWrite {
  public:
-  FinalWrite();
+  explicit FinalWrite(bool denoises = false);  // `denoises`: the image is to be denoised
   ~FinalWrite();  // ends rtiow, in its words, if a second signal came meanwhile
   FinalWrite(const FinalWrite&) = delete;
   FinalWrite& operator=(const FinalWrite&) = delete;

@@ -307,6 +307,46 @@ TEST(Checkpoint, TwoSignalsDuringTheFinalWriteLeaveTheFinishedImageAndNoCheckpoi
   EXPECT_GE(inside, 1) << "no second signal landed inside a final write";
 }
 
+// A second signal while the final write denoises (`--denoise`): the denoiser stops within a row and
+// the image is written as rendered, so rtiow ends after the write, not after the denoiser's
+// seconds (6.5 s at this size on 2 cores). The render ends by its time limit (1 s), its error is
+// estimated, then it denoises; the signals land 3, 4.5 or 6 s after it began until a pair lands
+// while it denoises (a pair before that ends rtiow at once, as a second signal does there).
+TEST(Faults, ASecondSignalWhileDenoisingWritesTheImageAsRendered) {
+  const fs::path dir = fresh_dir();
+  int inside = 0;
+  for (const int delay_ms : {3000, 4500, 6000}) {
+    const std::string name = "denoised" + std::to_string(delay_ms) + ".exr";
+    const fs::path out = dir / name;
+    BackgroundRender r({"render", "--scene", "cover", "--width", "1600", "--spp", "100000",
+                        "--time-limit", "1", "--denoise", "--reproducible", "-o", out.string()});
+    ASSERT_TRUE(r.wait_until_rendering());
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+    r.signal(SIGINT);
+    const auto taken = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+    while (std::chrono::steady_clock::now() < taken &&
+           r.stderr_text().find("stopping") == std::string::npos) {
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+    }
+    r.signal(SIGINT);
+    const int code = r.wait(60.0);
+    const std::string err = r.stderr_text();
+    EXPECT_EQ(code, 128 + SIGINT) << err;
+    EXPECT_FALSE(has_file_starting(dir, "." + name)) << "a temporary or lock left: " << err;
+    if (err.find("finishing the write first, without denoising any further") == std::string::npos)
+      continue;
+    ++inside;
+    auto in = OIIO::ImageInput::open(out.string());
+    ASSERT_TRUE(in) << "the image as rendered was not written: " << err;
+    EXPECT_GT(in->spec().get_int_attribute("rtiow:spp"), 1);
+    EXPECT_EQ(in->spec().find_attribute("rtiow:denoise.estimated_error"), nullptr)
+        << "the denoiser ran to its end: " << err;
+    EXPECT_EQ(in->spec().channelindex("noisy.R"), -1);
+    break;
+  }
+  EXPECT_EQ(inside, 1) << "no second signal landed while the final write denoised";
+}
+
 // A render stopped short never replaces an image that was there before it (issue 69): its
 // samples go to the checkpoint (and --resume finishes the new image), or, without one, beside
 // the old image as NAME.partial.EXT; a render that made the file itself replaces its own.

@@ -157,7 +157,8 @@ int end_render(const RenderOptions& o, const RenderJob& job, const RenderResult&
                RenderSession& session, const RenderProgress& progress, const MpiSession& mpi) {
   SessionEnd end;
   {
-    const FinalWrite final_write;  // a second signal waits for the image and its checkpoint
+    // A second signal waits for the image and its checkpoint (not for the denoiser).
+    const FinalWrite final_write(o.denoise && !job.share);
     end = session.deliver(result);
   }
   session.let_viewer_finish(progress.stop_requested);

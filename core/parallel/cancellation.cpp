@@ -4,6 +4,7 @@ namespace rtiow {
 namespace {
 
 std::atomic<const std::atomic<bool>*> g_flag{nullptr};
+std::atomic<const std::atomic<bool>*> g_final_write_flag{nullptr};
 
 }  // namespace
 
@@ -13,6 +14,15 @@ void set_cancellation_flag(const std::atomic<bool>* flag) {
 
 bool cancellation_requested() {
   const std::atomic<bool>* flag = g_flag.load(std::memory_order_relaxed);
+  return flag && flag->load(std::memory_order_relaxed);
+}
+
+void set_final_write_stop_flag(const std::atomic<bool>* flag) {
+  g_final_write_flag.store(flag);
+}
+
+bool final_write_stop_requested() {
+  const std::atomic<bool>* flag = g_final_write_flag.load(std::memory_order_relaxed);
   return flag && flag->load(std::memory_order_relaxed);
 }
 

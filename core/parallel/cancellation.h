@@ -25,4 +25,13 @@ inline void throw_if_cancelled() {
   if (cancellation_requested()) throw Cancelled();
 }
 
+// A request to end during a render's final write (a second signal, which waits for the image):
+// what is still being made for it, its denoising, stops, and the image is written as rendered
+// rather than after the denoiser's seconds. The command line points this at its signal
+// handler's flag while it writes; nullptr (the default) for none.
+void set_final_write_stop_flag(const std::atomic<bool>* flag);
+
+// Whether such an end was asked for.
+bool final_write_stop_requested();
+
 }  // namespace rtiow

@@ -5,10 +5,12 @@
 #include <utility>
 #include <variant>
 
+#include "core/denoise/denoiser.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/limits/input_limits.h"
 #include "core/limits/setting_name.h"
+#include "core/parallel/cancellation.h"
 #include "core/parallel/thread_count.h"
 #include "core/render/render.h"
 #include "core/render/render_part.h"
@@ -182,17 +184,28 @@ std::optional<DenoisedImage> write_job_result(const JobRequest& r, const RenderJ
   }
   const ImageFormat* format = image_format(job.output);
   const bool extra = format && format->extra_channels;
-  // A render stopped (or time-limited) before each half had a sample keeps its noisy image.
-  if (!r.denoise || !why_not_denoised(result).empty()) {
-    // (The passes --denoise asked for go where the format holds them.)
+  // The image as rendered (the passes --denoise asked for go where the format holds them).
+  const auto write_noisy = [&] {
     write_image(job.output, result.film, metadata,
                 extra ? image_channels(result, r.stats_channels, job.settings.passes)
                       : std::vector<ExtraChannel>{},
                 frame_placement(job.settings));
+  };
+  // A render stopped (or time-limited) before each half had a sample keeps its noisy image.
+  if (!r.denoise || !why_not_denoised(result).empty()) {
+    write_noisy();
     return std::nullopt;
   }
   Metadata with_figures = metadata;
-  DenoisedImage made = denoised_image(result);
+  DenoisedImage made;
+  try {
+    made = denoised_image(result, final_write_stop_requested);
+  } catch (const DenoiseCancelled&) {
+    // An end asked for while it denoised (core/parallel/cancellation.h): what was rendered is
+    // written now, neither lost nor kept waiting for the denoiser.
+    write_noisy();
+    return std::nullopt;
+  }
   DenoisedOutput denoised = denoised_output(made, extra, with_figures);
   std::vector<ExtraChannel> channels;
   if (extra) {
