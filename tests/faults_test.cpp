@@ -262,6 +262,19 @@ TEST(Checkpoint, EachSignalAtRandomMomentsResumesToTheSameFile) {
   std::printf("%d of %d signals ended a running render\n", ended_by_signal, trial);
 }
 
+// `sig` twice: the second as soon as the first is taken ("stopping" said), or after `at_most`:
+// not before, or the kernel may deliver the two as one; not after a fixed pause, which a loaded
+// machine's short write can outlast (30 ms did in a CI run).
+void signal_twice(const BackgroundRender& r, int sig, std::chrono::milliseconds at_most) {
+  r.signal(sig);
+  const auto taken = std::chrono::steady_clock::now() + at_most;
+  while (std::chrono::steady_clock::now() < taken &&
+         r.stderr_text().find("stopping") == std::string::npos) {
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+  r.signal(sig);
+}
+
 // Two signals during the final write (issue 69): the second waits for the image and the
 // removal of the checkpoint it finishes, so what is left is the finished render and nothing that
 // contradicts it. The first lands when the image's temporary appears, the second as soon as the
@@ -284,16 +297,7 @@ TEST(Checkpoint, TwoSignalsDuringTheFinalWriteLeaveTheFinishedImageAndNoCheckpoi
     while (std::chrono::steady_clock::now() < deadline && !has_file_starting(dir, image_temp)) {
       std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
-    r.signal(SIGINT);
-    // The second as soon as the first is taken ("stopping" said): not before, or the kernel may
-    // deliver the two as one; not after a fixed pause, which a loaded machine's short write can
-    // outlast (30 ms did in a CI run).
-    const auto taken = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
-    while (std::chrono::steady_clock::now() < taken &&
-           r.stderr_text().find("stopping") == std::string::npos) {
-      std::this_thread::sleep_for(std::chrono::microseconds(100));
-    }
-    r.signal(SIGINT);
+    signal_twice(r, SIGINT, std::chrono::milliseconds(200));
     const int code = r.wait(60.0);
     const std::string err = r.stderr_text();
     EXPECT_EQ(code, 128 + SIGINT) << err;
@@ -322,13 +326,7 @@ TEST(Faults, ASecondSignalWhileDenoisingWritesTheImageAsRendered) {
                         "--time-limit", "1", "--denoise", "--reproducible", "-o", out.string()});
     ASSERT_TRUE(r.wait_until_rendering());
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
-    r.signal(SIGINT);
-    const auto taken = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
-    while (std::chrono::steady_clock::now() < taken &&
-           r.stderr_text().find("stopping") == std::string::npos) {
-      std::this_thread::sleep_for(std::chrono::microseconds(100));
-    }
-    r.signal(SIGINT);
+    signal_twice(r, SIGINT, std::chrono::milliseconds(500));
     const int code = r.wait(60.0);
     const std::string err = r.stderr_text();
     EXPECT_EQ(code, 128 + SIGINT) << err;
