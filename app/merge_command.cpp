@@ -2,18 +2,27 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/limits/error.h"
 #include "core/render/part_merge.h"
+#include "core/session/denoise_display.h"
 
 namespace rtiow {
 
 int run_merge(const MergeOptions& o) {
   MergeRequest request;
   request.statistics = o.stats_channels, request.denoise = o.denoise;
+  DenoiseProgress denoising;
+  std::optional<DenoiseDisplay> display;
+  if (o.denoise && !o.quiet) {
+    request.progress = &denoising;
+    display.emplace(denoising);
+  }
   const MergedImage merged = merge_to_file(o.parts, o.output, request);
+  display.reset();  // its live line erased before the lines below
   // (Denoised, the passes were the denoiser's to follow: an image without them is what was asked.)
   if (merged.passes.any() && !merged.passes_kept && !o.denoise) {
     std::fprintf(stderr,

@@ -66,7 +66,7 @@ void denoise_in_memory(Render& render) {
     return;
   }
   render.denoised = interruptible<DenoisedImage>([&](const std::function<bool()>& cancelled) {
-    return denoised_image(render.result, cancelled);
+    return denoised_image(render.result, DenoiseControl{cancelled});
   });
 }
 

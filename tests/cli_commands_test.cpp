@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -22,6 +23,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <regex>
 #include <set>
@@ -31,6 +33,7 @@
 #include <vector>
 
 #include "core/rtiow.h"
+#include "core/session/denoise_display.h"
 #include "core/session/progress_status.h"
 #include "tests/cli_helpers.h"
 
@@ -380,6 +383,62 @@ TEST(Cli, EveryModeShowsHowFarItIsTowardItsEnd) {
   EXPECT_EQ(rtiow::progress_status(s, 100, now).detail, "37 of 100 pixels above error 0.05");
   s.time_limit_seconds = 10.0;  // and a time limit's share beside it
   EXPECT_DOUBLE_EQ(rtiow::progress_status(s, 100, now).fraction, 0.5);
+}
+
+// The denoiser's line: its share, its time so far and to go at the rate so far.
+TEST(Cli, TheDenoisersProgressShowsItsShareAndTimeToGo) {
+  EXPECT_EQ(rtiow::denoise_progress_line(25, 100, 3.0), " 25.0% denoised  elapsed 3.0s  ETA 9.0s");
+  EXPECT_EQ(rtiow::denoise_progress_line(0, 100, 0.6), "  0.0% denoised  elapsed 0.6s  ETA ?");
+  EXPECT_EQ(rtiow::denoise_progress_line(150, 100, 70.0),
+            "100.0% denoised  elapsed 1m10s  ETA 0.0s");
+}
+
+// In a log, a denoise past its first two seconds says how far it is, a line per tenth, as the
+// render does ("progress:"), and nothing once a signal has asked for the end.
+TEST(Cli, ALongDenoiseShowsItsProgressInALog) {
+  const fs::path log = output_path("denoise-progress.log");
+  std::fflush(stderr);
+  const int saved = ::dup(STDERR_FILENO);
+  const int file = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  ASSERT_GE(saved, 0);
+  ASSERT_GE(file, 0);
+  ::dup2(file, STDERR_FILENO);  // a file: no terminal, plain lines
+  ::close(file);
+  const auto read_log = [&] {
+    std::fflush(stderr);
+    std::ifstream in(log);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const auto wait_for = [&](const std::string& text) {
+    for (int tries = 0; tries < 200 && read_log().find(text) == std::string::npos; ++tries)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    return read_log().find(text) != std::string::npos;
+  };
+  rtiow::DenoiseProgress progress;
+  std::atomic<bool> stop{false};
+  bool first = false, second = false;
+  std::string after_stop;
+  {
+    const rtiow::DenoiseDisplay display(progress, &stop);
+    progress.total = 1000, progress.done = 250;
+    progress.start_ns =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(
+            (std::chrono::steady_clock::now() - std::chrono::seconds(3)).time_since_epoch())
+            .count();
+    first = wait_for("progress:  25.0% denoised  elapsed 3.");
+    progress.done = 610;
+    second = wait_for("progress:  61.0% denoised");
+    stop = true, progress.done = 900;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  }
+  const std::string shown = read_log();
+  std::fflush(stderr);
+  ::dup2(saved, STDERR_FILENO);
+  ::close(saved);
+  EXPECT_TRUE(first) << shown;
+  EXPECT_TRUE(second) << shown;
+  EXPECT_EQ(shown.find("90.0%"), std::string::npos) << "a line after the stop: " << shown;
+  EXPECT_EQ(std::count(shown.begin(), shown.end(), '\n'), 2) << shown;
 }
 
 // What a log shows of each mode: a share and an ETA, or the error against the one asked; and a

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <mutex>
 #include <random>
 #include <vector>
 
@@ -268,10 +269,37 @@ TEST(Denoiser, StopsWhenItsCallerSaysSo) {
   s.estimate_error = true, s.passes = {true, true, true};
   const DenoiseInput in = denoise_input(render(scene, s));
   std::atomic<int> asked{0};
-  EXPECT_THROW(denoise(in, [&] { return ++asked > 40; }), DenoiseCancelled);
+  EXPECT_THROW(denoise(in, {[&] { return ++asked > 40; }}), DenoiseCancelled);
   EXPECT_LT(asked.load(), 4 * 32);  // it stopped within the pass it was in
-  const DenoisedImage plain = denoise(in), asked_never = denoise(in, [] { return false; });
+  const DenoisedImage plain = denoise(in), asked_never = denoise(in, {[] { return false; }});
   EXPECT_EQ(plain.image.pixels(), asked_never.image.pixels());
+}
+
+// What a display shows of a denoise: its work done rises from 0, never past the whole, and is
+// the whole when the image is made; watched, the image is the same bits.
+TEST(Denoiser, ItsProgressReachesTheWholeAsItEnds) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  RenderSettings s;
+  s.width = 48, s.height = 32, s.samples = FixedSamples{8};
+  s.estimate_error = true, s.passes = {true, true, true};
+  const DenoiseInput in = denoise_input(render(scene, s));
+  DenoiseProgress progress;
+  progress.done = 12345;  // a display's counters from an earlier denoise start again
+  std::mutex mutex;       // asked from every thread of the passes
+  std::vector<std::uint64_t> seen;
+  const auto ask = [&] {
+    const std::lock_guard lock(mutex);
+    seen.push_back(progress.done.load());
+    return false;
+  };
+  const DenoisedImage watched = denoise(in, {ask, &progress});
+  ASSERT_GT(progress.total.load(), 0u);
+  EXPECT_EQ(progress.done.load(), progress.total.load());
+  EXPECT_NE(progress.start_ns.load(), 0);
+  ASSERT_FALSE(seen.empty());
+  EXPECT_LT(seen.front(), progress.total.load() / 10) << "it began from the start";
+  for (const std::uint64_t done : seen) EXPECT_LE(done, progress.total.load());
+  EXPECT_EQ(watched.image.pixels(), denoise(in).image.pixels());
 }
 
 TEST(Denoiser, RefusesARenderWithoutHalvesOrFirstHits) {

@@ -36,7 +36,8 @@ std::array<double, 2> simplex_minimum(double m11, double m12, double m22, double
 BlendedImage blend_candidates(const DenoiseInput& in,
                               const std::array<FilteredCandidate, 2>& filtered,
                               const std::vector<Vec3d>& variance,
-                              const std::vector<Vec3d>& relative_weight, int radius) {
+                              const std::vector<Vec3d>& relative_weight, int radius,
+                              const DenoiseControl& control) {
   const std::size_t n = in.size();
   BlendedImage out;
   out.color.resize(n), out.error.resize(n);
@@ -67,6 +68,7 @@ BlendedImage blend_candidates(const DenoiseInput& in,
       out.error[p][c] = dy * dy - variance[p][c] * (1.0 - 2.0 * g);
       noisy_share[p] += (1.0 - a1 - a2) / 3.0;
     }
+    control.advance(n);
   }
   out.noisy_share.assign(noisy_share.begin(), noisy_share.end());
   return out;

@@ -15,6 +15,12 @@ namespace rtiow {
 
 namespace {
 
+// What a pixel of each pass costs, for the progress a display shows (measured at 1600x1067 on 2
+// cores: the first pass 1.07 s, each half's second pass 2.38 s, the blend 0.43 s).
+constexpr std::uint64_t kFirstPassWork = 8, kSecondPassWork = 20, kBlendChannelWork = 1;
+constexpr std::uint64_t kWorkPerPixel =
+    kFirstPassWork + 2 * kSecondPassWork + 3 * kBlendChannelWork;
+
 // The per-sample variance that weights the patches is the replicate estimate, one degree of
 // freedom a pixel, averaged over (2 r + 1)^2 pixels.
 constexpr int kNoiseLevelRadius = 2;
@@ -71,12 +77,13 @@ std::vector<Vec3d> noisy_variance(const DenoiseInput& in) {
 // The two passes (core/denoise/feature_regression.h): the second pass's image with each
 // weighting. `variance` is the noisy mean's.
 std::vector<Combined> second_pass_images(const DenoiseInput& in, const std::vector<Vec3d>& variance,
-                                         const std::function<bool()>& cancelled) {
-  // Each pass's rows stop once `cancelled` is true; what they left is thrown away here.
+                                         const DenoiseControl& control) {
+  // Each pass's rows stop once `control` is stopped; what they left is thrown away here.
   const auto filter = [&](const std::vector<Color>& half, const Guide& guide,
                           const std::vector<Weighting>& weightings) {
-    std::vector<FilteredHalf> out = filter_half(in, half, guide, weightings, cancelled);
-    if (cancelled && cancelled()) throw DenoiseCancelled();
+    std::vector<FilteredHalf> out =
+        filter_half(in, half, guide, weightings, control.pass(kSecondPassWork));
+    if (control.stop()) throw DenoiseCancelled();
     return out;
   };
   const std::size_t n = in.size();
@@ -87,8 +94,9 @@ std::vector<Combined> second_pass_images(const DenoiseInput& in, const std::vect
   sample_variance = window_mean(sample_variance, in.width, in.height, kNoiseLevelRadius, false);
   // First pass: each half regressed on the features with its neighbours weighted equally; a
   // function of that half's samples alone. The same weights and design: fitted together.
-  std::vector<FilteredHalf> first = regress_equally(in, {&in.even, &in.odd}, cancelled);
-  if (cancelled && cancelled()) throw DenoiseCancelled();
+  std::vector<FilteredHalf> first =
+      regress_equally(in, {&in.even, &in.odd}, control.pass(kFirstPassWork));
+  if (control.stop()) throw DenoiseCancelled();
   const FilteredHalf first_even = std::move(first[0]);
   const FilteredHalf first_odd = std::move(first[1]);
   // Second pass: each half weighted by the patches of the other's first pass, whose noise is
@@ -137,17 +145,23 @@ double relative_sum(const Vec3d& squared_error, const Vec3d& weight) {
 
 }  // namespace
 
-DenoisedImage denoise(const DenoiseInput& in, const std::function<bool()>& cancelled) {
+DenoisedImage denoise(const DenoiseInput& in, const DenoiseControl& control) {
   const auto start = std::chrono::steady_clock::now();
   const std::size_t n = in.size();
+  if (DenoiseProgress* progress = control.progress) {
+    progress->done = 0;
+    progress->total = std::uint64_t(n) * kWorkPerPixel;
+    progress->start_ns =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(start.time_since_epoch()).count();
+  }
   const std::vector<Vec3d> variance = noisy_variance(in);
-  const std::vector<Combined> filtered = second_pass_images(in, variance, cancelled);
+  const std::vector<Combined> filtered = second_pass_images(in, variance, control);
   const std::vector<Vec3d> relative_weight = relative_weights(in, filtered.front().color);
   BlendedImage blended =
       blend_candidates(in,
                        {FilteredCandidate{&filtered[0].color, &filtered[0].own_weight},
                         FilteredCandidate{&filtered[1].color, &filtered[1].own_weight}},
-                       variance, relative_weight, kBlendRadius);
+                       variance, relative_weight, kBlendRadius, control.pass(kBlendChannelWork));
 
   DenoisedImage out;
   out.image = Film(in.width, in.height);

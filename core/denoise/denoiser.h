@@ -23,9 +23,9 @@
 
 #include <cstdint>
 #include <exception>
-#include <functional>
 #include <vector>
 
+#include "core/denoise/denoise_control.h"
 #include "core/denoise/denoise_input.h"
 #include "core/film/film.h"
 #include "core/geometry/vec3.h"
@@ -48,8 +48,9 @@ class DenoiseCancelled : public std::exception {
   const char* what() const noexcept override { return "the denoiser was stopped"; }
 };
 
-// Deterministic: the same bits for the same input on any number of threads. With `cancelled`,
-// asked between rows (and true for good once true), throws DenoiseCancelled soon after it is.
-DenoisedImage denoise(const DenoiseInput& input, const std::function<bool()>& cancelled = {});
+// Deterministic: the same bits for the same input on any number of threads. Throws
+// DenoiseCancelled soon after `control` is stopped; its progress, if any, goes from 0 to its
+// total as the passes' rows finish.
+DenoisedImage denoise(const DenoiseInput& input, const DenoiseControl& control = {});
 
 }  // namespace rtiow

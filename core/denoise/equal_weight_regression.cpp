@@ -180,7 +180,7 @@ void fit_pixel(const RowPlanes& planes, const Products& products, const double* 
 
 std::vector<FilteredHalf> regress_equally(const DenoiseInput& in,
                                           const std::vector<const std::vector<Color>*>& images,
-                                          const std::function<bool()>& cancelled) {
+                                          const DenoiseControl& control) {
   using namespace equal_weights;
   if (images.empty() || images.size() > std::size_t(kMostImages))
     throw std::invalid_argument("regress_equally: 1 to 2 images");
@@ -201,10 +201,11 @@ std::vector<FilteredHalf> regress_equally(const DenoiseInput& in,
     fill_planes(in, images, std::max(0, int(y0) - kRegressionRadius),
                 std::min(in.height - 1, int(y1) - 1 + kRegressionRadius), local.planes);
     for (int py = int(y0); py < int(y1); ++py) {
-      if (cancelled && cancelled()) return;
+      if (control.stop()) return;
       window_sums(local.planes, products, py, in.height, local.padded.data(), local.sums.data());
       for (int x = 0; x < in.width; ++x)
         fit_pixel(local.planes, products, local.sums.data(), width, x, py, int(images.size()), out);
+      control.advance(width);
     }
   });
   return out;

@@ -7,9 +7,9 @@
 // over its rows, the same for every pixel of a column, instead of a pass over every neighbour of
 // every pixel.
 
-#include <functional>
 #include <vector>
 
+#include "core/denoise/denoise_control.h"
 #include "core/denoise/denoise_input.h"
 #include "core/denoise/feature_regression.h"
 
@@ -17,10 +17,10 @@ namespace rtiow {
 
 // Each of `images` (one or two of `in`'s halves) filtered: [image]. Deterministic: the same bits
 // for any thread count and in every instruction set's build. Rows are left unfiltered once
-// `cancelled` (if given) returns true, which must then stay true: the caller asks it again and
-// throws the work away.
+// `control` is stopped (the caller asks it again and throws the work away); each row done
+// advances it by the image's width.
 std::vector<FilteredHalf> regress_equally(const DenoiseInput& in,
                                           const std::vector<const std::vector<Color>*>& images,
-                                          const std::function<bool()>& cancelled = {});
+                                          const DenoiseControl& control = {});
 
 }  // namespace rtiow

@@ -409,8 +409,7 @@ RTIOW_DISPATCHED void lay_out_lane_distances(const PatchDistances& patches, cons
 
 std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<Color>& half,
                                       const Guide& guide, const std::vector<Weighting>& weightings,
-                                      const std::function<bool()>& cancelled,
-                                      int columns_per_tile) {
+                                      const DenoiseControl& control, int columns_per_tile) {
   if (!guide.image || !guide.variance)
     throw std::invalid_argument("filter_half: a guide and its variance");
   if (columns_per_tile < kLanes || columns_per_tile % kLanes != 0)
@@ -448,7 +447,7 @@ std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<
       PatchDistances& patches = *local.patches;
       patches.restart(x0, x1);
       for (int py = y0; py < y1; ++py) {
-        if (cancelled && cancelled()) return;
+        if (control.stop()) return;
         patches.at_row(py);
         for (int px0 = x0; px0 < x1; px0 += kLanes) {
           int self[kLanes] = {};
@@ -484,6 +483,7 @@ std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<
             }
           }
         }
+        control.advance(std::uint64_t(x1 - x0));
       }
     }
   });

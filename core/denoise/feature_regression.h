@@ -10,9 +10,9 @@
 // own pixel (the hat matrix's diagonal) the error estimate needs (core/denoise/denoiser.h).
 
 #include <array>
-#include <functional>
 #include <vector>
 
+#include "core/denoise/denoise_control.h"
 #include "core/denoise/denoise_input.h"
 #include "core/geometry/vec3.h"
 
@@ -62,11 +62,11 @@ struct FilteredHalf {
 // `half` (one of `in`'s halves) filtered with each weighting of `weightings`, its neighbours
 // weighted by `guide` (which must hold an image and its variance). Deterministic: the same bits
 // for any thread count and any `columns_per_tile` (a positive multiple of 4; the tests vary it).
-// Rows are left unfiltered once `cancelled` (if given) returns true, which must then stay true:
-// the caller asks it again and throws the work away.
+// Rows are left unfiltered once `control` is stopped (the caller asks it again and throws the
+// work away); each row of a tile done advances it by the tile's width.
 std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<Color>& half,
                                       const Guide& guide, const std::vector<Weighting>& weightings,
-                                      const std::function<bool()>& cancelled = {},
+                                      const DenoiseControl& control = {},
                                       int columns_per_tile = kColumnsPerTile);
 
 }  // namespace rtiow

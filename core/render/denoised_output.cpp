@@ -96,14 +96,14 @@ std::string describe(const DenoiseFigures& f) {
   return line;
 }
 
-DenoisedImage denoised_image(const RenderResult& result, const std::function<bool()>& cancelled) {
+DenoisedImage denoised_image(const RenderResult& result, const DenoiseControl& control) {
   if (result.denoised) return *result.denoised;
-  return denoise(denoise_input(result), cancelled);
+  return denoise(denoise_input(result), control);
 }
 
 DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels, Metadata& metadata,
-                               const std::function<bool()>& cancelled) {
-  return denoised_output(denoised_image(result, cancelled), extra_channels, metadata);
+                               const DenoiseControl& control) {
+  return denoised_output(denoised_image(result, control), extra_channels, metadata);
 }
 
 DenoisedOutput denoised_output(DenoisedImage d, bool extra_channels, Metadata& metadata) {

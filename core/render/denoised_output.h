@@ -57,16 +57,15 @@ std::string why_not_denoised(const RenderResult& result);
 
 // The denoised image of `result`: its last judgement's where an image-error target judged
 // these very sums denoised (RenderResult::denoised), else the denoiser's (core/denoise/
-// denoiser.h) now. Throws as denoise_input() and denoise() do; `cancelled` as denoise() takes it.
-DenoisedImage denoised_image(const RenderResult& result,
-                             const std::function<bool()>& cancelled = {});
+// denoiser.h) now. Throws as denoise_input() and denoise() do; `control` as denoise() takes it.
+DenoisedImage denoised_image(const RenderResult& result, const DenoiseControl& control = {});
 
 // Denoises `result` (denoised_image()) and records its figures in `metadata`; the
 // channels only where `extra_channels` (the output can hold them). Throws InvalidInput where
 // the result lacks what the denoiser needs (core/denoise/denoise_input.h).
-// `cancelled` as denoise() takes it.
+// `control` as denoise() takes it.
 DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels, Metadata& metadata,
-                               const std::function<bool()>& cancelled = {});
+                               const DenoiseControl& control = {});
 
 // The same for an image already denoised (a render denoised in memory, written later).
 DenoisedOutput denoised_output(DenoisedImage denoised, bool extra_channels, Metadata& metadata);

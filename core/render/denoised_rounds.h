@@ -32,12 +32,13 @@ inline std::uint32_t next_denoised_count(std::uint32_t n, double error, double a
 }
 
 // The denoiser's image of the state's sums; throws DenoiseCancelled once `cancelled` is true.
+// (No progress of its own: the render's display shows the rounds' error.)
 inline DenoisedImage denoise_state(const RenderSettings& settings, const PixelAccumulators& pixels,
                                    const std::function<bool()>& cancelled) {
   return denoise(
       denoise_input(DenoiseSource{pixels.sums, pixels.samples, settings.first_sample,
                                   replicates(settings), settings.width, settings.height}),
-      cancelled);
+      DenoiseControl{cancelled});
 }
 
 template <typename Accel>

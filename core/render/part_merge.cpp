@@ -140,8 +140,8 @@ MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeR
   }
   if (request.denoise) {
     check_for_denoising(whole, sampler, replicates);
-    DenoisedOutput denoised =
-        denoised_output(whole, request.extra_channels, image.metadata, request.cancelled);
+    DenoisedOutput denoised = denoised_output(whole, request.extra_channels, image.metadata,
+                                              DenoiseControl{request.cancelled, request.progress});
     image.channels.insert(image.channels.begin(),
                           std::make_move_iterator(denoised.channels.begin()),
                           std::make_move_iterator(denoised.channels.end()));

@@ -24,6 +24,7 @@ struct MergeRequest {
   bool denoise = false;        // the image denoised (core/denoise/denoised_output.h)
   // Asked while denoising: once true, the merge throws DenoiseCancelled and writes nothing.
   std::function<bool()> cancelled;
+  DenoiseProgress* progress = nullptr;  // the denoiser's, for a display
 };
 
 struct MergedImage {

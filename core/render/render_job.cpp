@@ -175,8 +175,8 @@ RenderJob prepare_job(const JobRequest& r, Scene scene) {
 }
 
 std::optional<DenoisedImage> write_job_result(const JobRequest& r, const RenderJob& job,
-                                              const RenderResult& result,
-                                              const Metadata& metadata) {
+                                              const RenderResult& result, const Metadata& metadata,
+                                              DenoiseProgress* progress) {
   if (job.share) {
     write_part(job.output, make_part(job.scene, job.settings, job.samples_asked, result, metadata),
                result.sums);
@@ -199,7 +199,7 @@ std::optional<DenoisedImage> write_job_result(const JobRequest& r, const RenderJ
   Metadata with_figures = metadata;
   DenoisedImage made;
   try {
-    made = denoised_image(result, final_write_stop_requested);
+    made = denoised_image(result, DenoiseControl{final_write_stop_requested, progress});
   } catch (const DenoiseCancelled&) {
     // An end asked for while it denoised (core/parallel/cancellation.h): what was rendered is
     // written now, neither lost nor kept waiting for the denoiser.

@@ -68,9 +68,11 @@ Scene load_job_scene(const JobRequest& request);
 
 // The image (with the statistics channels where asked; denoised where asked) or, for a share,
 // the part file. Returns what the denoiser made where it denoised (not where a render stopped
-// before each half of every pixel had a sample: its noisy image is written).
+// before each half of every pixel had a sample: its noisy image is written). The denoiser's
+// progress goes to `progress`, where given.
 std::optional<DenoisedImage> write_job_result(const JobRequest& request, const RenderJob& job,
-                                              const RenderResult& result, const Metadata& metadata);
+                                              const RenderResult& result, const Metadata& metadata,
+                                              DenoiseProgress* progress = nullptr);
 
 // The files the request reads: the scene file and the others.
 std::vector<std::string> input_files(const JobRequest& request);

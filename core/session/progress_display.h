@@ -4,20 +4,13 @@
 // what it shows for each mode is core/session/progress_status.h's.
 
 #include <chrono>
-#include <condition_variable>
-#include <cstddef>
 #include <cstdint>
-#include <mutex>
-#include <string>
-#include <thread>
+#include <optional>
 
 #include "core/render/render_settings.h"
+#include "core/session/status_line.h"
 
 namespace rtiow {
-
-// A progress line in at most `columns` characters: its leading fields that fit whole (the
-// share first), or its first `columns` characters where not even the first does.
-std::string fit_to_columns(const std::string& line, std::size_t columns);
 
 class ProgressDisplay {
  public:
@@ -27,7 +20,6 @@ class ProgressDisplay {
   ProgressDisplay& operator=(const ProgressDisplay&) = delete;
 
  private:
-  void run();
   void report(bool final_report);
 
   const RenderProgress& progress_;
@@ -37,10 +29,7 @@ class ProgressDisplay {
   const std::chrono::steady_clock::time_point start_;
   int last_step_ = 0;                 // the last tenth (or ten seconds) a plain line reported
   std::uint32_t last_judgement_ = 0;  // the last round judged that a plain line reported
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stop_ = false;
-  std::thread thread_;
+  std::optional<PeriodicReport> thread_;
 };
 
 }  // namespace rtiow

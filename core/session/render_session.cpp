@@ -86,7 +86,7 @@ RenderResult RenderSession::render(RenderProgress& progress) {
   return rtiow::render(job_.scene, job_.settings, &progress, checkpointing);
 }
 
-SessionEnd RenderSession::deliver(const RenderResult& result) {
+SessionEnd RenderSession::deliver(const RenderResult& result, DenoiseProgress* denoising) {
   if (display_) display_->show(result.film, pass_channels(result, job_.settings.passes));
   // A stopped render leaves a file that was there before it (and that no preview of its own
   // replaced) as it was: its samples are in the checkpoint, or else in a file beside it.
@@ -101,14 +101,15 @@ SessionEnd RenderSession::deliver(const RenderResult& result) {
     check_output_path(job_.output, {asked});
     partial_claim_.emplace(job_.output);
   }
-  end.denoised_image = write_or_keep(result);
+  end.denoised_image = write_or_keep(result, denoising);
   if (end.denoised_image) end.denoised = figures_of(*end.denoised_image);
   end.written = job_.output;
   return end;
 }
 
 // Writes the image; if that fails after the render, keeps the render's state and says where.
-std::optional<DenoisedImage> RenderSession::write_or_keep(const RenderResult& result) {
+std::optional<DenoisedImage> RenderSession::write_or_keep(const RenderResult& result,
+                                                          DenoiseProgress* denoising) {
   CheckpointSession* checkpoint = checkpoint_.get();
   std::optional<DenoisedImage> denoised;
   try {
@@ -116,7 +117,7 @@ std::optional<DenoisedImage> RenderSession::write_or_keep(const RenderResult& re
     if (!request_.scene_file.empty()) {
       metadata.emplace_back(metadata_key::kSceneFile, request_.scene_file);
     }
-    denoised = write_job_result(request_, job_, result, metadata);
+    denoised = write_job_result(request_, job_, result, metadata, denoising);
   } catch (const InvalidInput&) {
     throw;
   } catch (const std::exception& e) {

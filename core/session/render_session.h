@@ -67,8 +67,9 @@ class RenderSession {
   // The final write: shows the result, then writes the image, or keeps a stopped render's
   // samples without replacing what was at the output (in the checkpoint, else in
   // partial_output_path()). If the image cannot be written, the render's state is kept and the
-  // error (std::runtime_error) says where.
-  SessionEnd deliver(const RenderResult& result);
+  // error (std::runtime_error) says where. The denoiser's progress goes to `denoising`, where
+  // given (a display shows it).
+  SessionEnd deliver(const RenderResult& result, DenoiseProgress* denoising = nullptr);
 
   // Gives the viewer its last picture (at most kViewerSeconds; none once `stop` is set).
   void let_viewer_finish(const std::atomic<bool>& stop);
@@ -79,7 +80,8 @@ class RenderSession {
   int removed_temporaries() const { return removed_temporaries_; }
 
  private:
-  std::optional<DenoisedImage> write_or_keep(const RenderResult& result);
+  std::optional<DenoisedImage> write_or_keep(const RenderResult& result,
+                                             DenoiseProgress* denoising);
 
   RenderJob& job_;
   const JobRequest& request_;

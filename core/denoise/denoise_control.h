@@ -1,0 +1,37 @@
+#pragma once
+// What the denoiser's caller watches and stops it by: a stop asked between rows, and how far it
+// has gone, for a display on another thread (a 4K frame denoises for half a minute on 2 cores).
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+
+namespace rtiow {
+
+// How far a denoise has gone: its work done of the whole, each pass's rows counted as they
+// finish, by what a pixel of that pass costs (core/denoise/denoiser.cpp). `total` and `start_ns`
+// are set as the denoise begins (0 before), `done` reaches `total` as it ends.
+struct DenoiseProgress {
+  std::atomic<std::uint64_t> done{0};
+  std::atomic<std::uint64_t> total{0};
+  std::atomic<std::int64_t> start_ns{0};  // steady clock, ns since its epoch
+};
+
+struct DenoiseControl {
+  // Asked between rows; once it returns true it must stay true, and the denoiser throws
+  // DenoiseCancelled soon after.
+  std::function<bool()> cancelled;
+  DenoiseProgress* progress = nullptr;
+  // What one pixel of the pass being run adds to `progress`.
+  std::uint64_t work_per_pixel = 1;
+
+  bool stop() const { return cancelled && cancelled(); }
+  // `pixels` of the pass done.
+  void advance(std::uint64_t pixels) const {
+    if (progress) progress->done.fetch_add(pixels * work_per_pixel, std::memory_order_relaxed);
+  }
+  // The same control for a pass whose pixels cost `work` each.
+  DenoiseControl pass(std::uint64_t work) const { return {cancelled, progress, work}; }
+};
+
+}  // namespace rtiow
