@@ -8,6 +8,7 @@
 #include "core/denoise/candidate_blend.h"
 #include "core/denoise/equal_weight_regression.h"
 #include "core/denoise/feature_regression.h"
+#include "core/denoise/pixel_loop.h"
 #include "core/denoise/window_mean.h"
 #include "core/film/pixel_variance.h"
 
@@ -50,7 +51,7 @@ struct Combined {
 Combined combine(const DenoiseInput& in, const FilteredHalf& even, const FilteredHalf& odd) {
   Combined out;
   out.color.resize(in.size()), out.own_weight.resize(in.size());
-  for (std::size_t p = 0; p < in.size(); ++p) {
+  for_each_pixel(in.width, in.height, [&](std::size_t p) {
     const double ne = in.even_samples[p], no = in.odd_samples[p], total = ne + no;
     for (std::size_t c = 0; c < 3; ++c) {
       const double v = (ne * double(even.color[p][c]) + no * double(odd.color[p][c])) / total;
@@ -58,7 +59,7 @@ Combined combine(const DenoiseInput& in, const FilteredHalf& even, const Filtere
     }
     out.own_weight[p] =
         float((ne * double(even.own_weight[p]) + no * double(odd.own_weight[p])) / total);
-  }
+  });
   return out;
 }
 
@@ -66,11 +67,11 @@ Combined combine(const DenoiseInput& in, const FilteredHalf& even, const Filtere
 // per channel, whatever the sampler.
 std::vector<Vec3d> noisy_variance(const DenoiseInput& in) {
   std::vector<Vec3d> variance(in.size());
-  for (std::size_t p = 0; p < in.size(); ++p) {
+  for_each_pixel(in.width, in.height, [&](std::size_t p) {
     const double ne = in.even_samples[p], no = in.odd_samples[p], total = ne + no;
     const Vec3d diff = Vec3d(in.even[p]) - Vec3d(in.odd[p]);
     variance[p] = diff * diff * (ne * no / (total * total));
-  }
+  });
   return variance;
 }
 
@@ -89,8 +90,9 @@ std::vector<Combined> second_pass_images(const DenoiseInput& in, const std::vect
   const std::size_t n = in.size();
   // The per-sample variance, the guides' noise level, pooled over a window.
   std::vector<Vec3d> sample_variance(n);
-  for (std::size_t p = 0; p < n; ++p)
+  for_each_pixel(in.width, in.height, [&](std::size_t p) {
     sample_variance[p] = variance[p] * double(in.even_samples[p] + in.odd_samples[p]);
+  });
   sample_variance = window_mean(sample_variance, in.width, in.height, kNoiseLevelRadius, false);
   // First pass: each half regressed on the features with its neighbours weighted equally; a
   // function of that half's samples alone. The same weights and design: fitted together.
@@ -103,8 +105,9 @@ std::vector<Combined> second_pass_images(const DenoiseInput& in, const std::vect
   // about its own weight times the half's (a regression's hat rows have squares summing to it).
   const auto guide_variance = [&](const FilteredHalf& f, const std::vector<std::uint32_t>& count) {
     std::vector<Vec3d> v(n);
-    for (std::size_t p = 0; p < n; ++p)
+    for_each_pixel(in.width, in.height, [&](std::size_t p) {
       v[p] = sample_variance[p] * (double(f.own_weight[p]) / double(count[p]));
+    });
     return v;
   };
   const std::vector<Vec3d> odd_guide_variance = guide_variance(first_odd, in.odd_samples);
@@ -129,12 +132,12 @@ std::vector<Vec3d> relative_weights(const DenoiseInput& in, const std::vector<Co
   const std::vector<Vec3d> level(sharper.begin(), sharper.end());
   const std::vector<Vec3d> around = window_mean(level, in.width, in.height, 1, true);
   std::vector<Vec3d> weight(level.size());
-  for (std::size_t p = 0; p < level.size(); ++p) {
+  for_each_pixel(in.width, in.height, [&](std::size_t p) {
     for (std::size_t c = 0; c < 3; ++c) {
       const double d = std::min(level[p][c], around[p][c]) + kRelativeErrorOffset;
       weight[p][c] = 1.0 / (d * d);
     }
-  }
+  });
   return weight;
 }
 

@@ -14,6 +14,7 @@
 #include <oneapi/tbb/enumerable_thread_specific.h>
 
 #include "core/denoise/intercept_solve.h"
+#include "core/denoise/pixel_loop.h"
 #include "core/film/pixel_variance.h"
 #include "core/parallel/instruction_sets.h"
 #include "core/parallel/lanes.h"
@@ -43,16 +44,16 @@ using Normal = Eigen::Matrix<double, kColumns, kColumns>;
 struct GuidePlanes {
   std::array<std::vector<double>, 3> value, variance;
 
-  explicit GuidePlanes(const Guide& guide) {
+  GuidePlanes(const Guide& guide, int width, int height) {
     const std::size_t n = guide.image->size();
-    for (std::size_t c = 0; c < 3; ++c) {
-      value[c].resize(n), variance[c].resize(n);
-      for (std::size_t p = 0; p < n; ++p) {
+    for (std::size_t c = 0; c < 3; ++c) value[c].resize(n), variance[c].resize(n);
+    for_each_pixel(width, height, [&](std::size_t p) {
+      for (std::size_t c = 0; c < 3; ++c) {
         const double level = std::max(0.0, double((*guide.image)[p][c])) + kRelativeErrorOffset;
         value[c][p] = std::sqrt(level);
         variance[c][p] = (*guide.variance)[p][c] / (4.0 * level);
       }
-    }
+    });
   }
 };
 
@@ -418,7 +419,7 @@ std::vector<FilteredHalf> filter_half(const DenoiseInput& in, const std::vector<
   std::vector<FilteredHalf> out(weightings.size());
   for (FilteredHalf& f : out) f.color.resize(n), f.own_weight.resize(n);
 
-  const GuidePlanes planes(guide);
+  const GuidePlanes planes(guide, in.width, in.height);
   // Each thread's working memory, kept from chunk to chunk (fresh pages for every chunk cost
   // more time in the kernel than the patch terms in the loop).
   struct Scratch {
