@@ -14,6 +14,8 @@
 #include <random>
 #include <vector>
 
+#include <oneapi/tbb/task_arena.h>
+
 #include "core/denoise/denoiser.h"
 #include "core/limits/error.h"
 #include "core/render/denoised_output.h"
@@ -202,6 +204,14 @@ TEST(Denoiser, TheErrorItReportsIsTheErrorItDelivers) {
 
 // The same against independent renders: the cover at 16 spp, three seeds, against a 1024-spp
 // reference whose own noise (its halves' estimate) is taken out of the true error.
+// The cover at 48x32 and 8 spp, as a render with --denoise keeps it.
+DenoiseInput small_cover_input() {
+  RenderSettings s;
+  s.width = 48, s.height = 32, s.samples = FixedSamples{8};
+  s.estimate_error = true, s.passes = {true, true, true};
+  return denoise_input(render(make_builtin_scene("cover", 1), s));
+}
+
 // docs/denoising.md has the study at other counts, sizes and scenes, where it reads low.
 TEST(Denoiser, TheCoversReportedErrorIsItsErrorAgainstAReference) {
   const Scene scene = make_builtin_scene("cover", 1);
@@ -233,6 +243,21 @@ TEST(Denoiser, TheSameBitsOnAnyNumberOfThreads) {
   const DenoisedImage two = denoise(denoise_input(render(scene, s)));
   EXPECT_EQ(one.image.pixels(), two.image.pixels());
   EXPECT_EQ(one.estimated_error, two.estimated_error);
+  // The denoiser's own threads: every pass, the blend and the window means.
+  const DenoiseInput in = small_cover_input();
+  const auto denoised_on = [&](int threads) {
+    DenoisedImage d;
+    tbb::task_arena(threads).execute([&] { d = denoise(in); });
+    return d;
+  };
+  const DenoisedImage alone = denoised_on(1);
+  for (const int threads : {2, 3}) {
+    const DenoisedImage d = denoised_on(threads);
+    EXPECT_EQ(d.image.pixels(), alone.image.pixels()) << threads << " threads";
+    EXPECT_EQ(d.mse, alone.mse) << threads << " threads";
+    EXPECT_EQ(d.noisy_kept, alone.noisy_kept) << threads << " threads";
+    EXPECT_EQ(d.estimated_error, alone.estimated_error) << threads << " threads";
+  }
 }
 
 // Images smaller than its windows (a 3-pixel-wide crop, a 1x1 render): each window is clipped
@@ -263,11 +288,7 @@ TEST(Denoiser, ImagesSmallerThanItsWindowsComeBackWhole) {
 // Its caller may stop it (a render's stop or time limit while it judges a round): asked
 // between rows, it throws soon after; never asked to stop, the same bits as without the question.
 TEST(Denoiser, StopsWhenItsCallerSaysSo) {
-  const Scene scene = make_builtin_scene("cover", 1);
-  RenderSettings s;
-  s.width = 48, s.height = 32, s.samples = FixedSamples{8};
-  s.estimate_error = true, s.passes = {true, true, true};
-  const DenoiseInput in = denoise_input(render(scene, s));
+  const DenoiseInput in = small_cover_input();
   std::atomic<int> asked{0};
   EXPECT_THROW(denoise(in, {[&] { return ++asked > 40; }}), DenoiseCancelled);
   EXPECT_LT(asked.load(), 4 * 32);  // it stopped within the pass it was in
@@ -278,11 +299,7 @@ TEST(Denoiser, StopsWhenItsCallerSaysSo) {
 // What a display shows of a denoise: its work done rises from 0, never past the whole, and is
 // the whole when the image is made; watched, the image is the same bits.
 TEST(Denoiser, ItsProgressReachesTheWholeAsItEnds) {
-  const Scene scene = make_builtin_scene("cover", 1);
-  RenderSettings s;
-  s.width = 48, s.height = 32, s.samples = FixedSamples{8};
-  s.estimate_error = true, s.passes = {true, true, true};
-  const DenoiseInput in = denoise_input(render(scene, s));
+  const DenoiseInput in = small_cover_input();
   DenoiseProgress progress;
   progress.done = 12345;  // a display's counters from an earlier denoise start again
   std::mutex mutex;       // asked from every thread of the passes

@@ -140,8 +140,14 @@ MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeR
   }
   if (request.denoise) {
     check_for_denoising(whole, sampler, replicates);
-    DenoisedOutput denoised = denoised_output(whole, request.extra_channels, image.metadata,
-                                              DenoiseControl{request.cancelled, request.progress});
+    const DenoiseInput input = denoise_input(whole);
+    // Every channel made of the sums is made by now: their memory (268 bytes a pixel, more than
+    // the denoiser's working set) goes back before the denoiser takes its own.
+    whole.sums = PixelSums();
+    whole.pixel_samples = {}, whole.pixel_rays = {}, whole.replicate_ratios.reset();
+    DenoisedOutput denoised =
+        denoised_output(denoise(input, DenoiseControl{request.cancelled, request.progress}),
+                        request.extra_channels, image.metadata);
     image.channels.insert(image.channels.begin(),
                           std::make_move_iterator(denoised.channels.begin()),
                           std::make_move_iterator(denoised.channels.end()));
