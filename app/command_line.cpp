@@ -399,7 +399,7 @@ CLI::App* add_merge(CLI::App& app, MergeOptions& o) {
   cmd->add_flag("--denoise", o.denoise,
                 "Write the merged render denoised, as 'rtiow denoise' does (the parts rendered "
                 "with --denoise)");
-  cmd->add_flag("-q,--quiet", o.quiet, "No summary on stderr");
+  cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
   return cmd;
 }
 
@@ -414,7 +414,7 @@ CLI::App* add_denoise(CLI::App& app, MergeOptions& o) {
       ->required();
   cmd->add_flag("--stats-channels", o.stats_channels,
                 "Add the spp and variance channels to an .exr output, as merge does");
-  cmd->add_flag("-q,--quiet", o.quiet, "No summary on stderr");
+  cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
   return cmd;
 }
 
