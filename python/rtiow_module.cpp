@@ -371,26 +371,38 @@ void write_render(const Render& render, const std::string& path, bool reproducib
 }
 
 // rtiow merge: the part files added into the image one render of all their samples gives.
-// Ctrl-C stops the denoiser (nothing is written; the parts stay); the merge itself runs on.
+// Ctrl-C, or an exception from `progress`, stops the denoiser (nothing is written; the parts
+// stay); the merge itself runs on. `progress(fraction)` follows the denoiser, and is called with
+// 1.0 once the image is written.
 std::optional<DenoiseFigures> merge_and_write(const std::vector<std::string>& parts,
                                               const std::string& output, bool stats_channels,
-                                              bool denoise) {
-  return interruptible<std::optional<DenoiseFigures>>([&](const std::function<bool()>& cancelled) {
-    MergeRequest request;
-    request.statistics = stats_channels, request.denoise = denoise, request.cancelled = cancelled;
-    return merge_to_file(parts, output, request).denoised;
-  });
+                                              bool denoise, const py::object& progress) {
+  DenoiseProgress denoising;
+  const bool watched = denoise && !progress.is_none();
+  const auto tick = [&] {
+    if (watched) progress(denoising.fraction());
+  };
+  std::optional<DenoiseFigures> figures = interruptible<std::optional<DenoiseFigures>>(
+      [&](const std::function<bool()>& cancelled) {
+        MergeRequest request;
+        request.statistics = stats_channels, request.denoise = denoise;
+        request.cancelled = cancelled, request.progress = &denoising;
+        return merge_to_file(parts, output, request).denoised;
+      },
+      tick);
+  if (watched) progress(1.0);
+  return figures;
 }
 
 // With `denoise`, the denoiser's figures (estimated_error, noisy_error, seconds); else None.
 py::object merge_files(const std::vector<std::string>& parts, const std::string& output,
-                       bool stats_channels, bool denoise) {
-  return denoise_figures(merge_and_write(parts, output, stats_channels, denoise));
+                       bool stats_channels, bool denoise, const py::object& progress) {
+  return denoise_figures(merge_and_write(parts, output, stats_channels, denoise, progress));
 }
 
 py::object denoise_files(const std::vector<std::string>& parts, const std::string& output,
-                         bool stats_channels) {
-  return merge_files(parts, output, stats_channels, true);
+                         bool stats_channels, const py::object& progress) {
+  return merge_files(parts, output, stats_channels, true, progress);
 }
 
 // An image to compare: a file, or a render (with its variances where it has them).
@@ -584,14 +596,19 @@ void bind_images(py::module_& m) {
         "list, else plain. Returns a dict with 'passed', 'verdict' and the figures.");
   m.def("merge", &merge_files, py::arg("parts"), py::arg("output"), py::kw_only(),
         py::arg("stats_channels") = false, py::arg("denoise") = false,
+        py::arg("progress") = py::none(),
         "Adds part files (renders with part= or sample_range=, written) into the image one "
         "render of all their samples gives, as rtiow merge does; checks they belong together. "
-        "With denoise=True the image is denoised and its figures returned, as by denoise().");
+        "With denoise=True the image is denoised and its figures returned, as by denoise(), "
+        "progress(fraction) following the denoiser.");
   m.def("denoise", &denoise_files, py::arg("parts"), py::arg("output"), py::kw_only(),
-        py::arg("stats_channels") = false,
+        py::arg("stats_channels") = false, py::arg("progress") = py::none(),
         "Denoises a render kept as part files (render(..., denoise=True, part='0/1', "
         "output=...)), as rtiow denoise does. Returns the denoised image's estimated error "
-        "(relative RMS, offset 0.01), the noisy image's and the denoiser's seconds.");
+        "(relative RMS, offset 0.01), the noisy image's and the denoiser's seconds. "
+        "progress(fraction) is called about every 50 ms with the share of the denoising done, "
+        "and with 1.0 once the image is written; what it raises stops the denoiser (nothing "
+        "is written) and is raised.");
   m.def("read_image", &read_image, py::arg("path"),
         "An image file's R, G, B as height x width x 3 float32 (linear files as stored).");
   m.def("read_channels", &read_channels, py::arg("path"),

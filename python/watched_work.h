@@ -24,13 +24,15 @@ struct Watched {
 Watched watch(const std::function<void()>& work, std::atomic<bool>& stop,
               const std::function<void()>& tick = {});
 
-// `work(cancelled)` watched: returns its result, or raises what Python raised (KeyboardInterrupt)
-// once the work has heeded `cancelled` (or ended), or rethrows what the work threw.
+// `work(cancelled)` watched: returns its result, or raises what Python raised (KeyboardInterrupt,
+// or what `tick` raised) once the work has heeded `cancelled` (or ended), or rethrows what the
+// work threw.
 template <typename T>
-T interruptible(const std::function<T(const std::function<bool()>& cancelled)>& work) {
+T interruptible(const std::function<T(const std::function<bool()>& cancelled)>& work,
+                const std::function<void()>& tick = {}) {
   std::atomic<bool> stop{false};
   std::optional<T> out;
-  Watched w = watch([&] { out.emplace(work([&] { return stop.load(); })); }, stop);
+  Watched w = watch([&] { out.emplace(work([&] { return stop.load(); })); }, stop, tick);
   if (w.raised) throw std::move(*w.raised);
   if (w.failure) std::rethrow_exception(w.failure);
   return std::move(*out);

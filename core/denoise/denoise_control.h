@@ -8,6 +8,11 @@
 
 namespace rtiow {
 
+// `done` of `total` work as a share, 0 to 1 (0 without a total).
+inline double denoise_fraction(std::uint64_t done, std::uint64_t total) {
+  return total > 0 ? double(done < total ? done : total) / double(total) : 0.0;
+}
+
 // How far a denoise has gone: its work done of the whole, each pass's rows counted as they
 // finish, by what a pixel of that pass costs (core/denoise/denoiser.cpp). `total` and `start_ns`
 // are set as the denoise begins (0 before), `done` reaches `total` as it ends.
@@ -15,6 +20,9 @@ struct DenoiseProgress {
   std::atomic<std::uint64_t> done{0};
   std::atomic<std::uint64_t> total{0};
   std::atomic<std::int64_t> start_ns{0};  // steady clock, ns since its epoch
+
+  // The share done, 0 to 1 (0 before it began).
+  double fraction() const { return denoise_fraction(done.load(), total.load()); }
 };
 
 struct DenoiseControl {

@@ -13,7 +13,7 @@ constexpr double kLiveLineAfterSeconds = 0.5, kPlainLinesAfterSeconds = 2.0;
 }  // namespace
 
 std::string denoise_progress_line(std::uint64_t done, std::uint64_t total, double elapsed) {
-  const double fraction = total > 0 ? double(std::min(done, total)) / double(total) : 0.0;
+  const double fraction = denoise_fraction(done, total);
   char share[32];
   std::snprintf(share, sizeof share, "%5.1f%%", 100.0 * fraction);
   const std::string to_go =

@@ -138,11 +138,20 @@ def render_like(
 ) -> Render:
     """Renders again what an image rtiow wrote records, as rtiow render --like does."""
 def merge(
-    parts: Sequence[str], output: str, *, stats_channels: bool = False, denoise: bool = False
+    parts: Sequence[str],
+    output: str,
+    *,
+    stats_channels: bool = False,
+    denoise: bool = False,
+    progress: Optional[Callable[[float], Any]] = None,
 ) -> Optional[Dict[str, float]]:
     """Adds part files into the image one render of all their samples gives (rtiow merge)."""
 def denoise(
-    parts: Sequence[str], output: str, *, stats_channels: bool = False
+    parts: Sequence[str],
+    output: str,
+    *,
+    stats_channels: bool = False,
+    progress: Optional[Callable[[float], Any]] = None,
 ) -> Dict[str, float]:
     """Denoises a render kept as part files (rendered with denoise=True), as rtiow denoise does."""
 def diff(

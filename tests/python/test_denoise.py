@@ -67,3 +67,28 @@ def test_denoise_refusals(tmp_path):
     rtiow.render(rtiow.builtin_scene("cover"), width=16, spp=4, part="0/1", output=part)
     with pytest.raises(ValueError, match="render them with denoise"):
         rtiow.denoise([part], str(tmp_path / "out.png"))
+
+
+def test_denoise_reports_its_progress_and_stops_where_progress_raises(tmp_path):
+    part = str(tmp_path / "p.exr")
+    rtiow.render(rtiow.builtin_scene("cover"), width=800, spp=2, denoise=True, part="0/1",
+                 output=part)
+    seen = []
+    figures = rtiow.denoise([part], str(tmp_path / "out.png"), progress=seen.append)
+    assert figures["estimated_error"] > 0
+    assert seen and seen[-1] == 1.0  # the last call: the image written
+    assert seen == sorted(seen) and all(0.0 <= f <= 1.0 for f in seen)
+
+    class Enough(Exception):
+        pass
+
+    def stop(fraction):
+        if fraction > 0.0:  # the denoiser under way (800x533: a second on 2 cores)
+            raise Enough
+
+    stopped = tmp_path / "stopped.png"
+    with pytest.raises(Enough):
+        rtiow.denoise([part], str(stopped), progress=stop)
+    assert not stopped.exists()
+    merged = rtiow.merge([part], str(tmp_path / "m.png"), denoise=True, progress=seen.append)
+    assert merged is not None and seen[-1] == 1.0
