@@ -8,18 +8,20 @@
 
 #include "core/limits/error.h"
 #include "core/render/part_merge.h"
-#include "core/session/denoise_display.h"
+#include "core/session/work_display.h"
 
 namespace rtiow {
 
 int run_merge(const MergeOptions& o) {
   MergeRequest request;
   request.statistics = o.stats_channels, request.denoise = o.denoise;
-  DenoiseProgress denoising;
-  std::optional<DenoiseDisplay> display;
-  if (o.denoise && !o.quiet) {
-    request.progress = &denoising;
-    display.emplace(denoising);
+  WorkProgress reading, denoising;
+  std::optional<WorkDisplay> display;
+  if (!o.quiet) {
+    request.reading = &reading;
+    request.denoising = &denoising;
+    display.emplace(
+        std::vector<WorkPhase>{{&reading, "of the parts read"}, {&denoising, "denoised"}});
   }
   const MergedImage merged = merge_to_file(o.parts, o.output, request);
   display.reset();  // its live line erased before the lines below

@@ -377,7 +377,7 @@ void write_render(const Render& render, const std::string& path, bool reproducib
 std::optional<DenoiseFigures> merge_and_write(const std::vector<std::string>& parts,
                                               const std::string& output, bool stats_channels,
                                               bool denoise, const py::object& progress) {
-  DenoiseProgress denoising;
+  WorkProgress denoising;
   const bool watched = denoise && !progress.is_none();
   const auto tick = [&] {
     if (watched) progress(denoising.fraction());
@@ -386,7 +386,7 @@ std::optional<DenoiseFigures> merge_and_write(const std::vector<std::string>& pa
       [&](const std::function<bool()>& cancelled) {
         MergeRequest request;
         request.statistics = stats_channels, request.denoise = denoise;
-        request.cancelled = cancelled, request.progress = &denoising;
+        request.cancelled = cancelled, request.denoising = &denoising;
         return merge_to_file(parts, output, request).denoised;
       },
       tick);

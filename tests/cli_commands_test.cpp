@@ -33,8 +33,8 @@
 #include <vector>
 
 #include "core/rtiow.h"
-#include "core/session/denoise_display.h"
 #include "core/session/progress_status.h"
+#include "core/session/work_display.h"
 #include "tests/cli_helpers.h"
 
 namespace {
@@ -385,16 +385,20 @@ TEST(Cli, EveryModeShowsHowFarItIsTowardItsEnd) {
   EXPECT_DOUBLE_EQ(rtiow::progress_status(s, 100, now).fraction, 0.5);
 }
 
-// The denoiser's line: its share, its time so far and to go at the rate so far.
-TEST(Cli, TheDenoisersProgressShowsItsShareAndTimeToGo) {
-  EXPECT_EQ(rtiow::denoise_progress_line(25, 100, 3.0), " 25.0% denoised  elapsed 3.0s  ETA 9.0s");
-  EXPECT_EQ(rtiow::denoise_progress_line(0, 100, 0.6), "  0.0% denoised  elapsed 0.6s  ETA ?");
-  EXPECT_EQ(rtiow::denoise_progress_line(150, 100, 70.0),
-            "100.0% denoised  elapsed 1m10s  ETA 0.0s");
+// The work after a render or around a merge (the parts read, the denoiser): its share, its time so
+// far and to go at the rate so far.
+TEST(Cli, TheWorkAfterARenderShowsItsShareAndTimeToGo) {
+  EXPECT_EQ(rtiow::work_progress_line("denoised", 25, 100, 3.0),
+            " 25.0% denoised  elapsed 3.0s  ETA 9.0s");
+  EXPECT_EQ(rtiow::work_progress_line("denoised", 0, 100, 0.6),
+            "  0.0% denoised  elapsed 0.6s  ETA ?");
+  EXPECT_EQ(rtiow::work_progress_line("of the parts read", 150, 100, 70.0),
+            "100.0% of the parts read  elapsed 1m10s  ETA 0.0s");
 }
 
-// In a log, a denoise past its first two seconds says how far it is, a line per tenth, as the
-// render does ("progress:"), and nothing once a signal has asked for the end.
+// In a log, a phase past its first two seconds says how far it is, a line per tenth, as the
+// render does ("progress:"); the next phase starts its own lines; nothing once a signal has asked
+// for the end.
 TEST(Cli, ALongDenoiseShowsItsProgressInALog) {
   const fs::path log = output_path("denoise-progress.log");
   std::fflush(stderr);
@@ -414,31 +418,40 @@ TEST(Cli, ALongDenoiseShowsItsProgressInALog) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     return read_log().find(text) != std::string::npos;
   };
-  rtiow::DenoiseProgress progress;
-  std::atomic<bool> stop{false};
-  bool first = false, second = false;
-  std::string after_stop;
-  {
-    const rtiow::DenoiseDisplay display(progress, &stop);
-    progress.total = 1000, progress.done = 250;
-    progress.start_ns =
+  const auto begun_seconds_ago = [](rtiow::WorkProgress& work, std::uint64_t total, int seconds) {
+    work.begin(total);
+    work.start_ns =
         std::chrono::duration_cast<std::chrono::nanoseconds>(
-            (std::chrono::steady_clock::now() - std::chrono::seconds(3)).time_since_epoch())
+            (std::chrono::steady_clock::now() - std::chrono::seconds(seconds)).time_since_epoch())
             .count();
+  };
+  rtiow::WorkProgress reading, denoising;
+  std::atomic<bool> stop{false};
+  bool parts = false, first = false, second = false;
+  {
+    const rtiow::WorkDisplay display({{&reading, "of the parts read"}, {&denoising, "denoised"}},
+                                     &stop);
+    begun_seconds_ago(reading, 8, 3);
+    reading.done = 5;
+    parts = wait_for("progress:  62.5% of the parts read  elapsed 3.");
+    reading.done = 8;
+    begun_seconds_ago(denoising, 1000, 3);
+    denoising.done = 250;
     first = wait_for("progress:  25.0% denoised  elapsed 3.");
-    progress.done = 610;
+    denoising.done = 610;
     second = wait_for("progress:  61.0% denoised");
-    stop = true, progress.done = 900;
+    stop = true, denoising.done = 900;
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   }
   const std::string shown = read_log();
   std::fflush(stderr);
   ::dup2(saved, STDERR_FILENO);
   ::close(saved);
+  EXPECT_TRUE(parts) << shown;
   EXPECT_TRUE(first) << shown;
   EXPECT_TRUE(second) << shown;
   EXPECT_EQ(shown.find("90.0%"), std::string::npos) << "a line after the stop: " << shown;
-  EXPECT_EQ(std::count(shown.begin(), shown.end(), '\n'), 2) << shown;
+  EXPECT_EQ(std::count(shown.begin(), shown.end(), '\n'), 3) << shown;
 }
 
 // What a log shows of each mode: a share and an ETA, or the error against the one asked; and a

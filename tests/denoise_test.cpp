@@ -300,7 +300,7 @@ TEST(Denoiser, StopsWhenItsCallerSaysSo) {
 // the whole when the image is made; watched, the image is the same bits.
 TEST(Denoiser, ItsProgressReachesTheWholeAsItEnds) {
   const DenoiseInput in = small_cover_input();
-  DenoiseProgress progress;
+  WorkProgress progress;
   progress.done = 12345;  // a display's counters from an earlier denoise start again
   std::mutex mutex;       // asked from every thread of the passes
   std::vector<std::uint64_t> seen;

@@ -26,13 +26,13 @@
 #include "core/render/sample_share.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/session/checkpoint_session.h"
-#include "core/session/denoise_display.h"
 #include "core/session/progress_display.h"
 #include "core/session/render_preview.h"
 #include "core/session/render_session.h"
 #include "core/session/render_summary.h"
 #include "core/session/session_report.h"
 #include "core/session/tev_display.h"
+#include "core/session/work_display.h"
 
 namespace rtiow {
 namespace {
@@ -160,9 +160,10 @@ int end_render(const RenderOptions& o, const RenderJob& job, const RenderResult&
   {
     // A second signal waits for the image and its checkpoint (not for the denoiser).
     const FinalWrite final_write(o.denoise && !job.share);
-    DenoiseProgress denoising;
-    std::optional<DenoiseDisplay> display;
-    if (o.denoise && !job.share && !o.quiet) display.emplace(denoising, &progress.stop_requested);
+    WorkProgress denoising;
+    std::optional<WorkDisplay> display;
+    if (o.denoise && !job.share && !o.quiet)
+      display.emplace(std::vector<WorkPhase>{{&denoising, "denoised"}}, &progress.stop_requested);
     end = session.deliver(result, &denoising);
   }
   session.let_viewer_finish(progress.stop_requested);

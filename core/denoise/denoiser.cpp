@@ -151,12 +151,7 @@ double relative_sum(const Vec3d& squared_error, const Vec3d& weight) {
 DenoisedImage denoise(const DenoiseInput& in, const DenoiseControl& control) {
   const auto start = std::chrono::steady_clock::now();
   const std::size_t n = in.size();
-  if (DenoiseProgress* progress = control.progress) {
-    progress->done = 0;
-    progress->total = std::uint64_t(n) * kWorkPerPixel;
-    progress->start_ns =
-        std::chrono::duration_cast<std::chrono::nanoseconds>(start.time_since_epoch()).count();
-  }
+  if (control.progress) control.progress->begin(std::uint64_t(n) * kWorkPerPixel);
   const std::vector<Vec3d> variance = noisy_variance(in);
   const std::vector<Combined> filtered = second_pass_images(in, variance, control);
   const std::vector<Vec3d> relative_weight = relative_weights(in, filtered.front().color);

@@ -109,7 +109,11 @@ void check_for_denoising(const RenderResult& whole, const RecordedSampler& sampl
 
 MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeRequest& request) {
   PartMerge merge;
-  for (const std::string& path : paths) merge.add(path);
+  if (request.reading) request.reading->begin(paths.size());
+  for (const std::string& path : paths) {
+    merge.add(path);
+    if (request.reading) ++request.reading->done;
+  }
   MergedRender merged = std::move(merge).finish();
   MergedImage image;
   image.metadata = merged.metadata;
@@ -146,7 +150,7 @@ MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeR
     whole.sums = PixelSums();
     whole.pixel_samples = {}, whole.pixel_rays = {}, whole.replicate_ratios.reset();
     DenoisedOutput denoised =
-        denoised_output(denoise(input, DenoiseControl{request.cancelled, request.progress}),
+        denoised_output(denoise(input, DenoiseControl{request.cancelled, request.denoising}),
                         request.extra_channels, image.metadata);
     image.channels.insert(image.channels.begin(),
                           std::make_move_iterator(denoised.channels.begin()),

@@ -13,6 +13,7 @@
 
 #include "core/film/film.h"
 #include "core/io/image_output.h"
+#include "core/parallel/work_progress.h"
 #include "core/render/denoised_output.h"
 #include "core/render/first_hit_passes.h"
 
@@ -24,7 +25,9 @@ struct MergeRequest {
   bool denoise = false;        // the image denoised (core/denoise/denoised_output.h)
   // Asked while denoising: once true, the merge throws DenoiseCancelled and writes nothing.
   std::function<bool()> cancelled;
-  DenoiseProgress* progress = nullptr;  // the denoiser's, for a display
+  // For a display: the parts read (each counts one) and the denoiser's work.
+  WorkProgress* reading = nullptr;
+  WorkProgress* denoising = nullptr;
 };
 
 struct MergedImage {

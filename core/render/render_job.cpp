@@ -176,7 +176,7 @@ RenderJob prepare_job(const JobRequest& r, Scene scene) {
 
 std::optional<DenoisedImage> write_job_result(const JobRequest& r, const RenderJob& job,
                                               const RenderResult& result, const Metadata& metadata,
-                                              DenoiseProgress* progress) {
+                                              WorkProgress* progress) {
   if (job.share) {
     write_part(job.output, make_part(job.scene, job.settings, job.samples_asked, result, metadata),
                result.sums);

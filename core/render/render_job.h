@@ -72,7 +72,7 @@ Scene load_job_scene(const JobRequest& request);
 // progress goes to `progress`, where given.
 std::optional<DenoisedImage> write_job_result(const JobRequest& request, const RenderJob& job,
                                               const RenderResult& result, const Metadata& metadata,
-                                              DenoiseProgress* progress = nullptr);
+                                              WorkProgress* progress = nullptr);
 
 // The files the request reads: the scene file and the others.
 std::vector<std::string> input_files(const JobRequest& request);

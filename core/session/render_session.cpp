@@ -86,7 +86,7 @@ RenderResult RenderSession::render(RenderProgress& progress) {
   return rtiow::render(job_.scene, job_.settings, &progress, checkpointing);
 }
 
-SessionEnd RenderSession::deliver(const RenderResult& result, DenoiseProgress* denoising) {
+SessionEnd RenderSession::deliver(const RenderResult& result, WorkProgress* denoising) {
   if (display_) display_->show(result.film, pass_channels(result, job_.settings.passes));
   // A stopped render leaves a file that was there before it (and that no preview of its own
   // replaced) as it was: its samples are in the checkpoint, or else in a file beside it.
@@ -109,7 +109,7 @@ SessionEnd RenderSession::deliver(const RenderResult& result, DenoiseProgress* d
 
 // Writes the image; if that fails after the render, keeps the render's state and says where.
 std::optional<DenoisedImage> RenderSession::write_or_keep(const RenderResult& result,
-                                                          DenoiseProgress* denoising) {
+                                                          WorkProgress* denoising) {
   CheckpointSession* checkpoint = checkpoint_.get();
   std::optional<DenoisedImage> denoised;
   try {

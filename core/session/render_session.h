@@ -69,7 +69,7 @@ class RenderSession {
   // partial_output_path()). If the image cannot be written, the render's state is kept and the
   // error (std::runtime_error) says where. The denoiser's progress goes to `denoising`, where
   // given (a display shows it).
-  SessionEnd deliver(const RenderResult& result, DenoiseProgress* denoising = nullptr);
+  SessionEnd deliver(const RenderResult& result, WorkProgress* denoising = nullptr);
 
   // Gives the viewer its last picture (at most kViewerSeconds; none once `stop` is set).
   void let_viewer_finish(const std::atomic<bool>& stop);
@@ -81,7 +81,7 @@ class RenderSession {
 
  private:
   std::optional<DenoisedImage> write_or_keep(const RenderResult& result,
-                                             DenoiseProgress* denoising);
+                                             WorkProgress* denoising);
 
   RenderJob& job_;
   const JobRequest& request_;
