@@ -2,6 +2,8 @@
 // once and one kept as parts and denoised after its merge give the same pixels, and the
 // refusals.
 
+#include "core/render/part_merge.h"
+#include "core/render/render_part.h"
 #include "tests/cli_helpers.h"
 
 namespace rtiow::test::cli {
@@ -60,6 +62,23 @@ TEST(CliDenoise, PartsDenoisedAfterTheirMergeGiveTheRendersPixels) {
   ASSERT_FALSE(one.empty());
   EXPECT_EQ(one, two);
   EXPECT_EQ(exr_channel(whole, "denoise.mse.R"), exr_channel(merged, "denoise.mse.R"));
+  // What a display follows of it: the parts' rows read, strip by strip, and the denoiser.
+  rtiow::WorkProgress reading, denoising;
+  std::vector<std::uint64_t> seen;
+  rtiow::MergeRequest request;
+  request.denoise = true, request.reading = &reading, request.denoising = &denoising;
+  request.cancelled = [&] {  // asked by the denoiser: the parts are read by then
+    seen.push_back(reading.done.load());
+    return false;
+  };
+  const rtiow::MergedImage image = rtiow::merge_part_files({a.string(), b.string()}, request);
+  EXPECT_EQ(reading.total.load(), 2 * rtiow::PartMerge::kPartWork);
+  EXPECT_EQ(reading.done.load(), reading.total.load());
+  ASSERT_FALSE(seen.empty());
+  EXPECT_EQ(seen.front(), reading.total.load());
+  EXPECT_GT(denoising.total.load(), 0u);
+  EXPECT_EQ(denoising.done.load(), denoising.total.load());
+  EXPECT_EQ(image.film.pixels().size(), std::size_t(24 * 150));
 }
 
 TEST(CliDenoise, LikeRendersADenoisedImageAgainDenoised) {

@@ -108,12 +108,9 @@ void check_for_denoising(const RenderResult& whole, const RecordedSampler& sampl
 }  // namespace
 
 MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeRequest& request) {
-  PartMerge merge;
-  if (request.reading) request.reading->begin(paths.size());
-  for (const std::string& path : paths) {
-    merge.add(path);
-    if (request.reading) ++request.reading->done;
-  }
+  PartMerge merge(request.reading);
+  if (request.reading) request.reading->begin(paths.size() * PartMerge::kPartWork);
+  for (const std::string& path : paths) merge.add(path);
   MergedRender merged = std::move(merge).finish();
   MergedImage image;
   image.metadata = merged.metadata;

@@ -25,7 +25,7 @@ struct MergeRequest {
   bool denoise = false;        // the image denoised (core/denoise/denoised_output.h)
   // Asked while denoising: once true, the merge throws DenoiseCancelled and writes nothing.
   std::function<bool()> cancelled;
-  // For a display: the parts read (each counts one) and the denoiser's work.
+  // For a display: the parts read (PartMerge's progress) and the denoiser's work.
   WorkProgress* reading = nullptr;
   WorkProgress* denoising = nullptr;
 };

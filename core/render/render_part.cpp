@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -267,7 +268,8 @@ constexpr int kRowsPerRead = 64;
 // (core/film/sum_validation.h), and added into `total` in the groups it keeps: a merge holds
 // the total and a strip of one part's words, however many parts it adds.
 void add_part_sums(ImageReader& in, const std::string& name, const SumChannels& found,
-                   const RenderPart& part, PixelSums& total) {
+                   const RenderPart& part, PixelSums& total,
+                   const std::function<void(int rows)>& rows_read) {
   const std::size_t width = std::size_t(part.width);
   std::vector<std::uint32_t> data(width * std::size_t(std::min(kRowsPerRead, part.height)) *
                                   found.stride);
@@ -307,6 +309,7 @@ void add_part_sums(ImageReader& in, const std::string& name, const SumChannels& 
       if (add_spread) total.spreads[p] += spread;
       if (add_first_hit) total.first_hits[p] += first_hit;
     }
+    rows_read(y1);
   }
 }
 
@@ -455,7 +458,11 @@ void PartMerge::add(ImageReader& in, const std::string& path) {
   } else if (!kept(SumGroup::Odd)) {
     merged_.sums.spreads = {};
   }
-  add_part_sums(in, name, *channels, part, merged_.sums);
+  const std::uint64_t before = std::uint64_t(parts_.size()) * kPartWork;
+  add_part_sums(in, name, *channels, part, merged_.sums, [&](int rows) {
+    if (reading_)
+      reading_->done = before + kPartWork * std::uint64_t(rows) / std::uint64_t(part.height);
+  });
   parts_.push_back(std::move(part));
 }
 

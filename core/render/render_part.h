@@ -17,6 +17,7 @@
 
 #include "core/film/pixel_sums.h"
 #include "core/io/image_output.h"
+#include "core/parallel/work_progress.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
@@ -67,6 +68,13 @@ class ImageReader;  // core/io/image_file.h
 // files at fault.
 class PartMerge {
  public:
+  // What each part counts in a progress of the parts read, its rows a share of it as they are.
+  static constexpr std::uint64_t kPartWork = 1'000'000;
+
+  // With `reading`, whose total the caller begins at kPartWork a part, the rows read are counted
+  // in it (a 4K part takes seconds to read).
+  explicit PartMerge(WorkProgress* reading = nullptr) : reading_(reading) {}
+
   void add(const std::string& path);
   // The same from an image already opened (`path` names it in messages): what the fuzz
   // target drives with headers and pixels of its own making.
@@ -78,6 +86,7 @@ class PartMerge {
  private:
   std::vector<RenderPart> parts_;  // the headers read; their sums are in the total
   MergedRender merged_;
+  WorkProgress* reading_ = nullptr;
 };
 
 }  // namespace rtiow
