@@ -44,8 +44,7 @@ std::array<double, 2> simplex_minimum(double m11, double m12, double m22, double
 // `variance` is Var(X) at each pixel and `relative_weight` each channel's 1 / (level + 0.01)^2,
 // so that the neighbourhoods weigh errors as the image's relative error does; the
 // neighbourhoods are (2 radius + 1)^2 pixels. Deterministic: the same bits for any thread
-// count. Each channel done
-// advances `control` by the image's pixels.
+// count. Each channel done advances `control` by the image's pixels.
 BlendedImage blend_candidates(const DenoiseInput& in,
                               const std::array<FilteredCandidate, 2>& filtered,
                               const std::vector<Vec3d>& variance,

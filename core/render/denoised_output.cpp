@@ -101,11 +101,6 @@ DenoisedImage denoised_image(const RenderResult& result, const DenoiseControl& c
   return denoise(denoise_input(result), control);
 }
 
-DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels, Metadata& metadata,
-                               const DenoiseControl& control) {
-  return denoised_output(denoised_image(result, control), extra_channels, metadata);
-}
-
 DenoisedOutput denoised_output(DenoisedImage d, bool extra_channels, Metadata& metadata) {
   DenoisedOutput out;
   out.figures = figures_of(d);

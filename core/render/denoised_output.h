@@ -60,14 +60,8 @@ std::string why_not_denoised(const RenderResult& result);
 // denoiser.h) now. Throws as denoise_input() and denoise() do; `control` as denoise() takes it.
 DenoisedImage denoised_image(const RenderResult& result, const DenoiseControl& control = {});
 
-// Denoises `result` (denoised_image()) and records its figures in `metadata`; the
-// channels only where `extra_channels` (the output can hold them). Throws InvalidInput where
-// the result lacks what the denoiser needs (core/denoise/denoise_input.h).
-// `control` as denoise() takes it.
-DenoisedOutput denoised_output(const RenderResult& result, bool extra_channels, Metadata& metadata,
-                               const DenoiseControl& control = {});
-
-// The same for an image already denoised (a render denoised in memory, written later).
+// The denoised image to write (denoised_image(), or the denoiser's of a merge), its figures
+// recorded in `metadata`; the channels only where `extra_channels` (the output can hold them).
 DenoisedOutput denoised_output(DenoisedImage denoised, bool extra_channels, Metadata& metadata);
 
 }  // namespace rtiow
