@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/denoise/denoiser.h"
+#include "core/denoise/pixel_loop.h"
 #include "core/film/replicate_variance.h"
 #include "core/film/sample_sum.h"
 #include "core/limits/error.h"
@@ -57,13 +58,12 @@ DenoiseInput denoise_input(const DenoiseSource& s) {
   in.width = s.width;
   in.height = s.height;
   const std::size_t n = s.sums.size();
-  Film mean(s.width, s.height);
-  resolve(s.sums.color, s.samples, mean);  // as the render's film is
-  in.mean = mean.pixels();
-  in.even.resize(n), in.odd.resize(n), in.features.resize(n);
+  in.mean.resize(n), in.even.resize(n), in.odd.resize(n), in.features.resize(n);
   in.even_samples.resize(n), in.odd_samples.resize(n);
-  for (std::size_t p = 0; p < n; ++p) {
+  // Every pixel's own: in parallel, the same bits.
+  for_each_pixel(s.width, s.height, [&](std::size_t p) {
     const std::uint32_t samples = s.samples[p];
+    in.mean[p] = s.sums.color[p].mean(samples);  // as the render's film resolves it
     const auto odd = std::uint32_t(odd_samples(s.first_sample, samples));
     const PixelSum& odd_sum = s.sums.spreads[p].odd;
     PixelSum even_sum;
@@ -75,7 +75,7 @@ DenoiseInput denoise_input(const DenoiseSource& s) {
     in.odd_samples[p] = odd;
     for (std::size_t c = 0; c < FirstHitSum::kChannels; ++c)
       in.features[p][c] = s.sums.first_hits[p].mean(c, samples);
-  }
+  });
   return in;
 }
 
