@@ -50,9 +50,8 @@ BlendedImage blend_candidates(const DenoiseInput& in,
   const auto difference = [&](int i, std::size_t p, std::size_t c) {
     return double((*filtered[std::size_t(i)].color)[p][c]) - double(in.mean[p][c]);
   };
-  const auto each_pixel = [&](const auto& body) { for_each_pixel(in.width, in.height, body); };
   for (std::size_t c = 0; c < 3; ++c) {
-    each_pixel([&](std::size_t p) {
+    for_each_pixel(in.width, in.height, [&](std::size_t p) {
       const double w = relative_weight[p][c], d1 = difference(0, p, c), d2 = difference(1, p, c);
       const double v = w * variance[p][c];
       terms[kM11][p] = w * d1 * d1, terms[kM12][p] = w * d1 * d2, terms[kM22][p] = w * d2 * d2;
@@ -60,7 +59,7 @@ BlendedImage blend_candidates(const DenoiseInput& in,
       terms[kB2][p] = v * (1.0 - double((*filtered[1].own_weight)[p]));
     });
     for (auto& t : terms) t = window_mean(t, in.width, in.height, radius, true);
-    each_pixel([&](std::size_t p) {
+    for_each_pixel(in.width, in.height, [&](std::size_t p) {
       const auto [a1, a2] = simplex_minimum(terms[kM11][p], terms[kM12][p], terms[kM22][p],
                                             terms[kB1][p], terms[kB2][p]);
       const double dy = a1 * difference(0, p, c) + a2 * difference(1, p, c);

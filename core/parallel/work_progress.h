@@ -19,18 +19,16 @@ struct WorkProgress {
   std::atomic<std::uint64_t> total{0};
   std::atomic<std::int64_t> start_ns{0};  // steady clock, ns since its epoch
 
-  // Starts it again: `total` to do from now.
-  void begin(std::uint64_t work);
+  // Starts it again: `work` to do from now.
+  void begin(std::uint64_t work) {
+    done = 0;
+    total = work;
+    start_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                   std::chrono::steady_clock::now().time_since_epoch())
+                   .count();
+  }
   // The share done, 0 to 1 (0 before it began).
   double fraction() const { return work_fraction(done.load(), total.load()); }
 };
-
-inline void WorkProgress::begin(std::uint64_t work) {
-  done = 0;
-  total = work;
-  start_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                 std::chrono::steady_clock::now().time_since_epoch())
-                 .count();
-}
 
 }  // namespace rtiow
