@@ -2,6 +2,8 @@
 // once and one kept as parts and denoised after its merge give the same pixels, and the
 // refusals.
 
+#include <mutex>
+
 #include "core/render/part_merge.h"
 #include "core/render/render_part.h"
 #include "tests/cli_helpers.h"
@@ -65,9 +67,11 @@ TEST(CliDenoise, PartsDenoisedAfterTheirMergeGiveTheRendersPixels) {
   // What a display follows of it: the parts' rows read, strip by strip, and the denoiser.
   rtiow::WorkProgress reading, denoising;
   std::vector<std::uint64_t> seen;
+  std::mutex seen_lock;  // asked from the denoiser's threads at once
   rtiow::MergeRequest request;
   request.denoise = true, request.reading = &reading, request.denoising = &denoising;
   request.cancelled = [&] {  // asked by the denoiser: the parts are read by then
+    const std::lock_guard<std::mutex> hold(seen_lock);
     seen.push_back(reading.done.load());
     return false;
   };

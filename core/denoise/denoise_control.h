@@ -10,8 +10,8 @@
 namespace rtiow {
 
 struct DenoiseControl {
-  // Asked between rows; once it returns true it must stay true, and the denoiser throws
-  // DenoiseCancelled soon after.
+  // Asked between rows, from the denoiser's threads at once (so safe to call concurrently);
+  // once it returns true it must stay true, and the denoiser throws DenoiseCancelled soon after.
   std::function<bool()> cancelled;
   // The passes' rows counted as they finish, each pixel by what its pass costs
   // (core/denoise/denoiser.cpp); begun as the denoise begins.
