@@ -5,6 +5,7 @@
 // verdicts are too; the bands leave room for other seeds.
 
 #include <gtest/gtest.h>
+#include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
 #include <bit>
@@ -17,6 +18,7 @@
 
 #include "core/compare/image_diff.h"
 #include "core/film/replicate_variance.h"
+#include "core/film/window_sums.h"
 #include "core/render/render.h"
 #include "core/render/render_statistics.h"
 #include "core/scene/builtin_scenes.h"
@@ -350,6 +352,49 @@ TEST(ReplicateVariance, AWindowGivesTheSameRatioHoweverItIsWalked) {
     }
   }
   EXPECT_GT(compared, (w - r) * h / 2);
+}
+
+// The window sums are summed-area tables built in parallel: each window's sum is its pixels' sum
+// (to rounding), and the ratios made of them, an adaptive render's classes of counts included,
+// are the same bits on any number of threads.
+TEST(ReplicateVariance, TheWindowsAndTheRatiosAreTheSameBitsOnAnyNumberOfThreads) {
+  constexpr int w = 70, h = 45, r = 3;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> value(0.0f, 1.0f);
+  std::vector<double> values(w * h);
+  for (double& v : values) v = value(random);
+  const std::vector<double> sums = window_sums(values, w, h, r);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      double direct = 0;
+      for (int ny = std::max(0, y - r); ny <= std::min(h - 1, y + r); ++ny)
+        for (int nx = std::max(0, x - r); nx <= std::min(w - 1, x + r); ++nx)
+          direct += values[std::size_t(ny * w + nx)];
+      EXPECT_NEAR(sums[std::size_t(y * w + x)], direct, 1e-12) << x << "," << y;
+    }
+  }
+  std::vector<PixelSum> pixel_sums(w * h);
+  std::vector<PixelSpread> spreads(w * h);
+  std::vector<std::uint32_t> samples(w * h);
+  for (std::size_t p = 0; p < pixel_sums.size(); ++p) {
+    samples[p] = 4u << (p % 5);  // five classes of counts, as an adaptive render's
+    for (std::uint64_t i = 0; i < samples[p]; ++i)
+      add_sample(pixel_sums[p], spreads[p], Color{value(random), value(random), value(random)}, i);
+  }
+  const auto ratios_on = [&](int threads) {
+    return tbb::task_arena(threads).execute([&] {
+      return replicate_ratios(w, h, pixel_sums, spreads, samples, 0, SamplerKind::Sobol);
+    });
+  };
+  const std::vector<Vec3d> one = ratios_on(1), three = ratios_on(3);
+  ASSERT_EQ(one.size(), three.size());
+  int borrowed = 0;  // ratios taken from the pixel's own class, not the fallback's 1
+  for (std::size_t p = 0; p < one.size(); ++p) {
+    for (std::size_t c = 0; c < 3; ++c)
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(one[p][c]), std::bit_cast<std::uint64_t>(three[p][c]));
+    borrowed += one[p].x != 1.0;
+  }
+  EXPECT_GT(borrowed, w * h / 2);
 }
 
 // Samples of one pixel: `values[i]` is sample i's value in every channel.

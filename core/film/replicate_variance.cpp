@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/film/pixel_neighbours.h"
+#include "core/film/window_sums.h"
 #include "core/parallel/instruction_sets.h"
 #include "core/parallel/lanes.h"
 #include "core/parallel/parallel_for_range.h"
@@ -29,29 +30,15 @@ Vec3d replicate_estimate(const PixelSum& sum, const PixelSpread& spread, std::ui
 
 namespace {
 
-// Sums of `values` (row major) over every (2r + 1)^2 window, clipped to the image, through a
-// summed-area table.
-std::vector<double> window_sums(int width, int height, const std::vector<double>& values, int r) {
-  const auto w = std::size_t(width), h = std::size_t(height);
-  std::vector<double> table((w + 1) * (h + 1), 0.0);
-  for (std::size_t y = 0; y < h; ++y) {
-    double row = 0;
-    for (std::size_t x = 0; x < w; ++x) {
-      row += values[y * w + x];
-      table[(y + 1) * (w + 1) + x + 1] = table[y * (w + 1) + x + 1] + row;
-    }
-  }
-  std::vector<double> sums(values.size());
-  for (int y = 0; y < height; ++y) {
-    const auto y0 = std::size_t(std::max(0, y - r)), y1 = std::size_t(std::min(height, y + r + 1));
-    for (int x = 0; x < width; ++x) {
-      const auto x0 = std::size_t(std::max(0, x - r)), x1 = std::size_t(std::min(width, x + r + 1));
-      sums[std::size_t(y) * w + std::size_t(x)] =
-          table[y1 * (w + 1) + x1] - table[y0 * (w + 1) + x1] - table[y1 * (w + 1) + x0] +
-          table[y0 * (w + 1) + x0];
-    }
-  }
-  return sums;
+// Pixels one task of the per-pixel loops below takes.
+inline constexpr std::size_t kPixelsPerTask = 4096;
+
+// body(p) for every pixel index p < n, in parallel: each pixel's value is its own.
+template <typename Body>
+void for_each_pixel(std::size_t n, const Body& body) {
+  parallel_for_range(n, kPixelsPerTask, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p) body(p);
+  });
 }
 
 }  // namespace
@@ -64,28 +51,43 @@ int count_class(std::uint32_t n) {
   return n < 2 ? -1 : std::bit_width(n) - 1;
 }
 
-// The window sums of one count class (or of every class, `only` < 0): replicate and sample
-// estimates of one channel and how many pixels gave them, the pixel itself left out.
-struct WindowTotals {
-  std::vector<double> replicate, sample, pixels;
+// What a window holds of one channel: the sum of its pixels' replicate and sample estimates and
+// how many pixels gave them (those with a spread).
+struct WindowTotal {
+  double replicate = 0, sample = 0, pixels = 0;
+  WindowTotal operator+(const WindowTotal& o) const {
+    return {replicate + o.replicate, sample + o.sample, pixels + o.pixels};
+  }
+  WindowTotal operator-(const WindowTotal& o) const {
+    return {replicate - o.replicate, sample - o.sample, pixels - o.pixels};
+  }
 };
 
-WindowTotals class_windows(int width, int height, const std::vector<Vec3d>& replicate,
-                           const std::vector<Vec3d>& sample, std::size_t channel,
-                           const std::vector<int>& classes, int only) {
-  std::vector<double> r(replicate.size(), 0.0), s(replicate.size(), 0.0), n(replicate.size(), 0.0);
-  for (std::size_t p = 0; p < r.size(); ++p) {
-    if (classes[p] < 0 || (only >= 0 && classes[p] != only)) continue;
-    r[p] = replicate[p][channel], s[p] = sample[p][channel], n[p] = s[p] > 0.0 ? 1.0 : 0.0;
+// The window totals of one count class (or of every class, `only` < 0) of one channel, the
+// pixel itself left out. Its buffers are kept from call to call: an adaptive render takes a
+// channel's windows once for every class, and fresh pages for each took most of its time.
+class ClassWindows {
+ public:
+  const std::vector<WindowTotal>& of(int width, int height, const std::vector<Vec3d>& replicate,
+                                     const std::vector<Vec3d>& sample, std::size_t channel,
+                                     const std::vector<int>& classes, int only) {
+    own_.resize(replicate.size());
+    for_each_pixel(own_.size(), [&](std::size_t p) {
+      if (classes[p] < 0 || (only >= 0 && classes[p] != only)) {
+        own_[p] = {};
+        return;
+      }
+      const double spread = sample[p][channel];
+      own_[p] = {replicate[p][channel], spread, spread > 0.0 ? 1.0 : 0.0};
+    });
+    window_sums(own_, width, height, kReplicateWindowRadius, table_, totals_);
+    for_each_pixel(own_.size(), [&](std::size_t p) { totals_[p] = totals_[p] - own_[p]; });
+    return totals_;
   }
-  WindowTotals t{window_sums(width, height, r, kReplicateWindowRadius),
-                 window_sums(width, height, s, kReplicateWindowRadius),
-                 window_sums(width, height, n, kReplicateWindowRadius)};
-  for (std::size_t p = 0; p < r.size(); ++p) {
-    t.replicate[p] -= r[p], t.sample[p] -= s[p], t.pixels[p] -= n[p];
-  }
-  return t;
-}
+
+ private:
+  std::vector<WindowTotal> own_, table_, totals_;
+};
 
 // Rounding of the windows' sums can leave a tiny negative remainder.
 double ratio_of(double replicate, double sample) {
@@ -186,11 +188,11 @@ void trimmed_ratios(int width, int height, const std::vector<Vec3d>& replicate,
   std::vector<double> channel_replicate[3], channel_sample[3];
   for (std::size_t c = 0; c < 3; ++c) {
     channel_replicate[c].resize(sample.size()), channel_sample[c].resize(sample.size());
-    for (std::size_t p = 0; p < sample.size(); ++p) {
+    for_each_pixel(sample.size(), [&](std::size_t p) {
       // A pixel without an estimate has none of either (its sample variance 0 keeps it out).
       channel_replicate[c][p] = classes[p] < 0 ? 0.0 : replicate[p][c];
       channel_sample[c][p] = classes[p] < 0 ? 0.0 : sample[p][c];
-    }
+    });
   }
   const auto bounds_of = [&](std::size_t c, int x, int y) {
     const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
@@ -241,19 +243,18 @@ std::vector<Vec3d> replicate_ratios(int width, int height, const std::vector<Pix
   if (sampler == SamplerKind::Independent) return std::vector<Vec3d>(sums.size(), Vec3d{1, 1, 1});
   std::vector<Vec3d> replicate(sums.size()), sample(sums.size());
   std::vector<int> classes(sums.size(), -1);
-  int most = -1;
-  for (std::size_t p = 0; p < sums.size(); ++p) {
-    if (samples[p] < 2) continue;  // no estimate of either kind
+  for_each_pixel(sums.size(), [&](std::size_t p) {
+    if (samples[p] < 2) return;  // no estimate of either kind
     const Vec3d own = variance_of_mean(sums[p], spreads[p], samples[p]);
-    if (!std::isfinite(own.x + own.y + own.z)) continue;
+    if (!std::isfinite(own.x + own.y + own.z)) return;
     sample[p] = own;
     replicate[p] = replicate_estimate(sums[p], spreads[p], first, samples[p]);
     for (std::size_t c = 0; c < 3; ++c) {
       if (own[c] == 0.0) replicate[p][c] = 0.0;  // equal samples, to the sums' resolution
     }
     classes[p] = count_class(samples[p]);
-    most = std::max(most, classes[p]);
-  }
+  });
+  const int most = classes.empty() ? -1 : *std::max_element(classes.begin(), classes.end());
   // Each channel on its own: the gain differs between them (on the blue diffuse sphere of
   // `materials` red and green converge faster than blue, whose multiple bounces keep more of
   // their weight; one ratio for all three, weighted by blue's larger variance, understated red's
@@ -261,21 +262,25 @@ std::vector<Vec3d> replicate_ratios(int width, int height, const std::vector<Pix
   std::vector<Vec3d> ratios(sums.size(), Vec3d{1, 1, 1});
   const bool uniform_counts =
       std::all_of(classes.begin(), classes.end(), [&](int c) { return c == most || c < 0; });
+  ClassWindows windows;
   for (std::size_t channel = 0; channel < 3; ++channel) {
     // Each pixel's ratio from the neighbours of its own count class where there are enough of
     // them, else from the neighbours of every count.
-    const WindowTotals all = class_windows(width, height, replicate, sample, channel, classes, -1);
-    for (std::size_t p = 0; p < sums.size(); ++p)
-      ratios[p][channel] = ratio_of_window(all.replicate[p], all.sample[p], all.pixels[p]);
+    const std::vector<WindowTotal>& all =
+        windows.of(width, height, replicate, sample, channel, classes, -1);
+    for_each_pixel(sums.size(), [&](std::size_t p) {
+      ratios[p][channel] = ratio_of_window(all[p].replicate, all[p].sample, all[p].pixels);
+    });
     if (uniform_counts) continue;  // trimmed below, the three channels at once
     for (int c = 0; c <= most; ++c) {
       if (std::find(classes.begin(), classes.end(), c) == classes.end()) continue;
-      const WindowTotals own = class_windows(width, height, replicate, sample, channel, classes, c);
-      for (std::size_t p = 0; p < sums.size(); ++p) {
-        if (classes[p] == c && own.pixels[p] >= kReplicateMinNeighbours) {
-          ratios[p][channel] = ratio_of(own.replicate[p], own.sample[p]);
+      const std::vector<WindowTotal>& own =
+          windows.of(width, height, replicate, sample, channel, classes, c);
+      for_each_pixel(sums.size(), [&](std::size_t p) {
+        if (classes[p] == c && own[p].pixels >= kReplicateMinNeighbours) {
+          ratios[p][channel] = ratio_of(own[p].replicate, own[p].sample);
         }
-      }
+      });
     }
   }
   if (uniform_counts) trimmed_ratios(width, height, replicate, sample, classes, ratios);
@@ -296,11 +301,11 @@ std::vector<Vec3d> honest_variances(const std::vector<Vec3d>& ratios,
                                     const std::vector<std::uint32_t>& samples, std::uint64_t first,
                                     SamplerKind sampler) {
   std::vector<Vec3d> variances(sums.size());
-  for (std::size_t p = 0; p < sums.size(); ++p) {
+  for_each_pixel(sums.size(), [&](std::size_t p) {
     const Vec3d own = variance_of_mean(sums[p], spreads[p], samples[p]);
     if (samples[p] < 2 || sampler == SamplerKind::Independent) {
       variances[p] = own;  // exact for independent samples; below two: infinite, unknown
-      continue;
+      return;
     }
     const Vec3d replicates = replicate_estimate(sums[p], spreads[p], first, samples[p]);
     for (std::size_t c = 0; c < 3; ++c) {
@@ -310,7 +315,7 @@ std::vector<Vec3d> honest_variances(const std::vector<Vec3d>& ratios,
                                       : own[c] * ratios[p][c] * (1.0 - kOwnReplicateWeight) +
                                             replicates[c] * kOwnReplicateWeight;
     }
-  }
+  });
   return variances;
 }
 

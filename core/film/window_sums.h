@@ -20,8 +20,8 @@ inline constexpr std::size_t kWindowRowsPerTask = 16, kWindowColumnsPerTask = 64
 // column's running sum of those down the rows, then the windows, each step in parallel over
 // rows or columns and each sum in one order: the same bits for any thread count.
 template <typename T>
-void window_sums(const std::vector<T>& values, int width, int height, int r,
-                 std::vector<T>& table, std::vector<T>& sums) {
+void window_sums(const std::vector<T>& values, int width, int height, int r, std::vector<T>& table,
+                 std::vector<T>& sums) {
   const auto w = std::size_t(width) + 1, rows = std::size_t(height);
   table.resize(w * (rows + 1));
   std::fill_n(table.begin(), w, T{});  // the row above the image
@@ -35,19 +35,20 @@ void window_sums(const std::vector<T>& values, int width, int height, int r,
       }
     }
   });
-  parallel_for_range(std::size_t(width), kWindowColumnsPerTask,
-                     [&](std::size_t x0, std::size_t x1) {
-                       for (std::size_t y = 1; y < rows; ++y)
-                         for (std::size_t x = x0; x < x1; ++x)
-                           table[(y + 1) * w + x + 1] =
-                               table[y * w + x + 1] + table[(y + 1) * w + x + 1];
-                     });
+  parallel_for_range(
+      std::size_t(width), kWindowColumnsPerTask, [&](std::size_t x0, std::size_t x1) {
+        for (std::size_t y = 1; y < rows; ++y)
+          for (std::size_t x = x0; x < x1; ++x)
+            table[(y + 1) * w + x + 1] = table[y * w + x + 1] + table[(y + 1) * w + x + 1];
+      });
   sums.resize(values.size());
   parallel_for_range(rows, kWindowRowsPerTask, [&](std::size_t first_row, std::size_t end_row) {
     for (int y = int(first_row); y < int(end_row); ++y) {
-      const auto y0 = std::size_t(std::max(0, y - r)), y1 = std::size_t(std::min(height, y + r + 1));
+      const auto y0 = std::size_t(std::max(0, y - r)),
+                 y1 = std::size_t(std::min(height, y + r + 1));
       for (int x = 0; x < width; ++x) {
-        const auto x0 = std::size_t(std::max(0, x - r)), x1 = std::size_t(std::min(width, x + r + 1));
+        const auto x0 = std::size_t(std::max(0, x - r)),
+                   x1 = std::size_t(std::min(width, x + r + 1));
         sums[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
             table[y1 * w + x1] - table[y0 * w + x1] - table[y1 * w + x0] + table[y0 * w + x0];
       }

@@ -203,7 +203,8 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
   if (budget_spp < double(least)) least = std::uint32_t(budget_spp);
   for (bool first = start_rounds(state, least);; first = false) {
     render_round(ctx, first, deadline, journal, progress, result);
-    if (deadline.ended()) break;
+    // After the round that spends the rest of the budget a judgement could only end the render.
+    if (deadline.ended() || state.last_round) break;
     const PixelEstimates e =
         with_threads(settings.threads, [&] { return pooled_estimates(settings, pixels); });
     if (by_error) {
@@ -235,7 +236,7 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
     progress->budget_rays = budget, progress->spent_rays = spent;
     progress->rays_at_judgement = progress->rays_traced.load();
     ++progress->judgements;
-    if (!(budget > spent) || state.last_round) break;
+    if (!(budget > spent)) break;
     state.last_round = 2.0 * spent >= budget;
     state.targets = with_threads(settings.threads, [&] {
       return allocate_budget(e, pixels.samples, std::min(budget, 2.0 * spent), most);

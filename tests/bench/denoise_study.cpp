@@ -156,6 +156,31 @@ void trade(const Scene& scene, int width, int height, int reference_spp) {
         "%.3f s\n",
         spp, denoised, noisy, render_s, denoise_s, render_s + denoise_s);
   }
+  // Adaptive budgets, each pixel at least a quarter of the budget (as calibrate-adaptive):
+  // alone (one sequence, as --adaptive renders without --denoise) and denoised.
+  for (const int spp : {8, 16, 32, 64, 100}) {
+    double alone = 0, denoised = 0, alone_s = 1e30, render_s = 1e30, denoise_s = 1e30;
+    for (int seed = 1; seed <= 2; ++seed) {
+      RenderSettings s = plain;
+      s.seed = std::uint64_t(seed), s.samples = AdaptiveBudget{spp, spp / 4};
+      auto start = std::chrono::steady_clock::now();
+      const RenderResult a = render(scene, s);
+      alone_s = std::min(alone_s, seconds_since(start));
+      alone += ref.image_error(a.film.pixels()) / 2;
+      s = denoise_settings(width, height, spp, std::uint64_t(seed));
+      s.samples = AdaptiveBudget{spp, spp / 4};
+      start = std::chrono::steady_clock::now();
+      const RenderResult r = render(scene, s);
+      render_s = std::min(render_s, seconds_since(start));
+      const DenoisedImage d = denoise(denoise_input(r));
+      denoise_s = std::min(denoise_s, d.seconds);
+      denoised += ref.image_error(d.image.pixels()) / 2;
+    }
+    std::printf(
+        "  --adaptive %3d spp: true error %.5f in %.3f s | --denoise: true error %.5f, render "
+        "%.3f s + denoise %.3f s = %.3f s\n",
+        spp, alone, alone_s, denoised, render_s, denoise_s, render_s + denoise_s);
+  }
 }
 
 // --image-error E --denoise: the error each render delivers against the reference, as a
