@@ -36,14 +36,8 @@ inline constexpr std::size_t kPixelsPerTask = 4096;
 // body(p) for every pixel index p < n, in parallel: each pixel's value is its own.
 template <typename Body>
 void for_each_pixel(std::size_t n, const Body& body) {
-  parallel_for_range(n, kPixelsPerTask, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) body(p);
-  });
+  for_each_index(n, kPixelsPerTask, body);
 }
-
-}  // namespace
-
-namespace {
 
 // A pixel's count class: the sampler's gain grows with the count, so an adaptive render's
 // pixels borrow the ratio only from neighbours of about their own count (within 2x).

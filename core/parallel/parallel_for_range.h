@@ -28,4 +28,13 @@ void parallel_for_range(std::size_t n, std::size_t grain, const Body& body) {
   tsan_acquire(&tsan_join_sync);  // every chunk's writes before the caller goes on
 }
 
+// body(i) for every index i < n, in parallel, `grain` indices a chunk: for loops whose every
+// index's result is its own (a pixel's), the same for any split.
+template <typename Body>
+void for_each_index(std::size_t n, std::size_t grain, const Body& body) {
+  parallel_for_range(n, grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) body(i);
+  });
+}
+
 }  // namespace rtiow

@@ -19,9 +19,7 @@ namespace {
 // any split).
 template <typename PixelBody>
 void for_each_pixel(std::size_t n, const PixelBody& body) {
-  parallel_for_range(n, kPixelsPerChunk, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) body(p);
-  });
+  for_each_index(n, kPixelsPerChunk, body);
 }
 
 // Rows of the image in parallel, likewise.
