@@ -125,6 +125,36 @@ void calibrate(const Scene& scene, int width, int height, int reference_spp, int
   }
 }
 
+// One curve of the trade: a count's true error and the seconds it took, render and denoising.
+struct TradePoint {
+  int spp;
+  double error, seconds;
+};
+
+// Where a curve reaches `error`: between the two counts around it, the error as spp^-k and the
+// seconds linear in the count. "already" where its first count is below it, "not reached" where
+// its last is above.
+void print_crossing(const char* name, const std::vector<TradePoint>& curve, double error,
+                    double default_seconds) {
+  if (curve.front().error <= error) {
+    std::printf("  %s: below it already at %d spp, %.3f s: %.2fx\n", name, curve.front().spp,
+                curve.front().seconds, default_seconds / curve.front().seconds);
+    return;
+  }
+  for (std::size_t i = 0; i + 1 < curve.size(); ++i) {
+    const TradePoint& a = curve[i];
+    const TradePoint& b = curve[i + 1];
+    if (b.error > error) continue;
+    const double k = std::log(a.error / b.error) / std::log(double(b.spp) / double(a.spp));
+    const double spp = a.spp * std::pow(a.error / error, 1.0 / k);
+    const double seconds = a.seconds + (b.seconds - a.seconds) * (spp - a.spp) / (b.spp - a.spp);
+    std::printf("  %s: reaches it at %.0f spp, %.3f s: %.2fx\n", name, spp, seconds,
+                default_seconds / seconds);
+    return;
+  }
+  std::printf("  %s: not reached by %d spp\n", name, curve.back().spp);
+}
+
 void trade(const Scene& scene, int width, int height, int reference_spp) {
   const Reference ref = reference_of(scene, width, height, reference_spp);
   RenderSettings plain;  // the default image: one Sobol sequence, no passes
@@ -139,6 +169,7 @@ void trade(const Scene& scene, int width, int height, int reference_spp) {
   }
   std::printf("%s %dx%d: default 100 spp: true error %.5f, %.3f s (fastest of 3)\n",
               scene.name.c_str(), width, height, error, fastest);
+  std::vector<TradePoint> denoised_curve, adaptive_curve, adaptive_denoised_curve;
   for (const int spp : {8, 16, 32, 64, 100}) {
     double denoised = 0, noisy = 0, render_s = 1e30, denoise_s = 1e30;
     for (int seed = 1; seed <= 2; ++seed) {
@@ -155,6 +186,7 @@ void trade(const Scene& scene, int width, int height, int reference_spp) {
         "  --denoise %3d spp: true error %.5f (noisy %.5f), render %.3f s + denoise %.3f s = "
         "%.3f s\n",
         spp, denoised, noisy, render_s, denoise_s, render_s + denoise_s);
+    denoised_curve.push_back({spp, denoised, render_s + denoise_s});
   }
   // Adaptive budgets, each pixel at least a quarter of the budget (as calibrate-adaptive):
   // alone (one sequence, as --adaptive renders without --denoise) and denoised.
@@ -180,7 +212,14 @@ void trade(const Scene& scene, int width, int height, int reference_spp) {
         "  --adaptive %3d spp: true error %.5f in %.3f s | --denoise: true error %.5f, render "
         "%.3f s + denoise %.3f s = %.3f s\n",
         spp, alone, alone_s, denoised, render_s, denoise_s, render_s + denoise_s);
+    adaptive_curve.push_back({spp, alone, alone_s});
+    adaptive_denoised_curve.push_back({spp, denoised, render_s + denoise_s});
   }
+  std::printf("  the default image's error, %.5f, %.3f s: how soon each reaches it\n", error,
+              fastest);
+  print_crossing("--denoise", denoised_curve, error, fastest);
+  print_crossing("--adaptive", adaptive_curve, error, fastest);
+  print_crossing("--adaptive --denoise", adaptive_denoised_curve, error, fastest);
 }
 
 // --image-error E --denoise: the error each render delivers against the reference, as a
