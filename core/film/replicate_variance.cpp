@@ -1,6 +1,7 @@
 #include "core/film/replicate_variance.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -248,14 +249,17 @@ std::vector<Vec3d> replicate_ratios(int width, int height, const std::vector<Pix
     }
     classes[p] = count_class(samples[p]);
   });
-  const int most = classes.empty() ? -1 : *std::max_element(classes.begin(), classes.end());
+  // Which count classes the image holds (a class is a bit width, so at most 32), in one pass.
+  std::array<bool, 32> present{};
+  for (const int c : classes)
+    if (c >= 0) present[std::size_t(c)] = true;
+  const auto classes_present = std::size_t(std::count(present.begin(), present.end(), true));
   // Each channel on its own: the gain differs between them (on the blue diffuse sphere of
   // `materials` red and green converge faster than blue, whose multiple bounces keep more of
   // their weight; one ratio for all three, weighted by blue's larger variance, understated red's
   // and green's 2.5x there at 1024 spp).
   std::vector<Vec3d> ratios(sums.size(), Vec3d{1, 1, 1});
-  const bool uniform_counts =
-      std::all_of(classes.begin(), classes.end(), [&](int c) { return c == most || c < 0; });
+  const bool uniform_counts = classes_present <= 1;
   ClassWindows windows;
   for (std::size_t channel = 0; channel < 3; ++channel) {
     // Each pixel's ratio from the neighbours of its own count class where there are enough of
@@ -266,8 +270,8 @@ std::vector<Vec3d> replicate_ratios(int width, int height, const std::vector<Pix
       ratios[p][channel] = ratio_of_window(all[p].replicate, all[p].sample, all[p].pixels);
     });
     if (uniform_counts) continue;  // trimmed below, the three channels at once
-    for (int c = 0; c <= most; ++c) {
-      if (std::find(classes.begin(), classes.end(), c) == classes.end()) continue;
+    for (int c = 0; c < int(present.size()); ++c) {
+      if (!present[std::size_t(c)]) continue;
       const std::vector<WindowTotal>& own =
           windows.of(width, height, replicate, sample, channel, classes, c);
       for_each_pixel(sums.size(), [&](std::size_t p) {
