@@ -35,19 +35,21 @@ struct Truth {
 constexpr std::uint32_t kHalfSamples = 8;
 
 // Two independent halves of `truth`, each a mean of kHalfSamples samples with per-sample
-// standard deviation `sigma`.
-DenoiseInput noisy_halves(const Truth& truth, double sigma, std::uint64_t seed) {
+// standard deviation `sigma`, or `sigma` times the pixel's value where `relative`, as a render's
+// noise scales with its light.
+DenoiseInput noisy_halves(const Truth& truth, double sigma, std::uint64_t seed,
+                          bool relative = false) {
   std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0.0, sigma / std::sqrt(double(kHalfSamples)));
+  std::normal_distribution<double> unit(0.0, 1.0 / std::sqrt(double(kHalfSamples)));
   DenoiseInput in;
   in.width = truth.width, in.height = truth.height;
   for (int y = 0; y < truth.height; ++y) {
     for (int x = 0; x < truth.width; ++x) {
-      const double t = truth.value(x, y);
+      const double t = truth.value(x, y), sd = relative ? sigma * t : sigma;
       Color a, b;
       for (std::size_t c = 0; c < 3; ++c) {
-        a[c] = float(t + noise(rng));
-        b[c] = float(t + noise(rng));
+        a[c] = float(t + sd * unit(rng));
+        b[c] = float(t + sd * unit(rng));
       }
       in.even.push_back(a), in.odd.push_back(b);
       in.mean.push_back((a + b) * 0.5f);
@@ -200,6 +202,39 @@ TEST(Denoiser, TheErrorItReportsIsTheErrorItDelivers) {
   std::printf("estimated over true image error: %.3f\n", ratio);
   EXPECT_GT(ratio, 0.8);
   EXPECT_LT(ratio, 1.25);
+}
+
+// The per-pixel error channel, summed over a region and read relative to the image as the
+// image's error is, reads that region's error: here a dark region beside a bright one, whose
+// squared errors are 2,500 times the dark one's. Averaged as they were, the bright pixels'
+// errors landed on their dark neighbours and the channel read 15 times the dark region's error;
+// now 1.5: where the features explain the image the filter leaves little error, and the
+// channel's floor at 0 (each pixel's own estimate is noise about it) lifts the average.
+TEST(Denoiser, ItsErrorChannelReadsADarkRegionBesideABrightOne) {
+  const Truth halves{64, 48, [](int x, int) { return x < 32 ? 0.02f : 1.0f; },
+                     [](int x, int) -> PixelFeatures {
+                       const float a = x < 32 ? 0.02f : 1.0f;
+                       return {a, a, a, 0.f, 0.f, 1.f, 4.f};
+                     }};
+  double truth = 0, estimate = 0;
+  for (std::uint64_t seed = 21; seed <= 24; ++seed) {
+    const DenoisedImage d = denoise(noisy_halves(halves, 0.5, seed, true));
+    for (int y = 0; y < halves.height; ++y) {
+      for (int x = 0; x < 32; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(halves.width) + std::size_t(x);
+        const double t = halves.value(x, y);
+        for (std::size_t c = 0; c < 3; ++c) {
+          const double z = d.image.at(x, y)[c], e = z - t;
+          truth += e * e / ((t + 0.01) * (t + 0.01));
+          estimate += d.mse[p][c] / ((z + 0.01) * (z + 0.01));
+        }
+      }
+    }
+  }
+  const double ratio = std::sqrt(estimate / truth);
+  std::printf("the dark region's error from the channel over its true error: %.3f\n", ratio);
+  EXPECT_GT(ratio, 0.7);
+  EXPECT_LT(ratio, 2.0);
 }
 
 // The same against independent renders: the cover at 16 spp, three seeds, against a 1024-spp

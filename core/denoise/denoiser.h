@@ -35,7 +35,8 @@ namespace rtiow {
 struct DenoisedImage {
   Film image;                     // the denoised image
   Film noisy;                     // the noisy mean it was made from
-  std::vector<Vec3d> mse;         // each pixel's estimated squared error per channel (>= 0)
+  std::vector<Vec3d> mse;         // each pixel's estimated squared error per channel (>= 0),
+                                  // averaged over 7x7 pixels relative to their levels
   std::vector<float> noisy_kept;  // the noisy value's share in each pixel: 1 where it kept it
   double estimated_error = 0.0;   // the image's relative RMS error (offset 0.01), estimated
   double noisy_error = 0.0;       // the noisy image's, by the same estimate

@@ -67,9 +67,15 @@ Reference reference_of(const Scene& scene, int width, int height, int spp) {
   return {denoise_input(render(scene, denoise_settings(width, height, spp, 999))), width};
 }
 
-// The share of 32x32 blocks whose true error is over twice the denoiser's per-pixel estimate.
-std::pair<int, int> blocks_over_estimate(const Reference& ref, const DenoisedImage& d) {
-  int over = 0, blocks = 0;
+// The per-pixel error channel against the truth in 32x32 blocks, each read relative to the
+// denoised image as a user of the file would: how many blocks' true error is over twice their
+// estimate, how many under half of it, and the channel's total over the true total.
+struct BlockReading {
+  int over = 0, under = 0, blocks = 0;
+  double estimate = 0, truth = 0;
+};
+BlockReading blocks_against_estimate(const Reference& ref, const DenoisedImage& d) {
+  BlockReading b;
   const int w = d.image.width(), h = d.image.height();
   for (int by = 0; by + 32 <= h; by += 32) {
     for (int bx = 0; bx + 32 <= w; bx += 32) {
@@ -84,10 +90,11 @@ std::pair<int, int> blocks_over_estimate(const Reference& ref, const DenoisedIma
           }
         }
       }
-      ++blocks, over += truth > 2 * estimate ? 1 : 0;
+      ++b.blocks, b.over += truth > 2 * estimate ? 1 : 0, b.under += estimate > 2 * truth ? 1 : 0;
+      b.estimate += estimate, b.truth += truth;
     }
   }
-  return {over, blocks};
+  return b;
 }
 
 // `adaptive`: each count is an adaptive budget (--adaptive --spp N, at least N/4 a pixel).
@@ -102,7 +109,7 @@ void calibrate(const Scene& scene, int width, int height, int reference_spp, int
       const DenoisedImage d = denoise(denoise_input(r));
       const double truth = ref.image_error(d.image.pixels());
       const double noisy = ref.image_error(r.film.pixels());
-      const auto [over, blocks] = blocks_over_estimate(ref, d);
+      const BlockReading b = blocks_against_estimate(ref, d);
       // The noisy value's share in the image, and the true squared error's share in the
       // pixels that kept more than half of it: where more gain would have to come from.
       double share = 0, kept_error = 0, all_error = 0;
@@ -116,10 +123,11 @@ void calibrate(const Scene& scene, int width, int height, int reference_spp, int
       std::printf(
           "%s %dx%d spp %d seed %d: denoised est %.5f true %.5f ratio %.3f | noisy est %.5f "
           "true %.5f | mse gain %.2f | noisy share %.1f%% (%.0f%% of the true error) | blocks bad "
-          "%d/%d | %.2fs\n",
+          "%d/%d, over-read %d, channel over truth %.2f | %.2fs\n",
           scene.name.c_str(), width, height, spp, seed, d.estimated_error, truth,
           d.estimated_error / truth, d.noisy_error, noisy, noisy * noisy / (truth * truth),
-          100.0 * share / double(d.noisy_kept.size()), 100.0 * kept_error / all_error, over, blocks,
+          100.0 * share / double(d.noisy_kept.size()), 100.0 * kept_error / all_error, b.over, b.blocks,
+          b.under, b.estimate / b.truth,
           d.seconds);
     }
   }
