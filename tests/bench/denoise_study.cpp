@@ -126,9 +126,8 @@ void calibrate(const Scene& scene, int width, int height, int reference_spp, int
           "%d/%d, over-read %d, channel over truth %.2f | %.2fs\n",
           scene.name.c_str(), width, height, spp, seed, d.estimated_error, truth,
           d.estimated_error / truth, d.noisy_error, noisy, noisy * noisy / (truth * truth),
-          100.0 * share / double(d.noisy_kept.size()), 100.0 * kept_error / all_error, b.over, b.blocks,
-          b.under, b.estimate / b.truth,
-          d.seconds);
+          100.0 * share / double(d.noisy_kept.size()), 100.0 * kept_error / all_error, b.over,
+          b.blocks, b.under, b.estimate / b.truth, d.seconds);
     }
   }
 }
