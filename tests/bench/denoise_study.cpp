@@ -21,6 +21,7 @@
 #include "core/render/denoised_output.h"
 #include "core/render/render.h"
 #include "core/scene/builtin_scenes.h"
+#include "tests/reference_error.h"
 
 namespace rtiow {
 namespace {
@@ -80,16 +81,7 @@ BlockReading blocks_against_estimate(const Reference& ref, const DenoisedImage& 
   for (int by = 0; by + 32 <= h; by += 32) {
     for (int bx = 0; bx + 32 <= w; bx += 32) {
       const double truth = ref.squared_error(d.image.pixels(), bx, by, bx + 32, by + 32);
-      double estimate = 0;
-      for (int y = by; y < by + 32; ++y) {
-        for (int x = bx; x < bx + 32; ++x) {
-          const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
-          for (std::size_t c = 0; c < 3; ++c) {
-            const double z = d.image.pixels()[p][c];
-            estimate += d.mse[p][c] / ((z + 0.01) * (z + 0.01));
-          }
-        }
-      }
+      const double estimate = channel_relative_squared_error(d, bx, by, bx + 32, by + 32);
       ++b.blocks, b.over += truth > 2 * estimate ? 1 : 0, b.under += estimate > 2 * truth ? 1 : 0;
       b.estimate += estimate, b.truth += truth;
     }
