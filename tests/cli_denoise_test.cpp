@@ -145,6 +145,9 @@ TEST(CliDenoise, ARenderStoppedBeforeTwoSamplesKeepsItsNoisyImage) {
 TEST(CliDenoise, RefusesWhatItCannotDenoiseInOneLine) {
   expect_refused("--denoise --target-error 0.05", "the target would be each noisy pixel's error");
   expect_refused("--denoise --spp 1", "--denoise needs at least 2 spp");
+  // A count no render takes is refused as the plain render refuses it.
+  expect_refused("--denoise --spp -5", "spp must be > 0");
+  expect_refused("--denoise --spp 0", "spp must be > 0");
   // Parts rendered without --denoise keep no halves or first hits.
   const fs::path part = output_path("plain.exr"), out = output_path("out.png");
   ASSERT_EQ(

@@ -116,7 +116,8 @@ void check_denoise_options(const JobRequest& r) {
                        setting("image_error") + " (the denoised image's error), a sample count, " +
                        setting("time_limit") + " or " + setting("adaptive") + " instead");
   }
-  if (r.request.spp && *r.request.spp < 2 && !r.request.adaptive) {
+  // (A count below 1 is refused as any render's is, in its own words.)
+  if (r.request.spp && *r.request.spp == 1 && !r.request.adaptive) {
     throw InvalidInput(setting("denoise") +
                        " needs at least 2 spp, one in each half it compares (" +
                        setting("spp", std::to_string(*r.request.spp)) + ")");
