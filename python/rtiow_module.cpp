@@ -68,6 +68,7 @@ void denoise_in_memory(Render& render) {
   render.denoised = interruptible<DenoisedImage>([&](const std::function<bool()>& cancelled) {
     return denoised_image(render.result, DenoiseControl{cancelled});
   });
+  if (render.denoised) take_delivered_estimate(render.settings, render.result, *render.denoised);
 }
 
 // A render watched (python/watched_work.h): a signal, or an exception from the progress

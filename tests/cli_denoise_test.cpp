@@ -129,6 +129,29 @@ TEST(CliDenoise, AnImageErrorTargetJudgesTheDenoisedImage) {
   EXPECT_EQ(slurp(image), slurp(again));
 }
 
+// A target its time limit cut short reports the error of the image it delivers, wherever the
+// limit fell: the summary line, --summary-json and the metadata give the denoised image's
+// estimate (they gave the last judgement's, of fewer samples, or none).
+TEST(CliDenoise, ATargetCutShortReportsTheErrorOfTheImageItDelivers) {
+  const fs::path image = output_path("cut.exr"), summary = output_path("cut.json");
+  const CommandResult r =
+      run_rtiow("render --width 96 --seed 3 --image-error 0.001 --denoise --time-limit 0.3 -o " +
+                image.string() + " --summary-json " + summary.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const auto j = nlohmann::json::parse(slurp(summary));
+  EXPECT_FALSE(j["error"]["target"]["reached"].get<bool>()) << j.dump();
+  EXPECT_EQ(j["error"]["estimate"], "calibrated") << j.dump();
+  EXPECT_EQ(j["error"]["estimated"], j["denoise"]["estimated_error"]) << j.dump();
+  const double delivered = j["denoise"]["estimated_error"].get<double>();
+  auto in = OIIO::ImageInput::open(image.string());
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().get_float_attribute("rtiow:estimated_image_error", -1.0f),
+            in->spec().get_float_attribute("rtiow:denoise.estimated_error", -2.0f));
+  char said[64];
+  std::snprintf(said, sizeof said, "not reached: %.3g at ", delivered);
+  EXPECT_NE(r.stderr_text.find(said), std::string::npos) << said << "\n" << r.stderr_text;
+}
+
 TEST(CliDenoise, ARenderStoppedBeforeTwoSamplesKeepsItsNoisyImage) {
   // A time limit that ends the render after its first pass of 1 spp: nothing to compare.
   const fs::path image = output_path("first-pass.png");

@@ -85,6 +85,37 @@ TEST(DenoisedTarget, ATimeLimitEndsTheJudgementToo) {
   EXPECT_EQ(r.estimated_image_error, 0.0);
 }
 
+// Stopped in a round after a judgement, the render has no estimate of the sums it ends with
+// (its last judgement's was of fewer samples: the summary said "not reached: 0.071 at 64 spp" of
+// the 16-spp judgement); the image denoised for its output gives it that image's.
+TEST(DenoisedTarget, EndedInARoundItTakesTheEstimateOfTheImageItDelivers) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  const RenderSettings s = denoised_target(0.01, 3);
+  RenderProgress progress;
+  Checkpointing keep;
+  keep.interval_seconds = 1e-9;  // a save after every group of pixels
+  keep.save = [&](const RenderState& state, SaveReason) {
+    if (state.pixels.samples.front() > 8) progress.stop_requested = true;  // in the second round
+  };
+  RenderResult r = render(scene, s, &progress, &keep);
+  ASSERT_TRUE(r.stopped);
+  ASSERT_GE(progress.judgements.load(), 1);
+  EXPECT_FALSE(r.denoised);
+  EXPECT_EQ(r.estimated_image_error, 0.0);
+  EXPECT_EQ(r.error_estimate, ErrorEstimate::None);
+  const DenoisedImage delivered = denoised_image(r);
+  take_delivered_estimate(s, r, delivered);
+  EXPECT_EQ(r.estimated_image_error, delivered.estimated_error);
+  EXPECT_EQ(r.error_estimate, ErrorEstimate::Calibrated);
+  // A render that is not a denoised target keeps its own.
+  RenderSettings fixed = s;
+  fixed.samples = FixedSamples{8};
+  RenderResult plain = render(scene, fixed);
+  const double own = plain.estimated_image_error;
+  take_delivered_estimate(fixed, plain, delivered);
+  EXPECT_EQ(plain.estimated_image_error, own);
+}
+
 // The error delivered, against a 1024-spp reference of another seed (its own noise taken out),
 // over four seeds: at most the target, and not far below it (the rounds aim at 0.92 of it and
 // overshoot by at most one round's step).

@@ -154,7 +154,7 @@ void report_start(const RenderSession& session, const std::string& output, bool 
 
 // The render's end: the final write (a second signal waits for it), the viewer's last picture,
 // the lines and the summary.
-int end_render(const RenderOptions& o, const RenderJob& job, const RenderResult& result,
+int end_render(const RenderOptions& o, const RenderJob& job, RenderResult& result,
                RenderSession& session, const RenderProgress& progress, const MpiSession& mpi) {
   SessionEnd end;
   {

@@ -243,6 +243,14 @@ void render_by_image_error(const RenderContext<Accel>& ctx, RenderProgress* prog
     });
     if (!any_target_above(state)) break;
   }
+  // Ended between judgements (its time limit, a stop): the last judgement saw fewer samples than
+  // the image has, so the image's estimate is taken from its final sums, as a judgement would.
+  if (by_error && deadline.ended()) {
+    const PixelEstimates e =
+        with_threads(settings.threads, [&] { return pooled_estimates(settings, pixels); });
+    result.estimated_image_error = std::sqrt(estimated_rel_mse(e.variance, pixels.samples));
+    progress->image_error = result.estimated_image_error;
+  }
   deadline.report(result, pixels);
 }
 

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <string>
+#include <variant>
 
 #include "core/denoise/denoiser.h"
 #include "core/denoise/pixel_loop.h"
@@ -94,6 +95,14 @@ std::string describe(const DenoiseFigures& f) {
       "denoised in %.2f s: image error %.4f estimated (the noisy image %.4f by the same estimate)",
       f.seconds, f.estimated_error, f.noisy_error);
   return line;
+}
+
+void take_delivered_estimate(const RenderSettings& settings, RenderResult& result,
+                             const DenoisedImage& denoised) {
+  const auto* target = std::get_if<ImageErrorTarget>(&settings.samples);
+  if (!target || !target->denoised) return;
+  result.estimated_image_error = denoised.estimated_error;
+  result.error_estimate = ErrorEstimate::Calibrated;
 }
 
 DenoisedImage denoised_image(const RenderResult& result, const DenoiseControl& control) {

@@ -16,6 +16,7 @@
 namespace rtiow {
 
 struct RenderResult;
+struct RenderSettings;
 
 struct DenoiseFigures {
   double estimated_error = 0.0;  // the denoised image's relative RMS error (offset 0.01)
@@ -54,6 +55,13 @@ DenoiseInput denoise_input(const RenderResult& result);
 // Why the sums cannot be denoised (what denoise_input() would refuse), or empty.
 std::string why_not_denoised(const DenoiseSource& source);
 std::string why_not_denoised(const RenderResult& result);
+
+// A denoised error target's estimate is the image it delivers: where the render ended between
+// judgements (its time limit, a stop), the denoiser's image of the finished sums, `denoised`,
+// gives the render its estimate, for the summary, the metadata and --summary-json to report.
+// Nothing for any other render.
+void take_delivered_estimate(const RenderSettings& settings, RenderResult& result,
+                             const DenoisedImage& denoised);
 
 // The denoised image of `result`: its last judgement's where an image-error target judged
 // these very sums denoised (RenderResult::denoised), else the denoiser's (core/denoise/

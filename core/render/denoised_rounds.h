@@ -85,6 +85,10 @@ void render_by_denoised_error(const RenderContext<Accel>& ctx, const ImageErrorT
     }
     std::fill(state.targets.begin(), state.targets.end(), next);
   }
+  // Ended between judgements (its time limit, a stop): no judgement saw the sums the image is
+  // made of, so the render has no estimate of its own; the image denoised for the output carries
+  // one (take_delivered_estimate() in core/render/denoised_output.h).
+  if (deadline.ended()) result.estimated_image_error = 0.0;
   deadline.report(result, state.pixels);
 }
 

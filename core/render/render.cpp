@@ -204,7 +204,7 @@ RenderResult render_with(const Scene& scene, const Camera& camera, const RenderS
   result.sampler = settings.sampler;
   result.replicates = replicates(settings);
   if (std::holds_alternative<ImageErrorTarget>(settings.samples)) {
-    // Its last judgement's estimate, the one its stopping rule took.
+    // Its estimate of the finished sums (its last judgement's, or made as the render ended).
     const bool judged =
         result.estimated_image_error > 0.0 || !(result.stopped || result.time_limited);
     result.error_estimate = judged ? ErrorEstimate::Calibrated : ErrorEstimate::None;

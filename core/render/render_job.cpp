@@ -175,13 +175,25 @@ RenderJob prepare_job(const JobRequest& r, Scene scene) {
   return job;
 }
 
-std::optional<DenoisedImage> write_job_result(const JobRequest& r, const RenderJob& job,
-                                              const RenderResult& result, const Metadata& metadata,
-                                              WorkProgress* progress) {
+std::optional<DenoisedImage> denoise_for_output(const JobRequest& r, const RenderJob& job,
+                                                const RenderResult& result,
+                                                WorkProgress* progress) {
+  if (job.share || !r.denoise || !why_not_denoised(result).empty()) return std::nullopt;
+  try {
+    return denoised_image(result, DenoiseControl{final_write_stop_requested, progress});
+  } catch (const DenoiseCancelled&) {
+    // An end asked for while it denoised (core/parallel/cancellation.h): what was rendered is
+    // written now, neither lost nor kept waiting for the denoiser.
+    return std::nullopt;
+  }
+}
+
+void write_job_result(const JobRequest& r, const RenderJob& job, const RenderResult& result,
+                      const Metadata& metadata, const DenoisedImage* denoised) {
   if (job.share) {
     write_part(job.output, make_part(job.scene, job.settings, job.samples_asked, result, metadata),
                result.sums);
-    return std::nullopt;
+    return;
   }
   const ImageFormat* format = image_format(job.output);
   const bool extra = format && format->extra_channels;
@@ -192,30 +204,21 @@ std::optional<DenoisedImage> write_job_result(const JobRequest& r, const RenderJ
                       : std::vector<ExtraChannel>{},
                 frame_placement(job.settings));
   };
-  // A render stopped (or time-limited) before each half had a sample keeps its noisy image.
-  if (!r.denoise || !why_not_denoised(result).empty()) {
+  // Not denoised: not asked, a render stopped (or time-limited) before each half had a sample,
+  // or an end asked for while it denoised.
+  if (!denoised) {
     write_noisy();
-    return std::nullopt;
+    return;
   }
   Metadata with_figures = metadata;
-  DenoisedImage made;
-  try {
-    made = denoised_image(result, DenoiseControl{final_write_stop_requested, progress});
-  } catch (const DenoiseCancelled&) {
-    // An end asked for while it denoised (core/parallel/cancellation.h): what was rendered is
-    // written now, neither lost nor kept waiting for the denoiser.
-    write_noisy();
-    return std::nullopt;
-  }
-  DenoisedOutput denoised = denoised_output(made, extra, with_figures);
+  DenoisedOutput output = denoised_output(*denoised, extra, with_figures);
   std::vector<ExtraChannel> channels;
   if (extra) {
-    channels = std::move(denoised.channels);
+    channels = std::move(output.channels);
     for (ExtraChannel& c : image_channels(result, r.stats_channels, job.settings.passes))
       channels.push_back(std::move(c));
   }
-  write_image(job.output, denoised.image, with_figures, channels, frame_placement(job.settings));
-  return made;
+  write_image(job.output, output.image, with_figures, channels, frame_placement(job.settings));
 }
 
 }  // namespace rtiow

@@ -66,13 +66,18 @@ RenderJob prepare_job(const JobRequest& request, Scene scene);
 // and its layout. prepare_job() loads it so; a caller that sets the scene up first uses this.
 Scene load_job_scene(const JobRequest& request);
 
-// The image (with the statistics channels where asked; denoised where asked) or, for a share,
-// the part file. Returns what the denoiser made where it denoised (not where a render stopped
-// before each half of every pixel had a sample: its noisy image is written). The denoiser's
-// progress goes to `progress`, where given.
-std::optional<DenoisedImage> write_job_result(const JobRequest& request, const RenderJob& job,
-                                              const RenderResult& result, const Metadata& metadata,
-                                              WorkProgress* progress = nullptr);
+// The image --denoise writes, made before the metadata that reports its figures: none where the
+// request does not denoise, for a share (its part keeps the sums), where a render stopped before
+// each half of every pixel had a sample, or where an end was asked for while it denoised (the
+// image is then written as rendered). The denoiser's progress goes to `progress`, where given.
+std::optional<DenoisedImage> denoise_for_output(const JobRequest& request, const RenderJob& job,
+                                                const RenderResult& result,
+                                                WorkProgress* progress = nullptr);
+
+// The image (with the statistics channels where asked; `denoised`, from denoise_for_output(),
+// where it made one) or, for a share, the part file.
+void write_job_result(const JobRequest& request, const RenderJob& job, const RenderResult& result,
+                      const Metadata& metadata, const DenoisedImage* denoised);
 
 // The files the request reads: the scene file and the others.
 std::vector<std::string> input_files(const JobRequest& request);

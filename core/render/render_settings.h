@@ -187,7 +187,10 @@ struct RenderResult {
   std::uint64_t rays_traced = 0;
   // The image's estimated relative RMS error (offset 0.01), what it is worth, and
   // --target-error's count of pixels still above the target at the --spp cap. --image-error's
-  // is its last judgement's; every other render's is taken from its finished sums.
+  // is its last judgement's where that judged the finished sums, and where the render ended
+  // between judgements (a time limit, a stop) that of the finished sums: the pooled estimate's,
+  // or with --denoise none (0) until the image denoised for the output gives it
+  // (take_delivered_estimate()); every other render's is taken from its finished sums.
   double estimated_image_error = 0.0;
   ErrorEstimate error_estimate = ErrorEstimate::None;
   std::uint64_t pixels_above_target = 0;

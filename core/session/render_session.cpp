@@ -10,6 +10,7 @@
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/limits/setting_name.h"
+#include "core/render/denoised_output.h"
 #include "core/render/first_hit_passes.h"
 #include "core/render/render.h"
 #include "core/render/render_metadata.h"
@@ -86,7 +87,7 @@ RenderResult RenderSession::render(RenderProgress& progress) {
   return rtiow::render(job_.scene, job_.settings, &progress, checkpointing);
 }
 
-SessionEnd RenderSession::deliver(const RenderResult& result, WorkProgress* denoising) {
+SessionEnd RenderSession::deliver(RenderResult& result, WorkProgress* denoising) {
   if (display_) display_->show(result.film, pass_channels(result, job_.settings.passes));
   // A stopped render leaves a file that was there before it (and that no preview of its own
   // replaced) as it was: its samples are in the checkpoint, or else in a file beside it.
@@ -108,16 +109,18 @@ SessionEnd RenderSession::deliver(const RenderResult& result, WorkProgress* deno
 }
 
 // Writes the image; if that fails after the render, keeps the render's state and says where.
-std::optional<DenoisedImage> RenderSession::write_or_keep(const RenderResult& result,
+std::optional<DenoisedImage> RenderSession::write_or_keep(RenderResult& result,
                                                           WorkProgress* denoising) {
   CheckpointSession* checkpoint = checkpoint_.get();
   std::optional<DenoisedImage> denoised;
   try {
+    denoised = denoise_for_output(request_, job_, result, denoising);
+    if (denoised) take_delivered_estimate(job_.settings, result, *denoised);
     Metadata metadata = render_metadata(job_.scene, job_.settings, result, options_.reproducible);
     if (!request_.scene_file.empty()) {
       metadata.emplace_back(metadata_key::kSceneFile, request_.scene_file);
     }
-    denoised = write_job_result(request_, job_, result, metadata, denoising);
+    write_job_result(request_, job_, result, metadata, denoised ? &*denoised : nullptr);
   } catch (const InvalidInput&) {
     throw;
   } catch (const std::exception& e) {

@@ -68,8 +68,10 @@ class RenderSession {
   // samples without replacing what was at the output (in the checkpoint, else in
   // partial_output_path()). If the image cannot be written, the render's state is kept and the
   // error (std::runtime_error) says where. The denoiser's progress goes to `denoising`, where
-  // given (a display shows it).
-  SessionEnd deliver(const RenderResult& result, WorkProgress* denoising = nullptr);
+  // given (a display shows it). A denoised error target that ended between judgements takes
+  // its estimate from the image denoised for the output (take_delivered_estimate()), before the
+  // metadata reports it.
+  SessionEnd deliver(RenderResult& result, WorkProgress* denoising = nullptr);
 
   // Gives the viewer its last picture (at most kViewerSeconds; none once `stop` is set).
   void let_viewer_finish(const std::atomic<bool>& stop);
@@ -80,8 +82,7 @@ class RenderSession {
   int removed_temporaries() const { return removed_temporaries_; }
 
  private:
-  std::optional<DenoisedImage> write_or_keep(const RenderResult& result,
-                                             WorkProgress* denoising);
+  std::optional<DenoisedImage> write_or_keep(RenderResult& result, WorkProgress* denoising);
 
   RenderJob& job_;
   const JobRequest& request_;

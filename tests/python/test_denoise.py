@@ -92,3 +92,15 @@ def test_denoise_reports_its_progress_and_stops_where_progress_raises(tmp_path):
     assert not stopped.exists()
     merged = rtiow.merge([part], str(tmp_path / "m.png"), denoise=True, progress=seen.append)
     assert merged is not None and seen[-1] == 1.0
+
+
+def test_a_target_cut_short_reports_the_error_of_the_image_it_delivers():
+    # Wherever the time limit falls, the estimate is the denoised image's, not a judgement's of
+    # fewer samples.
+    render = rtiow.render(rtiow.builtin_scene("cover"), width=96, image_error=0.001,
+                          denoise=True, time_limit=0.3)
+    error = render.summary["error"]
+    assert render.summary["time_limited"]
+    assert error["estimate"] == "calibrated"
+    assert error["estimated"] == render.summary["denoise"]["estimated_error"]
+    assert f"not reached: {error['estimated']:.3g} at " in render.summary["samples"]
