@@ -195,6 +195,40 @@ TEST(Render, AnImageErrorTargetEndedInARoundReportsTheErrorOfItsFinishedSums) {
   EXPECT_EQ(r.error_estimate, ErrorEstimate::Calibrated);
 }
 
+// A pixel error target stopped in a round counts every pixel still above the target in the sums
+// it ends with: its judgements counted only those at the cap, so a render its time limit cut
+// short said "target error 0.01" with 0 pixels above it.
+TEST(Render, APixelErrorTargetEndedInARoundCountsThePixelsAboveIt) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  RenderSettings s = tiny(scene);
+  s.sampler = SamplerKind::Sobol, s.estimate_error = true;
+  s.samples = PixelErrorTarget{0.01, 1024, 8};
+  std::optional<RenderState> finished;
+  RenderProgress progress;
+  Checkpointing keep;
+  keep.interval_seconds = 1e-9;  // a save after every group of pixels
+  keep.save = [&](const RenderState& state, SaveReason reason) {
+    if (reason == SaveReason::Stopped) finished = state;
+    const auto most = *std::max_element(state.pixels.samples.begin(), state.pixels.samples.end());
+    if (most > 8) progress.stop_requested = true;  // in the second round, far below the cap
+  };
+  const RenderResult r = render(scene, s, &progress, &keep);
+  ASSERT_TRUE(r.stopped);
+  ASSERT_TRUE(finished);
+  const std::vector<double> variance =
+      neighbourhood_relative_variance(s, finished->pixels, Pooling::Median);
+  std::uint64_t above = 0;
+  for (std::size_t p = 0; p < variance.size(); ++p)
+    above += variance[p] / double(finished->pixels.samples[p]) > 0.01 * 0.01 ? 1 : 0;
+  EXPECT_GT(above, 0u);
+  EXPECT_EQ(r.pixels_above_target, above);
+  EXPECT_FALSE(error_target_reached(s, r));
+  EXPECT_NE(describe_outcome(s, r).samples.find("target error 0.01 not reached by " +
+                                                std::to_string(above) + " pixels"),
+            std::string::npos)
+      << describe_outcome(s, r).samples;
+}
+
 TEST(Render, ACropIsTheWholeImagesRegionBitForBit) {
   const Scene scene = make_builtin_scene("defocus", 1);
   for (const SamplerKind sampler : {SamplerKind::Independent, SamplerKind::Sobol}) {

@@ -171,6 +171,19 @@ void render_adaptive(const RenderContext<Accel>& ctx, const PixelErrorTarget& ta
     ++progress->judgements;
     if (!any_target_above(state)) break;
   }
+  // Ended in a round (its time limit, a stop): the pixels still above the target are counted on
+  // the sums it ends with, capped or not; the last judgement counted only those at the cap, and
+  // the summary claimed a target that most pixels had not reached.
+  if (deadline.ended()) {
+    const std::vector<double> judged = with_threads(settings.threads, [&] {
+      return neighbourhood_relative_variance(settings, pixels, Pooling::Median);
+    });
+    std::uint64_t above = 0;
+    for (std::size_t p = 0; p < judged.size(); ++p)
+      above += judged[p] / double(pixels.samples[p]) > target_variance ? 1 : 0;
+    result.pixels_above_target = above;
+    progress->pixels_above_target = std::int64_t(above);
+  }
   deadline.report(result, pixels);
 }
 

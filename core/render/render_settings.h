@@ -186,7 +186,8 @@ struct RenderResult {
   double judging_seconds = 0.0;
   std::uint64_t rays_traced = 0;
   // The image's estimated relative RMS error (offset 0.01), what it is worth, and
-  // --target-error's count of pixels still above the target at the --spp cap. --image-error's
+  // --target-error's count of pixels still above the target: at the --spp cap, or where a time
+  // limit or a stop ended it, all of them. --image-error's
   // is its last judgement's where that judged the finished sums, and where the render ended
   // between judgements (a time limit, a stop) that of the finished sums: the pooled estimate's,
   // or with --denoise none (0) until the image denoised for the output gives it
