@@ -34,6 +34,7 @@
 #include "core/rtiow.h"
 #include "core/session/progress_status.h"
 #include "core/session/render_session.h"
+#include "core/session/render_summary.h"
 #include "core/session/session_report.h"
 #include "python/render_options.h"
 #include "python/watched_work.h"
@@ -305,42 +306,14 @@ py::dict passes_of(const Render& render) {
   return out;
 }
 
-// What `--summary-json` says of a render, for a script.
+// What `--summary-json` says of a render, for a script: the command's writer's members of the
+// render (core/session/render_summary.h), one shape for both.
 py::dict summary_of(const Render& render) {
-  const RenderResult& r = render.result;
-  const RenderSettings& s = render.settings;
-  const RenderOutcome outcome = describe_outcome(s, r);
-  py::dict spp;
-  spp["least"] = outcome.least, spp["mean"] = outcome.mean, spp["most"] = outcome.most;
-  py::dict error;
-  error["estimated"] = r.error_estimate == ErrorEstimate::None
-                           ? py::object(py::none())
-                           : py::object(py::float_(r.estimated_image_error));
-  error["estimate"] = r.error_estimate == ErrorEstimate::None
-                          ? py::object(py::none())
-                          : py::object(py::str(to_string(r.error_estimate)));
-  py::dict d;
-  d["scene"] = render.scene.name;
-  d["width"] = s.width, d["height"] = s.height;
-  d["crop"] = s.crop ? py::object(py::str(to_string(*s.crop))) : py::object(py::none());
-  d["samples"] = outcome.samples;
-  d["spp"] = spp;
-  d["depth"] = s.max_depth;
-  d["seed"] = s.seed;
-  d["sampler"] = to_string(s.sampler);
-  d["accelerator"] = to_string(s.accel);
-  d["render_seconds"] = r.render_seconds;
-  d["judging_seconds"] = r.judging_seconds;
-  d["rays"] = r.rays_traced;
-  d["mrays_per_second"] = tracing_mrays_per_second(r);
-  d["error"] = error;
-  d["stopped"] = r.stopped ? py::object(py::str(r.stop_cause)) : py::object(py::none());
-  d["time_limited"] = r.time_limited;
-  d["output"] =
-      render.written.empty() ? py::object(py::none()) : py::object(py::str(render.written));
-  d["denoise"] =
-      denoise_figures(render.denoised ? std::optional(figures_of(*render.denoised)) : std::nullopt);
-  return d;
+  const std::string json = render_members_json(
+      render.scene.name, render.settings, render.result,
+      render.written.empty() ? nullptr : &render.written,
+      render.denoised ? std::optional(figures_of(*render.denoised)) : std::nullopt);
+  return py::module_::import("json").attr("loads")(json).cast<py::dict>();
 }
 
 void write_render(const Render& render, const std::string& path, bool reproducible) {

@@ -42,16 +42,13 @@ void write_samples(JsonWriter& j, const RenderSettings& s, const RenderOutcome& 
   outcome.stopped.empty() ? j.key("stopped").null() : j.key("stopped").string(outcome.stopped);
 }
 
-}  // namespace
-
-std::string render_summary_json(const RenderJob& job, const RenderResult& result, int ranks,
-                                int exit_code, bool image_written,
-                                const std::optional<DenoiseFigures>& denoised) {
-  const RenderSettings& s = job.settings;
+// The render's own members, into an object already begun.
+void write_render_members(JsonWriter& j, const std::string& scene, const RenderSettings& s,
+                          const RenderResult& result, int ranks, const std::string* output,
+                          const std::optional<DenoiseFigures>& denoised) {
   const double seconds = result.render_seconds;
-  JsonWriter j = begin_summary("render", exit_code);
-  image_written ? j.key("output").string(job.output) : j.key("output").null();
-  j.key("scene").string(job.scene.name);
+  output ? j.key("output").string(*output) : j.key("output").null();
+  j.key("scene").string(scene);
   j.key("width").whole(s.width);
   j.key("height").whole(s.height);
   j.key("crop");
@@ -98,7 +95,27 @@ std::string render_summary_json(const RenderJob& job, const RenderResult& result
   } else {
     j.null();
   }
+}
+
+}  // namespace
+
+std::string render_summary_json(const RenderJob& job, const RenderResult& result, int ranks,
+                                int exit_code, bool image_written,
+                                const std::optional<DenoiseFigures>& denoised) {
+  JsonWriter j = begin_summary("render", exit_code);
+  write_render_members(j, job.scene.name, job.settings, result, ranks,
+                       image_written ? &job.output : nullptr, denoised);
   return summary_text(j);
+}
+
+std::string render_members_json(const std::string& scene, const RenderSettings& settings,
+                                const RenderResult& result, const std::string* output,
+                                const std::optional<DenoiseFigures>& denoised) {
+  JsonWriter j;
+  j.begin_object();
+  write_render_members(j, scene, settings, result, 1, output, denoised);
+  j.end();
+  return j.text();
 }
 
 }  // namespace rtiow

@@ -22,4 +22,11 @@ std::string render_summary_json(const RenderJob& job, const RenderResult& result
                                 int exit_code, bool image_written = true,
                                 const std::optional<DenoiseFigures>& denoised = std::nullopt);
 
+// The same summary's members of the render itself (without the command's schema, version,
+// command, exit code and seconds), as one JSON object: what a library caller (the Python
+// module's `summary`) reports, from the one writer. `output`: where the image went, or null.
+std::string render_members_json(const std::string& scene, const RenderSettings& settings,
+                                const RenderResult& result, const std::string* output,
+                                const std::optional<DenoiseFigures>& denoised);
+
 }  // namespace rtiow

@@ -100,7 +100,9 @@ def test_a_target_cut_short_reports_the_error_of_the_image_it_delivers():
     render = rtiow.render(rtiow.builtin_scene("cover"), width=96, image_error=0.001,
                           denoise=True, time_limit=0.3)
     error = render.summary["error"]
-    assert render.summary["time_limited"]
+    assert render.summary["stopped"].startswith("time limit")
+    assert render.summary["error"]["target"] == {"kind": "denoised image", "asked": 0.001,
+                                                 "reached": False}
     assert error["estimate"] == "calibrated"
     assert error["estimated"] == render.summary["denoise"]["estimated_error"]
     assert f"not reached: {error['estimated']:.3g} at " in render.summary["samples"]

@@ -3,6 +3,7 @@ bytes as the command line (every channel: spp, variances, passes), a checkpoint 
 render stopped by Ctrl-C and continues it with resume=True to the uninterrupted render's bytes,
 and the session's options refused where they cannot apply."""
 
+import json
 import os
 
 import pytest
@@ -24,6 +25,22 @@ def cli_words(options):
         flag = "--" + name.replace("_", "-")
         words += [flag] if value is True else [flag, str(value)]
     return words
+
+
+@pytest.mark.parametrize("options", MODES, ids=lambda o: ",".join(f"{k}={v}" for k, v in o.items()))
+def test_the_summary_is_what_summary_json_says(options, run_rtiow, tmp_path):
+    summary = tmp_path / "cli.json"
+    code, err = run_rtiow("render", "-q", "--scene", "cover", "--width", 48, *cli_words(options),
+                          "-o", tmp_path / "cli.exr", "--summary-json", summary)
+    assert code == 0, err
+    cli = json.loads(summary.read_text())
+    render = rtiow.render(rtiow.builtin_scene("cover"), width=48, **options)
+    timed = {"render_seconds", "judging_seconds", "build_seconds", "mrays_per_second"}
+    head = {"schema", "version", "command", "exit_code", "seconds"}
+    assert set(render.summary) == set(cli) - head
+    for key in set(render.summary) - timed - {"output"}:
+        assert render.summary[key] == cli[key], key
+    assert render.summary["output"] is None
 
 
 @pytest.mark.parametrize("options", MODES, ids=lambda o: ",".join(f"{k}={v}" for k, v in o.items()))
