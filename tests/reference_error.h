@@ -11,19 +11,29 @@
 
 namespace rtiow {
 
-// Summed over the pixels and their channels; divide by 3 x pixels for the mean.
+// Summed over the pixels [x0, x1) x [y0, y1) and their channels.
 inline double true_relative_squared_error(const DenoiseInput& reference,
-                                          const std::vector<Color>& image) {
+                                          const std::vector<Color>& image, int x0, int y0, int x1,
+                                          int y1) {
   double total = 0;
-  for (std::size_t p = 0; p < reference.size(); ++p) {
-    for (std::size_t c = 0; c < 3; ++c) {
-      const double r = reference.mean[p][c], level = (r + 0.01) * (r + 0.01);
-      const double halves = double(reference.even[p][c]) - double(reference.odd[p][c]);
-      const double e = double(image[p][c]) - r;
-      total += (e * e - halves * halves / 4) / level;  // less the reference's own variance
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      const std::size_t p = std::size_t(y) * std::size_t(reference.width) + std::size_t(x);
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double r = reference.mean[p][c], level = (r + 0.01) * (r + 0.01);
+        const double halves = double(reference.even[p][c]) - double(reference.odd[p][c]);
+        const double e = double(image[p][c]) - r;
+        total += (e * e - halves * halves / 4) / level;  // less the reference's own variance
+      }
     }
   }
   return total;
+}
+
+// Summed over the whole image; divide by 3 x pixels for the mean.
+inline double true_relative_squared_error(const DenoiseInput& reference,
+                                          const std::vector<Color>& image) {
+  return true_relative_squared_error(reference, image, 0, 0, reference.width, reference.height);
 }
 
 // The denoiser's per-pixel error channel summed over the pixels [x0, x1) x [y0, y1) and their

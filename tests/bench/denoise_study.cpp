@@ -44,18 +44,7 @@ struct Reference {
 
   // Summed over the pixels [x0, x1) x [y0, y1) and their channels.
   double squared_error(const std::vector<Color>& image, int x0, int y0, int x1, int y1) const {
-    double total = 0;
-    for (int y = y0; y < y1; ++y) {
-      for (int x = x0; x < x1; ++x) {
-        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
-        for (std::size_t c = 0; c < 3; ++c) {
-          const double r = sums.mean[p][c], d = double(image[p][c]) - r;
-          const double halves = double(sums.even[p][c]) - double(sums.odd[p][c]);
-          total += (d * d - halves * halves / 4) / ((r + 0.01) * (r + 0.01));
-        }
-      }
-    }
-    return total;
+    return true_relative_squared_error(sums, image, x0, y0, x1, y1);
   }
   double image_error(const std::vector<Color>& image) const {
     const int height = int(sums.size() / std::size_t(width));
