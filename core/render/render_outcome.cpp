@@ -53,8 +53,8 @@ std::string what_was_asked(const SampleBudget& b) {
 bool error_target_reached(const RenderSettings& s, const RenderResult& r) {
   if (std::holds_alternative<PixelErrorTarget>(s.samples)) return r.pixels_above_target == 0;
   if (const auto* i = std::get_if<ImageErrorTarget>(&s.samples)) {
-    // Judged once a round is done: a render stopped before its first judgement has no estimate
-    // (0, which a finished render of a constant image also reports).
+    // A denoised target ended before a judgement of its final sums has no estimate until its
+    // output's denoise gives one (0, which a finished render of a constant image also reports).
     const bool unjudged = (r.stopped || r.time_limited) && r.estimated_image_error == 0.0;
     return !unjudged && r.estimated_image_error <= i->error;
   }

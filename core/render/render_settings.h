@@ -161,7 +161,8 @@ struct RenderProgress {
 // (or independent samples), within a few percent of the true error (docs/accuracy.md). Upper
 // bound: one Sobol sequence, whose sample variance overstates its mean's error (1.3-1.6x on the
 // cover at 16-64 spp, more at higher counts, where the sequence gains more). None: a pixel with
-// fewer than two samples, or an error target's render stopped before its first judgement.
+// fewer than two samples, or a denoised error target's render ended before a judgement of its
+// final sums (until the image denoised for its output gives one: take_delivered_estimate()).
 enum class ErrorEstimate { None, Calibrated, UpperBound };
 
 struct RenderResult {
