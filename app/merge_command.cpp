@@ -33,9 +33,10 @@ int run_merge(const MergeOptions& o) {
                  to_string(merged.passes).c_str(), quote_value(o.output).c_str());
   }
   if (!o.quiet) {
-    std::fprintf(stderr, "merged %zu part%s: %dx%d, %llu spp%s -> %s\n", merged.parts,
+    std::fprintf(stderr, "merged %zu part%s: %dx%d, %llu spp%s%s -> %s\n", merged.parts,
                  merged.parts == 1 ? "" : "s", merged.film.width(), merged.film.height(),
                  static_cast<unsigned long long>(merged.samples),
+                 merged.error.empty() ? "" : (", " + merged.error).c_str(),
                  merged.passes_kept ? (", passes " + to_string(merged.passes)).c_str() : "",
                  one_line(o.output).c_str());
     if (merged.denoised) {

@@ -52,6 +52,15 @@ TEST(CliDenoise, PartsDenoisedAfterTheirMergeGiveTheRendersPixels) {
       run_rtiow("denoise " + a.string() + " " + b.string() + " -o " + merged.string());
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   EXPECT_NE(r.stderr_text.find("merged 2 parts: "), std::string::npos) << r.stderr_text;
+  {  // It says the merged sums' error, as a render's line does (the file's metadata holds it).
+    auto in = OIIO::ImageInput::open(merged.string());
+    ASSERT_TRUE(in);
+    const float error = in->spec().get_float_attribute("rtiow:estimated_image_error", -1.0f);
+    ASSERT_GT(error, 0.0f);
+    char said[64];
+    std::snprintf(said, sizeof said, ", 8 spp, image error %.3g estimated", double(error));
+    EXPECT_NE(r.stderr_text.find(said), std::string::npos) << said << "\n" << r.stderr_text;
+  }
   // A whole render kept for later is one part.
   const fs::path kept = output_path("kept.exr"), single = output_path("single.png");
   ASSERT_EQ(run_rtiow(args + " --part 0/1 -o " + kept.string()).exit_code, 0);

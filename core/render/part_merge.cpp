@@ -43,10 +43,11 @@ RecordedSampler parse_recorded_sampler(const std::string& name) {
 }
 
 // The merged image's estimated error, recorded as one render's is: from the sums of every
-// part (a part records its share's alone, which the merged metadata leaves out). None where
-// the parts keep no spreads or record no sampler this rtiow knows. Returns the replicate ratios
-// it was made with (none from one sequence), which the variance channels take too.
-std::shared_ptr<const std::vector<Vec3d>> record_error_estimate(const RenderResult& whole,
+// part (a part records its share's alone, which the merged metadata leaves out), in `whole`
+// and its metadata. None where the parts keep no spreads or record no sampler this rtiow
+// knows. Returns the replicate ratios it was made with (none from one sequence), which the
+// variance channels take too.
+std::shared_ptr<const std::vector<Vec3d>> record_error_estimate(RenderResult& whole,
                                                                 const RecordedSampler& sampler,
                                                                 Metadata& metadata) {
   if (!whole.sums.keeps(SumGroup::Odd) || !sampler.kind) return {};
@@ -57,6 +58,7 @@ std::shared_ptr<const std::vector<Vec3d>> record_error_estimate(const RenderResu
     return {};  // its buffers do not fit beside the sums: no estimate, the merge goes on
   }
   if (estimate.kind == ErrorEstimate::None) return {};
+  whole.estimated_image_error = estimate.error, whole.error_estimate = estimate.kind;
   metadata.emplace_back(metadata_key::kEstimatedImageError, estimate.error);
   metadata.emplace_back(metadata_key::kErrorEstimate, to_string(estimate.kind));
   return estimate.replicate_ratios;
@@ -126,6 +128,7 @@ MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeR
                     replicates > 1 ? kReplicates : 1);
   // The replicate ratios of these sums, where the estimate made them.
   whole.replicate_ratios = record_error_estimate(whole, sampler, image.metadata);
+  image.error = describe_error_estimate(whole);
   if (request.statistics)
     image.channels = merged_statistics(whole, without_spreads, sampler, replicates);
   image.passes_kept = image.passes.any() && request.extra_channels;

@@ -40,6 +40,9 @@ struct MergedImage {
   FirstHitPasses passes;                   // the passes the parts hold
   bool passes_kept = false;                // false: the output cannot hold them (they are left out)
   std::optional<DenoiseFigures> denoised;  // what the denoiser delivered, where asked
+  // The merged sums' estimated error as a render's line says it ("image error 0.0949
+  // estimated"), or empty where the parts keep no estimate.
+  std::string error;
 };
 
 // Reads the part files at `paths` and merges them. Throws InvalidInput naming the file and
