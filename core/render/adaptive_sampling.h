@@ -148,22 +148,28 @@ void render_adaptive(const RenderContext<Accel>& ctx, const PixelErrorTarget& ta
   // n^-1.2 for the Sobol samplers (the cover's RMSE slope is -0.6, docs/accuracy.md).
   const double rate = settings.sampler == SamplerKind::Independent ? 1.0 : 1.2;
   std::vector<std::uint32_t>& targets = state.targets;
+  // Each pixel's relative variance of its mean, as the sums stand.
+  const auto judge = [&] {
+    std::vector<double> judged = with_threads(settings.threads, [&] {
+      return neighbourhood_relative_variance(settings, pixels, Pooling::Median);
+    });
+    for (std::size_t p = 0; p < judged.size(); ++p) judged[p] /= double(pixels.samples[p]);
+    return judged;
+  };
   // Every round is judged, and the render ends when a judgement asks for nothing more: a
   // render resumed from a save taken as a round ended is judged as the uninterrupted one was.
   for (bool first = start_rounds(state, least);; first = false) {
     render_round(ctx, first, deadline, journal, progress, result);
     if (deadline.ended()) break;
-    const std::vector<double> judged = with_threads(settings.threads, [&] {
-      return neighbourhood_relative_variance(settings, pixels, Pooling::Median);
-    });
+    const std::vector<double> judged = judge();
     result.pixels_above_target = 0;
     std::int64_t above = 0;  // for a progress display: pixels short of the target, capped or not
     for (std::size_t p = 0; p < targets.size(); ++p) {
       const std::uint32_t n = pixels.samples[p];
-      if (judged[p] / double(n) <= target_variance) continue;
+      if (judged[p] <= target_variance) continue;
       ++above;
       if (n < most)
-        targets[p] = next_target_count(n, judged[p] / double(n), target_variance, rate, most);
+        targets[p] = next_target_count(n, judged[p], target_variance, rate, most);
       else
         ++result.pixels_above_target;  // at the cap, short of the target
     }
@@ -175,12 +181,9 @@ void render_adaptive(const RenderContext<Accel>& ctx, const PixelErrorTarget& ta
   // the sums it ends with, capped or not; the last judgement counted only those at the cap, and
   // the summary claimed a target that most pixels had not reached.
   if (deadline.ended()) {
-    const std::vector<double> judged = with_threads(settings.threads, [&] {
-      return neighbourhood_relative_variance(settings, pixels, Pooling::Median);
-    });
+    const std::vector<double> judged = judge();
     std::uint64_t above = 0;
-    for (std::size_t p = 0; p < judged.size(); ++p)
-      above += judged[p] / double(pixels.samples[p]) > target_variance ? 1 : 0;
+    for (const double variance : judged) above += variance > target_variance ? 1 : 0;
     result.pixels_above_target = above;
     progress->pixels_above_target = std::int64_t(above);
   }
