@@ -78,14 +78,15 @@ BlockReading blocks_against_estimate(const Reference& ref, const DenoisedImage& 
   return b;
 }
 
-// `adaptive`: each count is an adaptive budget (--adaptive --spp N, at least N/4 a pixel).
+// `adaptive`: each count is an adaptive budget as `--adaptive --spp N --denoise` renders it, each
+// pixel at least the command's default minimum (--min-spp 16).
 void calibrate(const Scene& scene, int width, int height, int reference_spp, int seeds,
                const std::vector<int>& counts, bool adaptive) {
   const Reference ref = reference_of(scene, width, height, reference_spp);
   for (const int spp : counts) {
     for (int seed = 1; seed <= seeds; ++seed) {
       RenderSettings settings = denoise_settings(width, height, spp, std::uint64_t(seed));
-      if (adaptive) settings.samples = AdaptiveBudget{spp, std::max(2, spp / 4)};
+      if (adaptive) settings.samples = AdaptiveBudget{spp, kDefaultLeastSamples};
       const RenderResult r = render(scene, settings);
       const DenoisedImage d = denoise(denoise_input(r));
       const double truth = ref.image_error(d.image.pixels());
@@ -176,7 +177,8 @@ void trade(const Scene& scene, int width, int height, int reference_spp) {
         spp, denoised, noisy, render_s, denoise_s, render_s + denoise_s);
     denoised_curve.push_back({spp, denoised, render_s + denoise_s});
   }
-  // Adaptive budgets, each pixel at least a quarter of the budget (as calibrate-adaptive):
+  // Adaptive budgets, each pixel at least a quarter of the budget (--min-spp N/4: the command's
+  // default of 16 would leave budgets of 8 and 16 nothing to allocate):
   // alone (one sequence, as --adaptive renders without --denoise) and denoised.
   for (const int spp : {8, 16, 32, 64, 100}) {
     double alone = 0, denoised = 0, alone_s = 1e30, render_s = 1e30, denoise_s = 1e30;
@@ -264,6 +266,10 @@ int main(int argc, char** argv) {
     }
     std::vector<int> counts;
     for (int i = 6; i < argc; ++i) counts.push_back(std::stoi(argv[i]));
+    if (mode == "calibrate-adaptive" &&
+        std::any_of(counts.begin(), counts.end(), [](int n) { return n <= kDefaultLeastSamples; }))
+      throw std::invalid_argument("an adaptive budget must be above the minimum of " +
+                                  std::to_string(kDefaultLeastSamples) + " spp");
     calibrate(scene, width, height, reference_spp, std::stoi(argv[5]), counts,
               mode == "calibrate-adaptive");
   } catch (const std::exception& e) {
