@@ -203,6 +203,13 @@ void add_adaptive_options(CLI::App* cmd, RenderOptions& o) {
                       std::to_string(kDefaultLeastSamples) + ")");
 }
 
+// --threads as render, merge and denoise take it (the library refuses a count out of range).
+void add_threads_option(CLI::App* cmd, int& threads) {
+  cmd->add_option("--threads", threads,
+                  "Worker threads, 0 (all cores) to " + std::to_string(limits::kMaxThreads))
+      ->capture_default_str();
+}
+
 void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--spp", o.spp, "Samples per pixel (default: the scene's)");
   cmd->add_option("--depth", o.depth,
@@ -211,9 +218,7 @@ void add_sampling_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--seed", o.seed, "Seed of the sample streams, 0 to 2^64-1")
       ->check(kNotNegative)
       ->capture_default_str();
-  cmd->add_option("--threads", o.threads,
-                  "Worker threads, 0 (all cores) to " + std::to_string(limits::kMaxThreads))
-      ->capture_default_str();
+  add_threads_option(cmd, o.threads);
   cmd->add_option("--accel", o.accel, "Intersector: embree or naive (same image, other speed)")
       ->capture_default_str();
   cmd->add_option("--time-limit", o.time_limit,
@@ -399,6 +404,7 @@ CLI::App* add_merge(CLI::App& app, MergeOptions& o) {
   cmd->add_flag("--denoise", o.denoise,
                 "Write the merged render denoised, as 'rtiow denoise' does (the parts rendered "
                 "with --denoise)");
+  add_threads_option(cmd, o.threads);
   cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
   return cmd;
 }
@@ -414,6 +420,7 @@ CLI::App* add_denoise(CLI::App& app, MergeOptions& o) {
       ->required();
   cmd->add_flag("--stats-channels", o.stats_channels,
                 "Add the spp and variance channels to an .exr output, as merge does");
+  add_threads_option(cmd, o.threads);
   cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
   return cmd;
 }

@@ -14,7 +14,7 @@ namespace rtiow {
 
 int run_merge(const MergeOptions& o) {
   MergeRequest request;
-  request.statistics = o.stats_channels, request.denoise = o.denoise;
+  request.statistics = o.stats_channels, request.denoise = o.denoise, request.threads = o.threads;
   WorkProgress reading, denoising;
   std::optional<WorkDisplay> display;
   if (!o.quiet) {

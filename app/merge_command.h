@@ -13,6 +13,7 @@ struct MergeOptions {
   bool stats_channels = false;
   bool denoise = false;
   bool quiet = false;
+  int threads = 0;  // 0: every core
 };
 
 int run_merge(const MergeOptions& o);

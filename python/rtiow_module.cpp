@@ -350,7 +350,8 @@ void write_render(const Render& render, const std::string& path, bool reproducib
 // 1.0 once the image is written.
 std::optional<DenoiseFigures> merge_and_write(const std::vector<std::string>& parts,
                                               const std::string& output, bool stats_channels,
-                                              bool denoise, const py::object& progress) {
+                                              bool denoise, int threads,
+                                              const py::object& progress) {
   WorkProgress denoising;
   const bool watched = denoise && !progress.is_none();
   const auto tick = [&] {
@@ -359,7 +360,7 @@ std::optional<DenoiseFigures> merge_and_write(const std::vector<std::string>& pa
   std::optional<DenoiseFigures> figures = interruptible<std::optional<DenoiseFigures>>(
       [&](const std::function<bool()>& cancelled) {
         MergeRequest request;
-        request.statistics = stats_channels, request.denoise = denoise;
+        request.statistics = stats_channels, request.denoise = denoise, request.threads = threads;
         request.cancelled = cancelled, request.denoising = &denoising;
         return merge_to_file(parts, output, request).denoised;
       },
@@ -370,13 +371,14 @@ std::optional<DenoiseFigures> merge_and_write(const std::vector<std::string>& pa
 
 // With `denoise`, the denoiser's figures (estimated_error, noisy_error, seconds); else None.
 py::object merge_files(const std::vector<std::string>& parts, const std::string& output,
-                       bool stats_channels, bool denoise, const py::object& progress) {
-  return denoise_figures(merge_and_write(parts, output, stats_channels, denoise, progress));
+                       bool stats_channels, bool denoise, int threads, const py::object& progress) {
+  return denoise_figures(
+      merge_and_write(parts, output, stats_channels, denoise, threads, progress));
 }
 
 py::object denoise_files(const std::vector<std::string>& parts, const std::string& output,
-                         bool stats_channels, const py::object& progress) {
-  return merge_files(parts, output, stats_channels, true, progress);
+                         bool stats_channels, int threads, const py::object& progress) {
+  return merge_files(parts, output, stats_channels, true, threads, progress);
 }
 
 // An image to compare: a file, or a render (with its variances where it has them).
@@ -569,20 +571,20 @@ void bind_images(py::module_& m) {
         "reference, as rtiow diff does: noise-aware where both have variances, by seeds for a "
         "list, else plain. Returns a dict with 'passed', 'verdict' and the figures.");
   m.def("merge", &merge_files, py::arg("parts"), py::arg("output"), py::kw_only(),
-        py::arg("stats_channels") = false, py::arg("denoise") = false,
+        py::arg("stats_channels") = false, py::arg("denoise") = false, py::arg("threads") = 0,
         py::arg("progress") = py::none(),
         "Adds part files (renders with part= or sample_range=, written) into the image one "
         "render of all their samples gives, as rtiow merge does; checks they belong together. "
         "With denoise=True the image is denoised and its figures returned, as by denoise(), "
-        "progress(fraction) following the denoiser.");
+        "progress(fraction) following the denoiser. threads: 0 for every core.");
   m.def("denoise", &denoise_files, py::arg("parts"), py::arg("output"), py::kw_only(),
-        py::arg("stats_channels") = false, py::arg("progress") = py::none(),
+        py::arg("stats_channels") = false, py::arg("threads") = 0, py::arg("progress") = py::none(),
         "Denoises a render kept as part files (render(..., denoise=True, part='0/1', "
         "output=...)), as rtiow denoise does. Returns the denoised image's estimated error "
         "(relative RMS, offset 0.01), the noisy image's and the denoiser's seconds. "
         "progress(fraction) is called about every 50 ms with the share of the denoising done, "
         "and with 1.0 once the image is written; what it raises stops the denoiser (nothing "
-        "is written) and is raised.");
+        "is written) and is raised. threads: 0 for every core.");
   m.def("read_image", &read_image, py::arg("path"),
         "An image file's R, G, B as height x width x 3 float32 (linear files as stored).");
   m.def("read_channels", &read_channels, py::arg("path"),

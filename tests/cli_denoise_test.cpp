@@ -2,6 +2,9 @@
 // once and one kept as parts and denoised after its merge give the same pixels, and the
 // refusals.
 
+#include <oneapi/tbb/task_arena.h>
+
+#include <atomic>
 #include <mutex>
 
 #include "core/render/part_merge.h"
@@ -172,6 +175,50 @@ TEST(CliDenoise, ARenderStoppedBeforeTwoSamplesKeepsItsNoisyImage) {
                                "sample in each half"),
             std::string::npos)
       << r.stderr_text;
+}
+
+// A render farm's node denoises the merged frame beside other work: --threads caps the merge and
+// the denoiser as it caps a render, and the image is the same bytes on any count.
+TEST(CliDenoise, ThreadsCapTheMergeAndTheDenoiser) {
+  const fs::path kept = output_path("kept.exr");
+  ASSERT_EQ(
+      run_rtiow("render -q --denoise " + std::string(kSmall) + " --part 0/1 -o " + kept.string())
+          .exit_code,
+      0);
+  const fs::path every = output_path("every.exr");
+  ASSERT_EQ(run_rtiow("denoise -q " + kept.string() + " -o " + every.string()).exit_code, 0);
+  for (const char* threads : {"1", "3"}) {
+    const fs::path capped = output_path(std::string("capped-") + threads + ".exr");
+    const CommandResult r = run_rtiow("denoise -q --threads " + std::string(threads) + " " +
+                                      kept.string() + " -o " + capped.string());
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    EXPECT_EQ(slurp(capped), slurp(every)) << "--threads " << threads;
+  }
+  // The denoiser's loops run in an arena of the count asked (its stop is asked from them).
+  for (const int threads : {1, 3}) {
+    std::atomic<int> widest{0};
+    MergeRequest request;
+    request.denoise = true, request.threads = threads;
+    request.cancelled = [&] {
+      const int here = oneapi::tbb::this_task_arena::max_concurrency();
+      for (int seen = widest.load(); here > seen && !widest.compare_exchange_weak(seen, here);) {
+      }
+      return false;
+    };
+    merge_part_files({kept.string()}, request);
+    EXPECT_EQ(widest.load(), threads);
+  }
+  // A count out of range is refused in one line, before anything is read or written.
+  for (const std::string& command :
+       {std::string("denoise --threads -1 "), std::string("merge --denoise --threads 5000 ")}) {
+    const fs::path out = output_path("refused.png");
+    const CommandResult r = run_rtiow(command + kept.string() + " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << r.stderr_text;
+    EXPECT_EQ(count_lines(r.stderr_text), 1) << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find("--threads must be from 0 (all cores) to 1024"), std::string::npos)
+        << r.stderr_text;
+    EXPECT_FALSE(fs::exists(out));
+  }
 }
 
 TEST(CliDenoise, RefusesWhatItCannotDenoiseInOneLine) {

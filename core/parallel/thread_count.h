@@ -12,11 +12,24 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include <optional>
+#include <string>
 
+#include "core/limits/error.h"
+#include "core/limits/input_limits.h"
+#include "core/limits/setting_name.h"
 #include "core/parallel/ieee_floating_point.h"
 #include "core/parallel/thread_limit.h"
 
 namespace rtiow {
+
+// Refuses a count no work can run on: below 0, or beyond the pool TBB starts (every command that
+// takes --threads says it in the same words).
+inline void check_thread_count(int asked) {
+  if (asked < 0 || asked > limits::kMaxThreads) {
+    throw InvalidInput(setting("threads") + " must be from 0 (all cores) to " +
+                       std::to_string(limits::kMaxThreads) + ", got " + std::to_string(asked));
+  }
+}
 
 // 0: every core.
 inline int thread_count(int asked) {

@@ -7,6 +7,7 @@
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/limits/setting_name.h"
+#include "core/parallel/thread_count.h"
 #include "core/render/render_metadata.h"
 #include "core/render/render_part.h"
 #include "core/render/render_statistics.h"
@@ -107,9 +108,7 @@ void check_for_denoising(const RenderResult& whole, const RecordedSampler& sampl
   }
 }
 
-}  // namespace
-
-MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeRequest& request) {
+MergedImage merge_parts(const std::vector<std::string>& paths, const MergeRequest& request) {
   PartMerge merge(request.reading);
   if (request.reading) request.reading->begin(paths.size() * PartMerge::kPartWork);
   for (const std::string& path : paths) merge.add(path);
@@ -162,8 +161,16 @@ MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeR
   return image;
 }
 
+}  // namespace
+
+MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeRequest& request) {
+  check_thread_count(request.threads);
+  return with_threads(request.threads, [&] { return merge_parts(paths, request); });
+}
+
 MergedImage merge_to_file(const std::vector<std::string>& paths, const std::string& output,
                           MergeRequest request) {
+  check_thread_count(request.threads);
   check_image_output(output, paths);
   const ImageFormat* format = image_format(output);
   request.extra_channels = format && format->extra_channels;

@@ -23,6 +23,7 @@ struct MergeRequest {
   bool statistics = false;     // the spp and variance channels (--stats-channels)
   bool extra_channels = true;  // the output holds channels beyond R, G, B (EXR)
   bool denoise = false;        // the image denoised (core/denoise/denoised_output.h)
+  int threads = 0;             // the merge's and the denoiser's, 0: every core (--threads)
   // Asked while denoising: once true, the merge throws DenoiseCancelled and writes nothing.
   std::function<bool()> cancelled;
   // For a display: the parts read (PartMerge's progress) and the denoiser's work.

@@ -253,10 +253,7 @@ void validate(const RenderSettings& s) {
     throw InvalidInput("depth must be from 0 to " + std::to_string(limits::kMaxDepth) + ", got " +
                        std::to_string(s.max_depth));
   }
-  if (s.threads < 0 || s.threads > limits::kMaxThreads) {
-    throw InvalidInput("threads must be from 0 (all cores) to " +
-                       std::to_string(limits::kMaxThreads) + ", got " + std::to_string(s.threads));
-  }
+  check_thread_count(s.threads);
   if (!(s.time_limit_seconds >= 0.0) || !std::isfinite(s.time_limit_seconds)) {
     throw InvalidInput("time limit must be a finite number of seconds >= 0");
   }

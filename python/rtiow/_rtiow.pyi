@@ -143,6 +143,7 @@ def merge(
     *,
     stats_channels: bool = False,
     denoise: bool = False,
+    threads: int = 0,
     progress: Optional[Callable[[float], Any]] = None,
 ) -> Optional[Dict[str, float]]:
     """Adds part files into the image one render of all their samples gives (rtiow merge)."""
@@ -151,6 +152,7 @@ def denoise(
     output: str,
     *,
     stats_channels: bool = False,
+    threads: int = 0,
     progress: Optional[Callable[[float], Any]] = None,
 ) -> Dict[str, float]:
     """Denoises a render kept as part files (rendered with denoise=True), as rtiow denoise does."""

@@ -24,6 +24,15 @@ def test_parts_denoise_to_the_commands_pixels(run_rtiow, tmp_path):
     whole = tmp_path / "whole.exr"
     rtiow.render(scene, width=48, spp=8, denoise=True, output=str(whole))
     assert np.array_equal(py, rtiow.read_image(str(whole)))
+    # threads= caps the merge and the denoiser as --threads does: the same image on any count.
+    one = tmp_path / "one.exr"
+    capped = rtiow.denoise(parts, str(one), threads=1)
+    assert capped["estimated_error"] == figures["estimated_error"]
+    assert capped["noisy_error"] == figures["noisy_error"]
+    assert np.array_equal(py, rtiow.read_image(str(one)))
+    with pytest.raises(ValueError, match="threads must be from 0"):
+        rtiow.merge(parts, str(tmp_path / "never.exr"), threads=-1)
+    assert not (tmp_path / "never.exr").exists()
 
 
 def test_a_render_in_memory_is_denoised_as_the_command_line_denoises_it(run_rtiow, tmp_path):
