@@ -49,7 +49,7 @@ struct MergedImage {
 // Reads the part files at `paths` and merges them. Throws InvalidInput naming the file and
 // what is wrong: not a part, parts of different renders, overlapping or missing samples, sums
 // no samples can add up to, statistics asked of parts that keep no spreads (or were rendered
-// from one sequence).
+// from one sequence), a thread count out of range. Runs on request.threads threads.
 MergedImage merge_part_files(const std::vector<std::string>& paths, const MergeRequest& request);
 
 // `rtiow merge` and `rtiow denoise` whole: the output checked against the parts and claimed
