@@ -389,6 +389,14 @@ CLI::App* add_scene(CLI::App& app, SceneOptions& o) {
   return cmd;
 }
 
+// merge's and denoise's --summary-json (core/session/merge_summary.h).
+void add_merge_summary_option(CLI::App* cmd, MergeOptions& o) {
+  cmd->add_option("--summary-json", o.summary_json,
+                  "Also write the merge's summary as JSON here, for scripts: the parts, the "
+                  "image's size, samples and estimated error, the denoiser's figures, threads, "
+                  "time (schema in docs/usage.md); written after the image");
+}
+
 CLI::App* add_merge(CLI::App& app, MergeOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "merge",
@@ -405,6 +413,7 @@ CLI::App* add_merge(CLI::App& app, MergeOptions& o) {
                 "Write the merged render denoised, as 'rtiow denoise' does (the parts rendered "
                 "with --denoise)");
   add_threads_option(cmd, o.threads);
+  add_merge_summary_option(cmd, o);
   cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
   return cmd;
 }
@@ -421,6 +430,7 @@ CLI::App* add_denoise(CLI::App& app, MergeOptions& o) {
   cmd->add_flag("--stats-channels", o.stats_channels,
                 "Add the spp and variance channels to an .exr output, as merge does");
   add_threads_option(cmd, o.threads);
+  add_merge_summary_option(cmd, o);
   cmd->add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr");
   return cmd;
 }
@@ -747,7 +757,7 @@ void finish_parsed(const Commands& c, CommandLine& out) {
     if (cmd->parsed()) out.command = command;
   }
   if (c.render->parsed()) note_typed_render_options(c.render, out.render);
-  out.denoise.denoise = true;
+  out.denoise.denoise = true, out.denoise.command = "denoise";
   out.scene.output_given = c.scene->get_option("--output")->count() > 0;
   follow_failure_thresholds(c.diff, out.diff.settings.thresholds);
 }

@@ -6,13 +6,25 @@
 #include <string>
 #include <vector>
 
+#include "core/io/atomic_file.h"
+#include "core/io/output_claim.h"
+#include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/render/part_merge.h"
+#include "core/session/merge_summary.h"
 #include "core/session/work_display.h"
 
 namespace rtiow {
 
 int run_merge(const MergeOptions& o) {
+  // The summary's path is checked and claimed before the parts are read, as the image's is.
+  std::optional<OutputClaim> summary_claim;
+  if (!o.summary_json.empty()) {
+    std::vector<std::string> inputs = o.parts;
+    inputs.push_back(o.output);  // nor may it be the image
+    check_output_path(o.summary_json, inputs, "--summary-json");
+    summary_claim.emplace(o.summary_json);
+  }
   MergeRequest request;
   request.statistics = o.stats_channels, request.denoise = o.denoise, request.threads = o.threads;
   WorkProgress reading, denoising;
@@ -42,6 +54,10 @@ int run_merge(const MergeOptions& o) {
     if (merged.denoised) {
       std::fprintf(stderr, "%s\n", describe(*merged.denoised).c_str());
     }
+  }
+  if (!o.summary_json.empty()) {
+    write_text_atomically(o.summary_json,
+                          merge_summary_json(o.command, o.parts, o.output, merged, o.threads));
   }
   return 0;
 }

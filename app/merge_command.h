@@ -8,12 +8,14 @@
 namespace rtiow {
 
 struct MergeOptions {
+  std::string command = "merge";  // or "denoise": the same work, denoised
   std::vector<std::string> parts;
   std::string output;
   bool stats_channels = false;
   bool denoise = false;
   bool quiet = false;
-  int threads = 0;  // 0: every core
+  int threads = 0;           // 0: every core
+  std::string summary_json;  // --summary-json: where the summary goes, or empty
 };
 
 int run_merge(const MergeOptions& o);

@@ -221,6 +221,88 @@ TEST(CliDenoise, ThreadsCapTheMergeAndTheDenoiser) {
   }
 }
 
+// A farm's script reads the merged frame's figures from --summary-json, as a render's: the same
+// keys in the same shapes (one writer for each: core/session/summary_members.h), the figures the
+// lines and the file's metadata give, in the published schema.
+TEST(CliDenoise, MergeAndDenoiseWriteTheSummaryARenderWrites) {
+  const fs::path a = output_path("a.exr"), b = output_path("b.exr");
+  const std::string args = "render -q --denoise " + std::string(kSmall);
+  ASSERT_EQ(run_rtiow(args + " --part 0/2 -o " + a.string()).exit_code, 0);
+  ASSERT_EQ(run_rtiow(args + " --part 1/2 -o " + b.string()).exit_code, 0);
+  const fs::path image = output_path("denoised.exr"), summary = output_path("denoised.json");
+  const CommandResult r =
+      run_rtiow("denoise --threads 1 " + a.string() + " " + b.string() + " -o " + image.string() +
+                " --summary-json " + summary.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_EQ(summary_schema_violations({summary}), "");
+  const auto j = nlohmann::json::parse(slurp(summary));
+  EXPECT_EQ(j["command"], "denoise");
+  EXPECT_EQ(j["exit_code"], 0);
+  EXPECT_EQ(j["output"], image.string());
+  EXPECT_EQ(j["parts"], nlohmann::json::array({a.string(), b.string()}));
+  EXPECT_EQ(j["width"], 64);
+  EXPECT_EQ(j["height"], 40);
+  EXPECT_TRUE(j["crop"].is_null());
+  EXPECT_EQ(j["passes"], nlohmann::json::array({"albedo", "normal", "depth"}));
+  EXPECT_EQ(j["threads"], 1);
+  EXPECT_EQ(j["spp"]["least"], 8);
+  EXPECT_EQ(j["spp"]["most"], 8);
+  EXPECT_TRUE(j["spp"]["asked"].is_null());
+  EXPECT_EQ(j["error"]["estimate"], "calibrated");
+  EXPECT_TRUE(j["error"]["target"].is_null());
+  auto in = OIIO::ImageInput::open(image.string());
+  ASSERT_TRUE(in);
+  const double merged_error = j["error"]["estimated"].get<double>();
+  EXPECT_NEAR(in->spec().get_float_attribute("rtiow:estimated_image_error"), merged_error,
+              1e-6 * merged_error);
+  const double denoised_error = j["denoise"]["estimated_error"].get<double>();
+  EXPECT_NEAR(in->spec().get_float_attribute("rtiow:denoise.estimated_error"), denoised_error,
+              1e-6 * denoised_error);
+  char said[64];
+  std::snprintf(said, sizeof said, "image error %.4f estimated (the noisy image %.4f",
+                denoised_error, j["denoise"]["noisy_error"].get<double>());
+  EXPECT_NE(r.stderr_text.find(said), std::string::npos) << said << "\n" << r.stderr_text;
+
+  // A plain merge to a format without the passes: no denoiser's figures, no passes written.
+  const fs::path png = output_path("merged.png"), plain = output_path("merged.json");
+  ASSERT_EQ(run_rtiow("merge -q " + a.string() + " " + b.string() + " -o " + png.string() +
+                      " --summary-json " + plain.string())
+                .exit_code,
+            0);
+  const auto m = nlohmann::json::parse(slurp(plain));
+  EXPECT_EQ(m["command"], "merge");
+  EXPECT_TRUE(m["denoise"].is_null());
+  EXPECT_EQ(m["passes"], nlohmann::json::array());
+  EXPECT_EQ(m["error"], j["error"]);
+
+  // A crop's parts: the frame and the region, as the render's summary says them.
+  const fs::path crop = output_path("crop.exr"), crop_render = output_path("crop-render.json");
+  ASSERT_EQ(run_rtiow(args + " --crop 8,4,40,30 --part 0/1 -o " + crop.string() +
+                      " --summary-json " + crop_render.string())
+                .exit_code,
+            0);
+  const fs::path crop_merged = output_path("crop-merged.exr"), crop_json = output_path("crop.json");
+  ASSERT_EQ(run_rtiow("merge -q " + crop.string() + " -o " + crop_merged.string() +
+                      " --summary-json " + crop_json.string())
+                .exit_code,
+            0);
+  const auto rendered = nlohmann::json::parse(slurp(crop_render));
+  const auto merged = nlohmann::json::parse(slurp(crop_json));
+  for (const char* key : {"width", "height", "crop", "passes", "error"})
+    EXPECT_EQ(merged[key], rendered[key]) << key;
+  EXPECT_EQ(summary_schema_violations({plain, crop_json}), "");
+
+  // Neither a part nor the image may take the summary's name.
+  for (const fs::path& taken : {a, png}) {
+    const std::string before = slurp(taken);
+    const CommandResult refused = run_rtiow("merge " + a.string() + " " + b.string() + " -o " +
+                                            png.string() + " --summary-json " + taken.string());
+    EXPECT_EQ(refused.exit_code, 2) << refused.stderr_text;
+    EXPECT_EQ(count_lines(refused.stderr_text), 1) << refused.stderr_text;
+    EXPECT_EQ(slurp(taken), before);
+  }
+}
+
 TEST(CliDenoise, RefusesWhatItCannotDenoiseInOneLine) {
   expect_refused("--denoise --target-error 0.05", "the target would be each noisy pixel's error");
   expect_refused("--denoise --spp 1", "--denoise needs at least 2 spp");

@@ -494,6 +494,8 @@ std::vector<Case> part_cases() {
       {"MergeMissingLastShare", 2, "samples [2, 4) of the job are missing", merge({"part0.exr"})},
       {"MergeMissingFirstShare", 2, "samples [0, 2) are missing", merge({"part1.exr"})},
       {"MergeSamePartTwice", 2, "overlap", merge({"part0.exr", "part0.exr"})},
+      {"MergeSummaryIsAPart", 2, "--summary-json 'part1.exr': is the input file",
+       merge({"part0.exr", "part1.exr", "--summary-json", "part1.exr"})},
       {"MergeThreadsNegative", 2, "--threads must be from 0 (all cores) to 1024, got -1",
        merge({"part0.exr", "part1.exr", "--threads", "-1"})},
       {"DenoiseThreadsBeyondPool",

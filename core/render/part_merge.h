@@ -16,6 +16,7 @@
 #include "core/parallel/work_progress.h"
 #include "core/render/denoised_output.h"
 #include "core/render/first_hit_passes.h"
+#include "core/render/render_settings.h"
 
 namespace rtiow {
 
@@ -42,8 +43,10 @@ struct MergedImage {
   bool passes_kept = false;                // false: the output cannot hold them (they are left out)
   std::optional<DenoiseFigures> denoised;  // what the denoiser delivered, where asked
   // The merged sums' estimated error as a render's line says it ("image error 0.0949
-  // estimated"), or empty where the parts keep no estimate.
+  // estimated"), or empty where the parts keep no estimate; and as a number, with its kind.
   std::string error;
+  double estimated_error = 0.0;
+  ErrorEstimate error_estimate = ErrorEstimate::None;
 };
 
 // Reads the part files at `paths` and merges them. Throws InvalidInput naming the file and

@@ -5,6 +5,7 @@
 #include "core/render/render_outcome.h"
 #include "core/render/render_statistics.h"
 #include "core/sampling/sampler.h"
+#include "core/session/summary_members.h"
 
 namespace rtiow {
 namespace {
@@ -31,13 +32,7 @@ void write_error_target(JsonWriter& j, const RenderSettings& s, const RenderResu
 
 // How many samples each pixel took, and what was asked.
 void write_samples(JsonWriter& j, const RenderSettings& s, const RenderOutcome& outcome) {
-  j.key("spp").begin_object();
-  j.key("least").whole(outcome.least);
-  j.key("most").whole(outcome.most);
-  j.key("mean").number(outcome.mean);
-  const std::optional<int> asked = spp_option(s.samples);
-  asked ? j.key("asked").whole(*asked) : j.key("asked").null();
-  j.end();
+  write_spp_member(j, outcome.least, outcome.most, outcome.mean, spp_option(s.samples));
   j.key("samples").string(outcome.samples);
   outcome.stopped.empty() ? j.key("stopped").null() : j.key("stopped").string(outcome.stopped);
 }
@@ -57,11 +52,7 @@ void write_render_members(JsonWriter& j, const std::string& scene, const RenderS
   } else {
     j.null();
   }
-  j.key("passes").begin_array();
-  if (s.passes.albedo) j.string("albedo");
-  if (s.passes.normal) j.string("normal");
-  if (s.passes.depth) j.string("depth");
-  j.end();
+  write_passes_member(j, s.passes);
   j.key("depth").whole(s.max_depth);
   j.key("accelerator").string(to_string(s.accel));
   j.key("sampler").string(to_string(s.sampler));
@@ -75,26 +66,9 @@ void write_render_members(JsonWriter& j, const std::string& scene, const RenderS
   j.key("rays").whole(result.rays_traced);
   j.key("mrays_per_second").number(tracing_mrays_per_second(result));
   // Every render's estimate of its image error, and the error-driven modes' goal.
-  j.key("error").begin_object();
-  if (result.error_estimate != ErrorEstimate::None) {
-    j.key("estimated").number(result.estimated_image_error);
-  } else {
-    j.key("estimated").null();
-  }
-  j.key("estimate").string(to_string(result.error_estimate));
-  j.key("target");
-  write_error_target(j, s, result);
-  j.end();
-  j.key("denoise");
-  if (denoised) {
-    j.begin_object();
-    j.key("estimated_error").number(denoised->estimated_error);
-    j.key("noisy_error").number(denoised->noisy_error);
-    j.key("seconds").number(denoised->seconds);
-    j.end();
-  } else {
-    j.null();
-  }
+  write_error_member(j, result.error_estimate, result.estimated_image_error,
+                     [&](JsonWriter& w) { write_error_target(w, s, result); });
+  write_denoise_member(j, denoised);
 }
 
 }  // namespace
