@@ -456,7 +456,28 @@ TEST(Cli, DisplayShowsTheRenderInTevAsItGoes) {
   EXPECT_FALSE(fs::exists(output_path("never.png")));
 }
 
-// One request, one image: the C++ API's resolve() and `rtiow render` give the same bits for
-// the same request, defaults included (sampler, seed, the aspect rule, an error target's cap).
+// With --denoise the file holds the denoised image, and so does the viewer's last picture (it
+// ended on the noisy one, the denoiser's work unseen).
+TEST(Cli, DisplayEndsOnTheDenoisedImageItWrites) {
+  FakeTev tev;
+  ASSERT_GT(tev.port(), 0);
+  const fs::path out = output_path("displayed-denoised.exr");
+  const CommandResult r =
+      run_rtiow("render -q --scene cover --width 48 --spp 8 --denoise --display 127.0.0.1:" +
+                std::to_string(tev.port()) + " -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const ShownImage shown = replay_tev(tev.received());
+  EXPECT_EQ(shown.problem, "");
+  EXPECT_GE(shown.updates, 2);
+  int width = 0, height = 0;
+  const std::vector<float> written = exr_pixels(out, width, height);
+  ASSERT_FALSE(written.empty());
+  EXPECT_EQ(shown.rgb, written) << "tev ends on other pixels than the file";
+  // The file's image is the denoised one, not the noisy one beside it.
+  const std::vector<float> noisy = exr_channel(out, "noisy.R");
+  std::size_t differ = 0;
+  for (std::size_t p = 0; p < noisy.size(); ++p) differ += written[3 * p] != noisy[p] ? 1 : 0;
+  EXPECT_GT(differ, noisy.size() / 2);
+}
 
 }  // namespace

@@ -103,7 +103,13 @@ SessionEnd RenderSession::deliver(RenderResult& result, WorkProgress* denoising)
     partial_claim_.emplace(job_.output);
   }
   end.denoised_image = write_or_keep(result, denoising);
-  if (end.denoised_image) end.denoised = figures_of(*end.denoised_image);
+  if (end.denoised_image) {
+    end.denoised = figures_of(*end.denoised_image);
+    // The viewer's last picture is the image written: the noisy one went out above, before the
+    // denoiser's time, and the denoised one follows it.
+    if (display_)
+      display_->show(end.denoised_image->image, pass_channels(result, job_.settings.passes));
+  }
   end.written = job_.output;
   return end;
 }
