@@ -364,6 +364,12 @@ std::vector<Case> size_cases() {
       {"ThreadsBeyondPool", 2, "threads must be from 0 (all cores) to 1024",
        render({"--threads", "100000"})},
       {"ThreadsBeyondInt", 2, "--threads", render({"--threads", "99999999999"})},
+      // Refused as cheaply as a bad -o, before the scene file is read.
+      {"ThreadsNegativeBeforeTheScene",
+       2,
+       "--threads must be from 0",
+       render({"s.json", "--threads", "-1"}),
+       {{"s.json", ""}}},
       {"PartZeroShares", 2, "need 0 <= i < n", render({"--part", "0/0", "-o", "p.exr"})},
       {"PartIndexTooLarge", 2, "need 0 <= i < n", render({"--part", "2/2", "-o", "p.exr"})},
       {"PartNegative", 2, "expected i/n", render({"--part", "-1/2", "-o", "p.exr"})},

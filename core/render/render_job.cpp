@@ -8,7 +8,6 @@
 #include "core/denoise/denoiser.h"
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
-#include "core/limits/input_limits.h"
 #include "core/limits/setting_name.h"
 #include "core/parallel/cancellation.h"
 #include "core/parallel/thread_count.h"
@@ -147,10 +146,9 @@ RenderJob prepare_job(const JobRequest& r) {
   // Cheap checks of the output first, so a bad -o is refused before a large scene loads.
   if (r.output_given) check_output_path(output_path(r, Scene{}), input_files(r));
   // A generated scene is built in parallel: within the request's threads, as the render is (a
-  // count out of range is refused by name once the request is resolved).
-  const int asked = r.request.threads;
-  const int threads = asked >= 0 && asked <= limits::kMaxThreads ? asked : 0;
-  Scene scene = with_threads(threads, [&] { return load_job_scene(r); });
+  // count out of range refused first, as cheaply as a bad -o).
+  check_thread_count(r.request.threads);
+  Scene scene = with_threads(r.request.threads, [&] { return load_job_scene(r); });
   if (r.check_loaded_scene) r.check_loaded_scene(scene);
   return prepare_job(r, std::move(scene));
 }
