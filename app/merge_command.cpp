@@ -11,6 +11,7 @@
 #include "core/io/output_path.h"
 #include "core/limits/error.h"
 #include "core/render/part_merge.h"
+#include "core/render/render_statistics.h"
 #include "core/session/merge_summary.h"
 #include "core/session/work_display.h"
 
@@ -45,10 +46,12 @@ int run_merge(const MergeOptions& o) {
                  to_string(merged.passes).c_str(), quote_value(o.output).c_str());
   }
   if (!o.quiet) {
+    const std::string error =
+        describe_error_estimate(merged.error_estimate, merged.estimated_error);
     std::fprintf(stderr, "merged %zu part%s: %dx%d, %llu spp%s%s -> %s\n", merged.parts,
                  merged.parts == 1 ? "" : "s", merged.film.width(), merged.film.height(),
                  static_cast<unsigned long long>(merged.samples),
-                 merged.error.empty() ? "" : (", " + merged.error).c_str(),
+                 error.empty() ? "" : (", " + error).c_str(),
                  merged.passes_kept ? (", passes " + to_string(merged.passes)).c_str() : "",
                  one_line(o.output).c_str());
     if (merged.denoised) {

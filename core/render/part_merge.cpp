@@ -127,7 +127,6 @@ MergedImage merge_parts(const std::vector<std::string>& paths, const MergeReques
                     replicates > 1 ? kReplicates : 1);
   // The replicate ratios of these sums, where the estimate made them.
   whole.replicate_ratios = record_error_estimate(whole, sampler, image.metadata);
-  image.error = describe_error_estimate(whole);
   image.estimated_error = whole.estimated_image_error, image.error_estimate = whole.error_estimate;
   if (request.statistics)
     image.channels = merged_statistics(whole, without_spreads, sampler, replicates);

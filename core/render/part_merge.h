@@ -42,9 +42,8 @@ struct MergedImage {
   FirstHitPasses passes;                   // the passes the parts hold
   bool passes_kept = false;                // false: the output cannot hold them (they are left out)
   std::optional<DenoiseFigures> denoised;  // what the denoiser delivered, where asked
-  // The merged sums' estimated error as a render's line says it ("image error 0.0949
-  // estimated"), or empty where the parts keep no estimate; and as a number, with its kind.
-  std::string error;
+  // The merged sums' estimated error (relative RMS, offset 0.01) and what it is worth (None where
+  // the parts keep no estimate): describe_error_estimate() says it as a render's line does.
   double estimated_error = 0.0;
   ErrorEstimate error_estimate = ErrorEstimate::None;
 };

@@ -145,14 +145,18 @@ std::string to_string(ErrorEstimate kind) {
   return "none";
 }
 
-std::string describe_error_estimate(const RenderResult& result) {
+std::string describe_error_estimate(ErrorEstimate kind, double estimated) {
   char text[64] = "";
-  if (result.error_estimate == ErrorEstimate::Calibrated) {
-    std::snprintf(text, sizeof text, "image error %.3g estimated", result.estimated_image_error);
-  } else if (result.error_estimate == ErrorEstimate::UpperBound) {
-    std::snprintf(text, sizeof text, "image error at most %.3g", result.estimated_image_error);
+  if (kind == ErrorEstimate::Calibrated) {
+    std::snprintf(text, sizeof text, "image error %.3g estimated", estimated);
+  } else if (kind == ErrorEstimate::UpperBound) {
+    std::snprintf(text, sizeof text, "image error at most %.3g", estimated);
   }
   return text;
+}
+
+std::string describe_error_estimate(const RenderResult& result) {
+  return describe_error_estimate(result.error_estimate, result.estimated_image_error);
 }
 
 }  // namespace rtiow

@@ -47,6 +47,7 @@ ImageErrorEstimate estimate_image_error(const RenderResult& result, int threads)
 std::string to_string(ErrorEstimate kind);
 
 // "image error 0.0123 estimated", "image error at most 0.0456", or "" when there is none.
+std::string describe_error_estimate(ErrorEstimate kind, double estimated);
 std::string describe_error_estimate(const RenderResult& result);
 
 // Reads back an image written with statistics_channels(): the film and each pixel's variance
