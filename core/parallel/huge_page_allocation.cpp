@@ -4,8 +4,8 @@
 // (core/parallel/huge_pages.h). A film-sized array is written whole soon after it is made (the
 // sums zeroed, the denoiser's planes filled), and in 4 KB pages each first write is a fault:
 // measured on this 2-core VM (docs/performance.md), they took a 3840x2160 render's zeroed sums
-// 3.3 s on one thread and the denoiser of that image some 20 of its 50 s. The blocks stay what
-// malloc gives, so the standard library's operator delete (free) releases them.
+// 3.3 s on one thread and the denoiser of that image some 20 of its 50 s. Every block is
+// malloc's, large or small, so operator delete is free(), as the standard library's is.
 
 #include <cstddef>
 #include <cstdlib>
