@@ -97,6 +97,34 @@ TEST(Checkpoint, AdaptiveModesResumeToTheSameBits) {
   expect_resumes_exactly(s, "--target-error");
 }
 
+// A render whose image could not be written keeps its state from its result: lent, not copied
+// (a copy needed the render's memory again, where the write had just run out of it), and a
+// resume from the state lent gives the render again.
+TEST(Checkpoint, TheStateIsLentOutOfTheResultNotCopied) {
+  const Scene scene = make_builtin_scene("cover", 1);
+  const RenderSettings s = small(SamplerKind::Sobol);
+  RenderResult result = render(scene, s);
+  const RenderResult whole = result;
+  const void* sums = result.sums.color.data();
+  const void* spreads = result.sums.spreads.data();
+  const void* samples = result.pixel_samples.data();
+  RenderState state = take_state(result);
+  EXPECT_EQ(state.pixels.sums.color.data(), sums) << "the sums were copied";
+  EXPECT_EQ(state.pixels.sums.spreads.data(), spreads) << "the spreads were copied";
+  EXPECT_EQ(state.pixels.samples.data(), samples) << "the counts were copied";
+  EXPECT_TRUE(state.pixels.sums == whole.sums);
+  EXPECT_EQ(state.pixels.samples, whole.pixel_samples);
+  EXPECT_EQ(state.rays_traced, whole.rays_traced);
+  // Resumed at its own count, the lent state gives the render it came from.
+  RenderState again = state;
+  Checkpointing resume;
+  resume.resume = &again;
+  expect_same_render(whole, render(scene, s, nullptr, &resume), "the lent state resumed");
+  restore_state(std::move(state), result);
+  EXPECT_EQ(result.sums.color.data(), sums);
+  expect_same_render(whole, result, "the state given back");
+}
+
 TEST(Checkpoint, FinishedRenderRefinesToTheLargerCount) {
   const Scene scene = make_builtin_scene("cover", 1);
   RenderSettings s = small(SamplerKind::Sobol);

@@ -320,12 +320,12 @@ RenderResult render(const Scene& scene, const RenderSettings& asked, RenderProgr
   });
 }
 
-RenderState state_of(const RenderResult& result) {
-  RenderState state{result.pixel_samples.size()};
-  state.pixels.sums = result.sums;
-  state.pixels.samples = result.pixel_samples;
-  state.pixels.rays = result.pixel_rays;
-  state.targets = result.targets;
+RenderState take_state(RenderResult& result) {
+  RenderState state{0};
+  state.pixels.sums = std::move(result.sums);
+  state.pixels.samples = std::move(result.pixel_samples);
+  state.pixels.rays = std::move(result.pixel_rays);
+  state.targets = std::move(result.targets);
   state.last_round = result.last_round;
   state.rays_traced = result.rays_traced;
   state.render_seconds = result.render_seconds;
@@ -333,6 +333,13 @@ RenderState state_of(const RenderResult& result) {
   state.estimated_image_error = result.estimated_image_error;
   state.pixels_above_target = result.pixels_above_target;
   return state;
+}
+
+void restore_state(RenderState&& state, RenderResult& result) {
+  result.sums = std::move(state.pixels.sums);
+  result.pixel_samples = std::move(state.pixels.samples);
+  result.pixel_rays = std::move(state.pixels.rays);
+  result.targets = std::move(state.targets);
 }
 
 void start_parallel_runtime() {

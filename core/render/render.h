@@ -15,9 +15,12 @@ void validate(const Scene& scene, const RenderSettings& settings);
 struct Checkpointing;  // core/render/render_state.h
 struct RenderState;
 
-// The state a render ended in, copied back out of its result: for a caller that keeps it after
-// the render (in a checkpoint, when the image could not be written).
-RenderState state_of(const RenderResult& result);
+// The state a render ended in, moved out of its result (its sums, counts and targets), for a
+// caller that keeps it after the render (in a checkpoint, when the image could not be written),
+// and moved back by restore_state. A copy needed the render's memory over again: a 4000x2667
+// render whose image write ran out of memory under `ulimit -v` could not keep its state.
+RenderState take_state(RenderResult& result);
+void restore_state(RenderState&& state, RenderResult& result);
 
 // Validates the scene's camera and the settings (throwing InvalidInput before any work),
 // builds the accelerator and renders in passes: each pass adds a few samples to every

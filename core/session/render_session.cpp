@@ -134,10 +134,15 @@ std::optional<DenoisedImage> RenderSession::write_or_keep(RenderResult& result,
     const std::string what = dynamic_cast<const std::bad_alloc*>(&e)
                                  ? "out of memory writing " + quote_value(job_.output, kWholePath)
                                  : std::string(e.what());
+    // The denoised image's planes are no longer wanted; the state is lent, not copied: the
+    // write may have failed for want of memory.
+    denoised.reset();
+    RenderState state = take_state(result);
     try {
-      checkpoint->image_lost(state_of(result));
-    } catch (const std::bad_alloc&) {  // no memory for a copy of the state: said below
+      checkpoint->image_lost(state);
+    } catch (const std::bad_alloc&) {  // no memory to save it: said below
     }
+    restore_state(std::move(state), result);
     if (!checkpoint->holds_the_render()) {
       throw std::runtime_error(
           what + "; and the render's state could not be kept" +
